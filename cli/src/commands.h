@@ -1,0 +1,19 @@
+#pragma once
+// Each group of CLI commands registers itself on the application; main.cpp
+// lists the groups explicitly (after Mayo's src/app/main.cpp).
+
+#include <functional>
+
+namespace CLI {
+class App;
+}
+
+namespace paintlab::cli {
+
+// What a subcommand runs once parsing succeeded; returns the exit code.
+using CommandAction = std::function<int()>;
+
+// Registers `validate` and `show`. The chosen command's action is stored in action.
+void addRecipeCommands(CLI::App& app, CommandAction& action);
+
+} // namespace paintlab::cli

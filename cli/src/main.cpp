@@ -1,0 +1,49 @@
+// paintlab-cli: the scriptable face of PaintLab.
+// Exit codes are a public contract: 0 ok, 2 bad input, 1 internal error.
+
+#include "commands.h"
+#include "paintlab/engine/error.h"
+
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+namespace {
+constexpr int kExitOk = 0;
+constexpr int kExitInternal = 1;
+constexpr int kExitBadInput = 2;
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"PaintLab command line: validate and inspect paint recipes.\n"
+                 "Exit codes: 0 ok, 2 bad input (file and field named on stderr), 1 internal error."};
+    app.set_version_flag("--version", std::string("paintlab-cli ") + PAINTLAB_VERSION);
+    app.require_subcommand(1);
+
+    paintlab::cli::CommandAction action;
+    paintlab::cli::addRecipeCommands(app, action);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        app.exit(e);
+        return kExitBadInput;
+    }
+
+    try {
+        return action ? action() : kExitOk;
+    } catch (const paintlab::InputError& e) {
+        std::cerr << "error: " << e.what() << '\n';
+        return kExitBadInput;
+    } catch (const std::exception& e) {
+        std::cerr << "internal error: " << e.what() << '\n';
+        return kExitInternal;
+    }
+}

@@ -1,0 +1,29 @@
+#pragma once
+// Checks a recipe against the parameter declarations (parameters.h) and the
+// rules that involve several fields: at least one layer, total volume
+// fraction <= 1 at every depth, exactly one way of giving a mirror flake's
+// reflectance, a well-formed depth profile.
+
+#include "paintlab/engine/recipe.h"
+
+#include <string>
+#include <vector>
+
+namespace paintlab {
+
+enum class Severity { Warning, Error };
+
+struct RecipeProblem {
+    Severity severity = Severity::Error;
+    std::string field;    // "layer 2 'basecoat' > component 1 'Al flake' > volume_fraction"
+    std::string message;  // "0.4 is above the maximum 0.3 (allowed 0 to 0.3)"
+};
+
+// All problems found, errors and warnings (values outside the typical range,
+// spectra that do not cover the visible range), in recipe order.
+std::vector<RecipeProblem> checkRecipe(const Recipe& recipe);
+
+// Throws InputError(source, field, message) for the first error; warnings pass.
+void validateRecipe(const Recipe& recipe, const std::string& source);
+
+} // namespace paintlab

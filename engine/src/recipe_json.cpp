@@ -1,0 +1,370 @@
+#include "paintlab/engine/recipe_json.h"
+
+#include "json_guard.h"
+#include "paintlab/engine/error.h"
+#include "paintlab/engine/recipe_validation.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+namespace paintlab {
+
+namespace {
+
+using nlohmann::json;
+using nlohmann::ordered_json;
+
+// Tabulated spectra longer than this are not optical data but garbage.
+constexpr std::size_t kMaxSpectrumSamples = 100000;
+
+std::string typeName(const json& j) {
+    if (j.is_number()) return "a number";
+    return std::string("a") + (j.is_object() ? "n " : " ") + j.type_name();
+}
+
+// Reads the fields of one JSON object, remembering which keys were used so
+// that a misspelt key is reported instead of silently ignored.
+class ObjectReader {
+public:
+    ObjectReader(const json& object, std::string path, const std::string& source)
+        : m_object(object), m_path(std::move(path)), m_source(source) {
+        if (!m_object.is_object()) fail("", "expected a JSON object, found " + typeName(m_object));
+    }
+
+    [[noreturn]] void fail(std::string_view key, const std::string& message) const {
+        std::string field = m_path;
+        if (!key.empty()) field += (field.empty() ? "" : " > ") + std::string(key);
+        throw InputError(m_source, field, message);
+    }
+
+    const json* find(std::string_view key) {
+        m_known.emplace_back(key);
+        const auto it = m_object.find(key);
+        return it == m_object.end() ? nullptr : &*it;
+    }
+
+    const json& require(std::string_view key, std::string_view what) {
+        const json* value = find(key);
+        if (value == nullptr) fail(key, "missing required field '" + std::string(key) + "' (" + std::string(what) + ")");
+        return *value;
+    }
+
+    std::string string(std::string_view key, bool required) {
+        const json* value = required ? &require(key, "text") : find(key);
+        if (value == nullptr) return {};
+        if (!value->is_string()) fail(key, "expected text, found " + typeName(*value));
+        return value->get<std::string>();
+    }
+
+    double number(std::string_view key, const json& value) const {
+        if (!value.is_number()) fail(key, "expected a number, found " + typeName(value));
+        const double x = value.get<double>();
+        if (!std::isfinite(x)) fail(key, "value is not a finite number");
+        return x;
+    }
+
+    std::vector<double> numberArray(std::string_view key, const json& value) const {
+        if (!value.is_array()) fail(key, "expected an array of numbers, found " + typeName(value));
+        if (value.size() > kMaxSpectrumSamples)
+            fail(key, "array has " + std::to_string(value.size()) + " entries; at most " +
+                          std::to_string(kMaxSpectrumSamples) + " are allowed");
+        std::vector<double> out;
+        out.reserve(value.size());
+        for (std::size_t i = 0; i < value.size(); ++i)
+            out.push_back(number(std::string(key) + "[" + std::to_string(i) + "]", value[i]));
+        return out;
+    }
+
+    Spectrum spectrumValue(std::string_view key, const json& value) const {
+        if (value.is_number()) return Spectrum(number(key, value));
+        if (!value.is_object())
+            fail(key, "expected a number or {\"wavelengths_nm\": [...], \"values\": [...]}, found " + typeName(value));
+        ObjectReader table(value, fieldPath(key), m_source);
+        auto wavelengths = table.numberArray("wavelengths_nm", table.require("wavelengths_nm", "wavelengths in nm"));
+        auto values = table.numberArray("values", table.require("values", "one value per wavelength"));
+        table.finish();
+        try {
+            return {std::move(wavelengths), std::move(values)};
+        } catch (const std::invalid_argument& e) {
+            fail(key, e.what());
+        }
+    }
+
+    // The traversal hook's visitor interface (recipe.h).
+    void scalar(const ParameterDecl& decl, double& out) {
+        const json* value = decl.required ? &require(decl.key, decl.label) : find(decl.key);
+        out = value == nullptr ? decl.defaultValue : number(decl.key, *value);
+    }
+    void spectrum(const ParameterDecl& decl, Spectrum& out) {
+        const json* value = decl.required ? &require(decl.key, decl.label) : find(decl.key);
+        out = value == nullptr ? Spectrum(decl.defaultValue) : spectrumValue(decl.key, *value);
+    }
+    void optionalSpectrum(const ParameterDecl& decl, std::optional<Spectrum>& out) {
+        const json* value = find(decl.key);
+        if (value == nullptr) out.reset();
+        else out = spectrumValue(decl.key, *value);
+    }
+
+    // Every key of the object must have been asked for.
+    void finish() const {
+        for (const auto& item : m_object.items()) {
+            if (std::find(m_known.begin(), m_known.end(), item.key()) != m_known.end()) continue;
+            std::string allowed;
+            for (const auto& k : m_known) allowed += (allowed.empty() ? "" : ", ") + k;
+            fail(item.key(), "unknown field '" + item.key() + "' (expected one of: " + allowed + ")");
+        }
+    }
+
+    std::string fieldPath(std::string_view key) const {
+        return m_path.empty() ? std::string(key) : m_path + " > " + std::string(key);
+    }
+
+private:
+    const json& m_object;
+    std::string m_path;
+    const std::string& m_source;
+    std::vector<std::string> m_known;
+};
+
+std::optional<DepthProfile> readDepthProfile(ObjectReader& owner, const std::string& source) {
+    const json* value = owner.find("depth_profile");
+    if (value == nullptr) return std::nullopt;
+    ObjectReader reader(*value, owner.fieldPath("depth_profile"), source);
+    DepthProfile profile;
+    profile.depth = reader.numberArray("depth", reader.require("depth", "relative depths, 0 = top, 1 = bottom"));
+    profile.weight = reader.numberArray("weight", reader.require("weight", "relative concentration at each depth"));
+    reader.finish();
+    if (profile.depth.size() != profile.weight.size())
+        reader.fail("weight", "has " + std::to_string(profile.weight.size()) + " entries but depth has " +
+                                  std::to_string(profile.depth.size()));
+    return profile;
+}
+
+template <class T> T readComponentFields(ObjectReader& reader, const std::string& source) {
+    T component;
+    component.name = reader.string("name", true);
+    component.source = reader.string("source", false);
+    T::traverse(component, reader);
+    if constexpr (requires { component.depth_profile; }) component.depth_profile = readDepthProfile(reader, source);
+    return component;
+}
+
+std::string componentLabel(std::size_t index, const json& value) {
+    std::string label = "component " + std::to_string(index + 1);
+    if (value.is_object() && value.contains("name") && value["name"].is_string())
+        label += " '" + value["name"].get<std::string>() + "'";
+    return label;
+}
+
+Component readComponent(const json& value, const std::string& path, const std::string& source) {
+    ObjectReader reader(value, path, source);
+    const std::string kind = reader.string("kind", true);
+    Component component;
+    if (kind == Pigment::kKind) component = readComponentFields<Pigment>(reader, source);
+    else if (kind == MirrorFlake::kKind) component = readComponentFields<MirrorFlake>(reader, source);
+    else if (kind == InterferenceFlake::kKind) component = readComponentFields<InterferenceFlake>(reader, source);
+    else if (kind == RawMedium::kKind) component = readComponentFields<RawMedium>(reader, source);
+    else
+        reader.fail("kind", "unknown component kind '" + kind +
+                                "' (expected pigment, mirror_flake, interference_flake or raw_medium)");
+    reader.finish();
+    return component;
+}
+
+Layer readLayer(const json& value, const std::string& path, const std::string& source) {
+    ObjectReader reader(value, path, source);
+    Layer layer;
+    layer.name = reader.string("name", true);
+    Layer::traverse(layer, reader);
+    if (const json* binder = reader.find("binder")) {
+        ObjectReader binder_reader(*binder, reader.fieldPath("binder"), source);
+        layer.binder.name = binder_reader.string("name", false);
+        Binder::traverse(layer.binder, binder_reader);
+        binder_reader.finish();
+    }
+    if (const json* components = reader.find("components")) {
+        if (!components->is_array()) reader.fail("components", "expected an array, found " + typeName(*components));
+        for (std::size_t i = 0; i < components->size(); ++i)
+            layer.components.push_back(
+                readComponent((*components)[i], reader.fieldPath(componentLabel(i, (*components)[i])), source));
+    }
+    reader.finish();
+    return layer;
+}
+
+template <class T> Substrate readSubstrateFields(ObjectReader& reader) {
+    T substrate;
+    T::traverse(substrate, reader);
+    return substrate;
+}
+
+Substrate readSubstrate(const json& value, const std::string& source) {
+    ObjectReader reader(value, "substrate", source);
+    const std::string kind = reader.string("kind", true);
+    Substrate substrate;
+    if (kind == LambertianSubstrate::kKind) substrate = readSubstrateFields<LambertianSubstrate>(reader);
+    else if (kind == MetalSubstrate::kKind) substrate = readSubstrateFields<MetalSubstrate>(reader);
+    else if (kind == BlackSubstrate::kKind) substrate = readSubstrateFields<BlackSubstrate>(reader);
+    else if (kind == TransparentSubstrate::kKind) substrate = readSubstrateFields<TransparentSubstrate>(reader);
+    else reader.fail("kind", "unknown substrate kind '" + kind + "' (expected lambertian, metal, black or transparent)");
+    reader.finish();
+    return substrate;
+}
+
+// Writes fields in declaration order; every field, defaults included, so the
+// file says exactly what was simulated.
+class ObjectWriter {
+public:
+    explicit ObjectWriter(ordered_json& out) : m_out(out) {}
+
+    static ordered_json spectrumJson(const Spectrum& s) {
+        if (s.isConstant()) return s.values().front();
+        ordered_json table;
+        table["wavelengths_nm"] = s.wavelengthsNm();
+        table["values"] = s.values();
+        return table;
+    }
+    void scalar(const ParameterDecl& decl, const double& value) { m_out[std::string(decl.key)] = value; }
+    void spectrum(const ParameterDecl& decl, const Spectrum& value) {
+        m_out[std::string(decl.key)] = spectrumJson(value);
+    }
+    void optionalSpectrum(const ParameterDecl& decl, const std::optional<Spectrum>& value) {
+        if (value) spectrum(decl, *value);
+    }
+
+private:
+    ordered_json& m_out;
+};
+
+ordered_json componentJson(const Component& component) {
+    ordered_json out;
+    std::visit(
+        [&out](const auto& c) {
+            using T = std::decay_t<decltype(c)>;
+            out["kind"] = std::string(T::kKind);
+            out["name"] = c.name;
+            if (!c.source.empty()) out["source"] = c.source;
+            ObjectWriter writer(out);
+            T::traverse(c, writer);
+            if constexpr (requires { c.depth_profile; }) {
+                if (c.depth_profile) out["depth_profile"] = {{"depth", c.depth_profile->depth},
+                                                             {"weight", c.depth_profile->weight}};
+            }
+        },
+        component);
+    return out;
+}
+
+ordered_json layerJson(const Layer& layer) {
+    ordered_json out;
+    out["name"] = layer.name;
+    ObjectWriter writer(out);
+    Layer::traverse(layer, writer);
+    ordered_json binder;
+    if (!layer.binder.name.empty()) binder["name"] = layer.binder.name;
+    ObjectWriter binder_writer(binder);
+    Binder::traverse(layer.binder, binder_writer);
+    out["binder"] = binder;
+    out["components"] = ordered_json::array();
+    for (const auto& c : layer.components) out["components"].push_back(componentJson(c));
+    return out;
+}
+
+ordered_json substrateJson(const Substrate& substrate) {
+    ordered_json out;
+    std::visit(
+        [&out](const auto& s) {
+            using T = std::decay_t<decltype(s)>;
+            out["kind"] = std::string(T::kKind);
+            ObjectWriter writer(out);
+            T::traverse(s, writer);
+        },
+        substrate);
+    return out;
+}
+
+} // namespace
+
+Recipe parseRecipeJson(std::string_view text, const std::string& source) {
+    const json document = detail::parseUntrustedJson(text, source);
+    ObjectReader reader(document, "", source);
+
+    const json& version = reader.require("schema_version", "recipe format version");
+    if (!version.is_number_integer())
+        reader.fail("schema_version", "expected an integer, found " + typeName(version));
+    if (version.get<long long>() != Recipe::kSchemaVersion)
+        reader.fail("schema_version", "unsupported schema version " + version.dump() + " (this PaintLab reads version " +
+                                          std::to_string(Recipe::kSchemaVersion) + ")");
+
+    Recipe recipe;
+    recipe.name = reader.string("name", true);
+    recipe.description = reader.string("description", false);
+    if (const json* ambient = reader.find("ambient")) {
+        ObjectReader ambient_reader(*ambient, "ambient", source);
+        ambient_reader.scalar(params::kAmbientIndex, recipe.ambient_refractive_index);
+        ambient_reader.finish();
+    }
+    const json& layers = reader.require("layers", "the layers, top first");
+    if (!layers.is_array()) reader.fail("layers", "expected an array of layers, found " + typeName(layers));
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+        std::string label = "layer " + std::to_string(i + 1);
+        if (layers[i].is_object() && layers[i].contains("name") && layers[i]["name"].is_string())
+            label += " '" + layers[i]["name"].get<std::string>() + "'";
+        recipe.layers.push_back(readLayer(layers[i], label, source));
+    }
+    recipe.substrate = readSubstrate(reader.require("substrate", "what the paint is applied on"), source);
+    reader.finish();
+    return recipe;
+}
+
+Recipe parseRecipeFile(const std::filesystem::path& path) {
+    return parseRecipeJson(detail::readBoundedTextFile(path, kMaxRecipeFileBytes), path.string());
+}
+
+Recipe loadRecipeFile(const std::filesystem::path& path) {
+    Recipe recipe = parseRecipeFile(path);
+    validateRecipe(recipe, path.string());
+    return recipe;
+}
+
+std::string recipeToJson(const Recipe& recipe) {
+    ordered_json out;
+    out["schema_version"] = Recipe::kSchemaVersion;
+    out["name"] = recipe.name;
+    if (!recipe.description.empty()) out["description"] = recipe.description;
+    out["ambient"] = {{std::string(params::kAmbientIndex.key), recipe.ambient_refractive_index}};
+    out["layers"] = ordered_json::array();
+    for (const auto& layer : recipe.layers) out["layers"].push_back(layerJson(layer));
+    out["substrate"] = substrateJson(recipe.substrate);
+    return out.dump(2) + "\n";
+}
+
+void saveRecipeFile(const Recipe& recipe, const std::filesystem::path& path) {
+    const std::string text = recipeToJson(recipe);
+    std::filesystem::path temp = path;
+    temp += ".tmp";
+    {
+        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+        if (!out) throw Error(path.string() + ": cannot write (temporary file " + temp.string() + ")");
+        out.write(text.data(), static_cast<std::streamsize>(text.size()));
+        out.flush();
+        if (!out) {
+            std::error_code ignored;
+            std::filesystem::remove(temp, ignored);
+            throw Error(path.string() + ": writing failed (disk full?)");
+        }
+    }
+    std::error_code ec;
+    std::filesystem::rename(temp, path, ec);
+    if (ec) {
+        std::filesystem::remove(temp, ec);
+        throw Error(path.string() + ": cannot replace file: " + ec.message());
+    }
+}
+
+} // namespace paintlab

@@ -1,0 +1,159 @@
+#include "paintlab/engine/error.h"
+#include "paintlab/engine/recipe_json.h"
+#include "paintlab/engine/recipe_validation.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+namespace paintlab {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct BadRecipeCase {
+    const char* file;
+    const char* field;    // must appear in InputError::field() (or the message for parse errors)
+    const char* message;  // must appear in the message
+};
+
+// One file per kind of bad input the foundation issue lists, plus a few more.
+const BadRecipeCase kBadRecipes[] = {
+    {"missing_thickness.json", "thickness_um", "missing required field"},
+    {"wrong_type.json", "thickness_um", "expected a number"},
+    {"nan_value.json", "volume_fraction", "NaN"},
+    {"infinity_value.json", "thickness_um", "Infinity"},
+    {"overflow_value.json", "thickness_um", "too large to be finite"},
+    {"negative_thickness.json", "layer 1 'basecoat' > thickness_um", "-5 must be above 0"},
+    {"zero_layers.json", "layers", "no layers"},
+    {"unknown_component_kind.json", "kind", "unknown component kind 'glitter'"},
+    {"concentration_above_limit.json", "component 2 'aluminium' (mirror_flake) > volume_fraction",
+     "0.45 is above the maximum 0.3"},
+    {"total_volume_fraction_above_one.json", "components", "total volume fraction 1.1"},
+    {"orientation_spread_out_of_range.json", "orientation_spread_deg", "120 is above the maximum 90"},
+    {"unsupported_schema_version.json", "schema_version", "unsupported schema version 99"},
+    {"truncated.json", "", "truncated"},
+    {"empty.json", "", "empty"},
+    {"unknown_field.json", "thicknes_um", "unknown field"},
+    {"spectrum_length_mismatch.json", "sigma_a_per_um", "4 wavelengths but 3 values"},
+    {"flake_both_reflectance_and_nk.json", "reflectance", "exactly one"},
+    {"profile_peak_above_limit.json", "depth_profile", "peak volume fraction 0.4"},
+    {"deep_nesting.json", "", "nested deeper"},
+};
+
+// Readable test names and failure messages instead of a byte dump.
+void PrintTo(const BadRecipeCase& c, std::ostream* os) { *os << c.file; }
+
+class BadRecipe : public testing::TestWithParam<BadRecipeCase> {};
+
+TEST_P(BadRecipe, IsRejectedWithTheFieldNamed) {
+    const BadRecipeCase& c = GetParam();
+    const fs::path file = fs::path(PAINTLAB_TEST_DATA_DIR) / "bad_recipes" / c.file;
+    ASSERT_TRUE(fs::exists(file)) << file;
+    try {
+        loadRecipeFile(file);
+        FAIL() << c.file << " was accepted";
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_EQ(e.source(), file.string());
+        EXPECT_NE(what.find(c.field), std::string::npos) << what;
+        EXPECT_NE(what.find(c.message), std::string::npos) << what;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Files, BadRecipe, testing::ValuesIn(kBadRecipes),
+                         [](const testing::TestParamInfo<BadRecipeCase>& param_info) {
+                             std::string name = param_info.param.file;
+                             name = name.substr(0, name.find('.'));
+                             return name;
+                         });
+
+TEST(BadRecipeFile, HugeGarbageIsRejectedFromItsSizeWithoutReadingIt) {
+    // A sparse 100 MB file: rejecting it must not depend on reading 100 MB.
+    const fs::path file = fs::temp_directory_path() / "paintlab_garbage_100mb.json";
+    { std::ofstream(file, std::ios::binary) << "garbage"; }
+    fs::resize_file(file, std::uintmax_t{100} << 20);
+    try {
+        loadRecipeFile(file);
+        FAIL() << "accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("104857600 bytes"), std::string::npos) << e.what();
+    }
+    fs::remove(file);
+}
+
+TEST(BadRecipeFile, RandomBytesBelowTheSizeCapAreRejected) {
+    const fs::path file = fs::temp_directory_path() / "paintlab_garbage_random.json";
+    std::mt19937 rng(7);
+    std::string bytes(4u << 20, '\0');
+    for (auto& b : bytes) b = static_cast<char>(rng() & 0xFF);
+    bytes[0] = '{';  // get past the first-character check into the parser
+    { std::ofstream(file, std::ios::binary) << bytes; }
+    EXPECT_THROW(loadRecipeFile(file), InputError);
+    fs::remove(file);
+}
+
+TEST(BadRecipeFile, MissingFileAndDirectoryAreNamed) {
+    EXPECT_THROW(loadRecipeFile("/nonexistent/recipe.json"), InputError);
+    EXPECT_THROW(loadRecipeFile(fs::temp_directory_path()), InputError);
+}
+
+Recipe minimal() { return loadRecipeFile(fs::path(PAINTLAB_TEST_DATA_DIR) / "valid_minimal.json"); }
+
+TEST(RecipeValidation, MinimalRecipeHasNoProblems) { EXPECT_TRUE(checkRecipe(minimal()).empty()); }
+
+TEST(RecipeValidation, OutsideTypicalRangeIsOnlyAWarning) {
+    Recipe r = minimal();
+    r.layers[0].thickness_um = 300.0;  // thick but possible (e.g. a filler)
+    const auto problems = checkRecipe(r);
+    ASSERT_EQ(problems.size(), 1u);
+    EXPECT_EQ(problems[0].severity, Severity::Warning);
+    EXPECT_NO_THROW(validateRecipe(r, "test"));
+}
+
+TEST(RecipeValidation, MetalFlakeNeedsBothNAndK) {
+    Recipe r = minimal();
+    auto& flake = std::get<MirrorFlake>(r.layers[0].components[1]);
+    flake.reflectance.reset();
+    flake.metal_n = Spectrum(1.2);
+    EXPECT_THROW(validateRecipe(r, "test"), InputError);
+    flake.metal_k = Spectrum(7.0);
+    EXPECT_NO_THROW(validateRecipe(r, "test"));
+}
+
+TEST(RecipeValidation, DepthProfileShapeKeepsTheMean) {
+    // w(z) = 2 - 2z (linear ramp): mean 1, peak 2, so the local volume fraction
+    // is 2c at the top and 0 at the bottom while the mean stays c.
+    const DepthProfile ramp{{0.0, 1.0}, {2.0, 0.0}};
+    EXPECT_DOUBLE_EQ(ramp.meanWeight(), 1.0);
+    EXPECT_DOUBLE_EQ(ramp.peakRelativeConcentration(), 2.0);
+    EXPECT_DOUBLE_EQ(ramp.weightAt(0.25), 1.5);
+    Recipe r = minimal();
+    std::get<Pigment>(r.layers[0].components[0]).depth_profile = DepthProfile{{0.0, 0.5}, {1.0, 1.0}};
+    EXPECT_THROW(validateRecipe(r, "test"), InputError);  // does not reach depth 1
+}
+
+TEST(RecipeValidation, LocalTotalVolumeFractionWithProfiles) {
+    // Means sum to 0.6 and each peak (0.6) is below the pigment maximum 0.64,
+    // but both ramps peak at the top: 2 * 0.3 + 2 * 0.3 = 1.2.
+    Recipe r = minimal();
+    auto& pigment = std::get<Pigment>(r.layers[0].components[0]);
+    pigment.volume_fraction = 0.3;
+    pigment.depth_profile = DepthProfile{{0.0, 1.0}, {2.0, 0.0}};
+    Pigment second = pigment;
+    second.name = "second";
+    r.layers[0].components = {pigment, second};
+    try {
+        validateRecipe(r, "test");
+        FAIL() << "accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("local total volume fraction reaches 1.2"), std::string::npos)
+            << e.what();
+    }
+}
+
+} // namespace
+} // namespace paintlab
