@@ -16,4 +16,4 @@ using CommandAction = std::function<int()>;
 // Registers `validate` and `show`. The chosen command's action is stored in action.
 void addRecipeCommands(CLI::App& app, CommandAction& action);
 
-} // namespace paintlab::cli
+}  // namespace paintlab::cli

@@ -10,12 +10,12 @@
 #include <iostream>
 
 namespace {
+
 constexpr int kExitOk = 0;
 constexpr int kExitInternal = 1;
 constexpr int kExitBadInput = 2;
-} // namespace
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
     CLI::App app{"PaintLab command line: validate and inspect paint recipes.\n"
                  "Exit codes: 0 ok, 2 bad input (file and field named on stderr), 1 internal error."};
     app.set_version_flag("--version", std::string("paintlab-cli ") + PAINTLAB_VERSION);
@@ -26,11 +26,7 @@ int main(int argc, char** argv) {
 
     try {
         app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::CallForAllHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::CallForVersion& e) {
+    } catch (const CLI::Success& e) {  // --help, --version
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         app.exit(e);
@@ -42,8 +38,18 @@ int main(int argc, char** argv) {
     } catch (const paintlab::InputError& e) {
         std::cerr << "error: " << e.what() << '\n';
         return kExitBadInput;
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
     } catch (const std::exception& e) {
         std::cerr << "internal error: " << e.what() << '\n';
-        return kExitInternal;
+    } catch (...) {
+        std::cerr << "internal error: unknown exception\n";
     }
+    return kExitInternal;
 }

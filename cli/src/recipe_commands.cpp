@@ -37,13 +37,13 @@ int runValidate(const RecipeOptions& options) {
         out["valid"] = !has_error;
         out["problems"] = nlohmann::ordered_json::array();
         for (const auto& p : problems)
-            out["problems"].push_back({{"severity", severityName(p.severity)}, {"field", p.field},
-                                       {"message", p.message}});
+            out["problems"].push_back(
+                {{"severity", severityName(p.severity)}, {"field", p.field}, {"message", p.message}});
         std::cout << out.dump(2) << '\n';
     } else {
         for (const auto& p : problems)
-            std::cerr << severityName(p.severity) << ": " << options.path << ": " << p.field << ": " << p.message
-                      << '\n';
+            std::cerr << severityName(p.severity) << ": " << options.path << ": " << p.field << ": "
+                      << p.message << '\n';
         if (!has_error)
             std::cout << options.path << ": valid recipe '" << recipe.name << "', " << recipe.layers.size()
                       << (recipe.layers.size() == 1 ? " layer" : " layers") << '\n';
@@ -53,17 +53,20 @@ int runValidate(const RecipeOptions& options) {
 
 int runShow(const RecipeOptions& options) {
     const Recipe recipe = loadRecipeFile(options.path);
-    if (options.json) std::cout << recipeToJson(recipe);
-    else std::cout << describeRecipe(recipe);
+    if (options.json)
+        std::cout << recipeToJson(recipe);
+    else
+        std::cout << describeRecipe(recipe);
     return 0;
 }
 
-} // namespace
+}  // namespace
 
 void addRecipeCommands(CLI::App& app, CommandAction& action) {
     auto options = std::make_shared<RecipeOptions>();
 
-    CLI::App* validate = app.add_subcommand("validate", "Check a recipe file; list every problem with its field");
+    CLI::App* validate =
+        app.add_subcommand("validate", "Check a recipe file; list every problem with its field");
     validate->add_option("recipe", options->path, "Recipe JSON file")->required();
     validate->add_flag("--json", options->json, "Print the result as JSON on stdout");
     validate->callback([options, &action] { action = [options] { return runValidate(*options); }; });
@@ -74,4 +77,4 @@ void addRecipeCommands(CLI::App& app, CommandAction& action) {
     show->callback([options, &action] { action = [options] { return runShow(*options); }; });
 }
 
-} // namespace paintlab::cli
+}  // namespace paintlab::cli

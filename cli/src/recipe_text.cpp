@@ -47,7 +47,7 @@ private:
     std::string m_indent;
 };
 
-} // namespace
+}  // namespace
 
 std::string describeRecipe(const Recipe& recipe) {
     std::ostringstream out;
@@ -65,8 +65,8 @@ std::string describeRecipe(const Recipe& recipe) {
         Binder::traverse(layer.binder, binder_printer);
         for (std::size_t j = 0; j < layer.components.size(); ++j) {
             const Component& component = layer.components[j];
-            out << "  Component " << j + 1 << " '" << componentName(component) << "' (" << componentKind(component)
-                << ")\n";
+            out << "  Component " << j + 1 << " '" << componentName(component) << "' ("
+                << componentKind(component) << ")\n";
             FieldPrinter printer(out, "    ");
             std::visit(
                 [&](const auto& c) {
@@ -92,4 +92,4 @@ std::string describeRecipe(const Recipe& recipe) {
     return out.str();
 }
 
-} // namespace paintlab::cli
+}  // namespace paintlab::cli

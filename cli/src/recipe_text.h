@@ -9,4 +9,4 @@ namespace paintlab::cli {
 
 std::string describeRecipe(const Recipe& recipe);
 
-} // namespace paintlab::cli
+}  // namespace paintlab::cli

@@ -37,7 +37,8 @@ std::string lastKeyBefore(std::string_view text, std::size_t byte) {
     std::size_t colon = text.rfind(':', end == 0 ? 0 : end - 1);
     while (colon != std::string_view::npos && colon > 0) {
         std::size_t q = colon;
-        while (q > 0 && (text[q - 1] == ' ' || text[q - 1] == '\t' || text[q - 1] == '\n' || text[q - 1] == '\r'))
+        while (q > 0 &&
+               (text[q - 1] == ' ' || text[q - 1] == '\t' || text[q - 1] == '\n' || text[q - 1] == '\r'))
             --q;
         if (q > 0 && text[q - 1] == '"') {
             const std::size_t open = text.rfind('"', q - 2 < q ? q - 2 : 0);
@@ -56,13 +57,14 @@ std::string tokenAt(std::string_view text, std::size_t byte) {
     // nlohmann reports the byte after the bad token; step back over it.
     while (start > 0 && std::isalnum(static_cast<unsigned char>(text[start - 1])) != 0) --start;
     std::size_t stop = start;
-    while (stop < text.size() && stop - start < 24 &&
-           (std::isalnum(static_cast<unsigned char>(text[stop])) != 0 || text[stop] == '-' || text[stop] == '.'))
+    while (
+        stop < text.size() && stop - start < 24 &&
+        (std::isalnum(static_cast<unsigned char>(text[stop])) != 0 || text[stop] == '-' || text[stop] == '.'))
         ++stop;
     return std::string(text.substr(start, stop - start));
 }
 
-} // namespace
+}  // namespace
 
 std::string readBoundedTextFile(const std::filesystem::path& path, std::size_t max_bytes) {
     const std::string name = path.string();
@@ -73,13 +75,15 @@ std::string readBoundedTextFile(const std::filesystem::path& path, std::size_t m
     if (ec) throw InputError(name, "", "cannot read file size: " + ec.message());
     if (size == 0) throw InputError(name, "", "file is empty");
     if (size > max_bytes)
-        throw InputError(name, "", "file is " + std::to_string(size) + " bytes; the limit for this kind of file is " +
-                                       std::to_string(max_bytes) + " bytes");
+        throw InputError(name, "",
+                         "file is " + std::to_string(size) + " bytes; the limit for this kind of file is " +
+                             std::to_string(max_bytes) + " bytes");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(name, "", "cannot open file for reading");
     std::string text(static_cast<std::size_t>(size), '\0');
     in.read(text.data(), static_cast<std::streamsize>(size));
-    if (static_cast<std::size_t>(in.gcount()) != size) throw InputError(name, "", "file could not be read completely");
+    if (static_cast<std::size_t>(in.gcount()) != size)
+        throw InputError(name, "", "file could not be read completely");
     return text;
 }
 
@@ -107,7 +111,8 @@ nlohmann::json parseUntrustedJson(std::string_view text, const std::string& sour
         if (token == "NaN" || token == "nan" || token == "Infinity" || token == "-Infinity" || token == "inf")
             what = "'" + token + "' is not a number JSON allows; every value must be finite";
         throw InputError(source, key.empty() ? std::string() : "near field '" + key + "'",
-                         "line " + std::to_string(pos.line) + ", column " + std::to_string(pos.column) + ": " + what);
+                         "line " + std::to_string(pos.line) + ", column " + std::to_string(pos.column) +
+                             ": " + what);
     } catch (const nlohmann::json::out_of_range& e) {
         // A number too large for a double (1e999); nlohmann quotes the token, find it to name the field.
         const std::string message = e.what();
@@ -118,9 +123,9 @@ nlohmann::json parseUntrustedJson(std::string_view text, const std::string& sour
         const std::string key = at == std::string_view::npos ? std::string() : lastKeyBefore(text, at);
         const TextPosition pos = positionOf(text, at == std::string_view::npos ? 0 : at);
         throw InputError(source, key.empty() ? std::string() : "near field '" + key + "'",
-                         "line " + std::to_string(pos.line) + ", column " + std::to_string(pos.column) + ": number '" +
-                             token + "' is too large to be finite");
+                         "line " + std::to_string(pos.line) + ", column " + std::to_string(pos.column) +
+                             ": number '" + token + "' is too large to be finite");
     }
 }
 
-} // namespace paintlab::detail
+}  // namespace paintlab::detail

@@ -19,6 +19,7 @@ std::string readBoundedTextFile(const std::filesystem::path& path, std::size_t m
 
 // Parses text as one JSON value, nesting at most max_depth. Throws InputError
 // naming source, the line and column, and the last key before the error.
-nlohmann::json parseUntrustedJson(std::string_view text, const std::string& source, std::size_t max_depth = 64);
+nlohmann::json parseUntrustedJson(std::string_view text, const std::string& source,
+                                  std::size_t max_depth = 64);
 
-} // namespace paintlab::detail
+}  // namespace paintlab::detail

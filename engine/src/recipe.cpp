@@ -34,8 +34,10 @@ double componentVolumeFraction(const Component& component) {
     if (std::holds_alternative<RawMedium>(component)) return 0.0;
     return std::visit(
         [](const auto& c) {
-            if constexpr (requires { c.volume_fraction; }) return c.volume_fraction;
-            else return 0.0;
+            if constexpr (requires { c.volume_fraction; })
+                return c.volume_fraction;
+            else
+                return 0.0;
         },
         component);
 }
@@ -43,8 +45,10 @@ double componentVolumeFraction(const Component& component) {
 const std::optional<DepthProfile>* componentDepthProfile(const Component& component) {
     return std::visit(
         [](const auto& c) -> const std::optional<DepthProfile>* {
-            if constexpr (requires { c.depth_profile; }) return &c.depth_profile;
-            else return nullptr;
+            if constexpr (requires { c.depth_profile; })
+                return &c.depth_profile;
+            else
+                return nullptr;
         },
         component);
 }
@@ -63,4 +67,4 @@ double Recipe::totalThicknessUm() const {
                            [](double sum, const Layer& l) { return sum + l.thickness_um; });
 }
 
-} // namespace paintlab
+}  // namespace paintlab

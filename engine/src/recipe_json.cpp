@@ -50,7 +50,8 @@ public:
 
     const json& require(std::string_view key, std::string_view what) {
         const json* value = find(key);
-        if (value == nullptr) fail(key, "missing required field '" + std::string(key) + "' (" + std::string(what) + ")");
+        if (value == nullptr)
+            fail(key, "missing required field '" + std::string(key) + "' (" + std::string(what) + ")");
         return *value;
     }
 
@@ -83,9 +84,11 @@ public:
     Spectrum spectrumValue(std::string_view key, const json& value) const {
         if (value.is_number()) return Spectrum(number(key, value));
         if (!value.is_object())
-            fail(key, "expected a number or {\"wavelengths_nm\": [...], \"values\": [...]}, found " + typeName(value));
+            fail(key, R"(expected a number or {"wavelengths_nm": [...], "values": [...]}, found )" +
+                          typeName(value));
         ObjectReader table(value, fieldPath(key), m_source);
-        auto wavelengths = table.numberArray("wavelengths_nm", table.require("wavelengths_nm", "wavelengths in nm"));
+        auto wavelengths =
+            table.numberArray("wavelengths_nm", table.require("wavelengths_nm", "wavelengths in nm"));
         auto values = table.numberArray("values", table.require("values", "one value per wavelength"));
         table.finish();
         try {
@@ -106,8 +109,10 @@ public:
     }
     void optionalSpectrum(const ParameterDecl& decl, std::optional<Spectrum>& out) {
         const json* value = find(decl.key);
-        if (value == nullptr) out.reset();
-        else out = spectrumValue(decl.key, *value);
+        if (value == nullptr)
+            out.reset();
+        else
+            out = spectrumValue(decl.key, *value);
     }
 
     // Every key of the object must have been asked for.
@@ -136,8 +141,10 @@ std::optional<DepthProfile> readDepthProfile(ObjectReader& owner, const std::str
     if (value == nullptr) return std::nullopt;
     ObjectReader reader(*value, owner.fieldPath("depth_profile"), source);
     DepthProfile profile;
-    profile.depth = reader.numberArray("depth", reader.require("depth", "relative depths, 0 = top, 1 = bottom"));
-    profile.weight = reader.numberArray("weight", reader.require("weight", "relative concentration at each depth"));
+    profile.depth =
+        reader.numberArray("depth", reader.require("depth", "relative depths, 0 = top, 1 = bottom"));
+    profile.weight =
+        reader.numberArray("weight", reader.require("weight", "relative concentration at each depth"));
     reader.finish();
     if (profile.depth.size() != profile.weight.size())
         reader.fail("weight", "has " + std::to_string(profile.weight.size()) + " entries but depth has " +
@@ -150,7 +157,8 @@ template <class T> T readComponentFields(ObjectReader& reader, const std::string
     component.name = reader.string("name", true);
     component.source = reader.string("source", false);
     T::traverse(component, reader);
-    if constexpr (requires { component.depth_profile; }) component.depth_profile = readDepthProfile(reader, source);
+    if constexpr (requires { component.depth_profile; })
+        component.depth_profile = readDepthProfile(reader, source);
     return component;
 }
 
@@ -165,10 +173,14 @@ Component readComponent(const json& value, const std::string& path, const std::s
     ObjectReader reader(value, path, source);
     const std::string kind = reader.string("kind", true);
     Component component;
-    if (kind == Pigment::kKind) component = readComponentFields<Pigment>(reader, source);
-    else if (kind == MirrorFlake::kKind) component = readComponentFields<MirrorFlake>(reader, source);
-    else if (kind == InterferenceFlake::kKind) component = readComponentFields<InterferenceFlake>(reader, source);
-    else if (kind == RawMedium::kKind) component = readComponentFields<RawMedium>(reader, source);
+    if (kind == Pigment::kKind)
+        component = readComponentFields<Pigment>(reader, source);
+    else if (kind == MirrorFlake::kKind)
+        component = readComponentFields<MirrorFlake>(reader, source);
+    else if (kind == InterferenceFlake::kKind)
+        component = readComponentFields<InterferenceFlake>(reader, source);
+    else if (kind == RawMedium::kKind)
+        component = readComponentFields<RawMedium>(reader, source);
     else
         reader.fail("kind", "unknown component kind '" + kind +
                                 "' (expected pigment, mirror_flake, interference_flake or raw_medium)");
@@ -188,10 +200,11 @@ Layer readLayer(const json& value, const std::string& path, const std::string& s
         binder_reader.finish();
     }
     if (const json* components = reader.find("components")) {
-        if (!components->is_array()) reader.fail("components", "expected an array, found " + typeName(*components));
+        if (!components->is_array())
+            reader.fail("components", "expected an array, found " + typeName(*components));
         for (std::size_t i = 0; i < components->size(); ++i)
-            layer.components.push_back(
-                readComponent((*components)[i], reader.fieldPath(componentLabel(i, (*components)[i])), source));
+            layer.components.push_back(readComponent(
+                (*components)[i], reader.fieldPath(componentLabel(i, (*components)[i])), source));
     }
     reader.finish();
     return layer;
@@ -207,11 +220,17 @@ Substrate readSubstrate(const json& value, const std::string& source) {
     ObjectReader reader(value, "substrate", source);
     const std::string kind = reader.string("kind", true);
     Substrate substrate;
-    if (kind == LambertianSubstrate::kKind) substrate = readSubstrateFields<LambertianSubstrate>(reader);
-    else if (kind == MetalSubstrate::kKind) substrate = readSubstrateFields<MetalSubstrate>(reader);
-    else if (kind == BlackSubstrate::kKind) substrate = readSubstrateFields<BlackSubstrate>(reader);
-    else if (kind == TransparentSubstrate::kKind) substrate = readSubstrateFields<TransparentSubstrate>(reader);
-    else reader.fail("kind", "unknown substrate kind '" + kind + "' (expected lambertian, metal, black or transparent)");
+    if (kind == LambertianSubstrate::kKind)
+        substrate = readSubstrateFields<LambertianSubstrate>(reader);
+    else if (kind == MetalSubstrate::kKind)
+        substrate = readSubstrateFields<MetalSubstrate>(reader);
+    else if (kind == BlackSubstrate::kKind)
+        substrate = readSubstrateFields<BlackSubstrate>(reader);
+    else if (kind == TransparentSubstrate::kKind)
+        substrate = readSubstrateFields<TransparentSubstrate>(reader);
+    else
+        reader.fail("kind", "unknown substrate kind '" + kind +
+                                "' (expected lambertian, metal, black or transparent)");
     reader.finish();
     return substrate;
 }
@@ -252,8 +271,9 @@ ordered_json componentJson(const Component& component) {
             ObjectWriter writer(out);
             T::traverse(c, writer);
             if constexpr (requires { c.depth_profile; }) {
-                if (c.depth_profile) out["depth_profile"] = {{"depth", c.depth_profile->depth},
-                                                             {"weight", c.depth_profile->weight}};
+                if (c.depth_profile)
+                    out["depth_profile"] = {{"depth", c.depth_profile->depth},
+                                            {"weight", c.depth_profile->weight}};
             }
         },
         component);
@@ -288,7 +308,7 @@ ordered_json substrateJson(const Substrate& substrate) {
     return out;
 }
 
-} // namespace
+}  // namespace
 
 Recipe parseRecipeJson(std::string_view text, const std::string& source) {
     const json document = detail::parseUntrustedJson(text, source);
@@ -298,7 +318,8 @@ Recipe parseRecipeJson(std::string_view text, const std::string& source) {
     if (!version.is_number_integer())
         reader.fail("schema_version", "expected an integer, found " + typeName(version));
     if (version.get<long long>() != Recipe::kSchemaVersion)
-        reader.fail("schema_version", "unsupported schema version " + version.dump() + " (this PaintLab reads version " +
+        reader.fail("schema_version", "unsupported schema version " + version.dump() +
+                                          " (this PaintLab reads version " +
                                           std::to_string(Recipe::kSchemaVersion) + ")");
 
     Recipe recipe;
@@ -367,4 +388,4 @@ void saveRecipeFile(const Recipe& recipe, const std::filesystem::path& path) {
     }
 }
 
-} // namespace paintlab
+}  // namespace paintlab

@@ -35,14 +35,15 @@ public:
     void spectrum(const ParameterDecl& decl, const Spectrum& s) {
         const std::string where = field(decl);
         for (std::size_t i = 0; i < s.values().size(); ++i) {
-            const std::string at =
-                s.isConstant() ? "" : " at " + formatNumber(s.wavelengthsNm()[i]) + " nm";
+            const std::string at = s.isConstant() ? "" : " at " + formatNumber(s.wavelengthsNm()[i]) + " nm";
             if (!checkValue(decl, s.values()[i], where, at)) return;  // one message per spectrum is enough
         }
-        if (!s.isConstant() && (s.wavelengthsNm().front() > kVisibleMinNm || s.wavelengthsNm().back() < kVisibleMaxNm))
+        if (!s.isConstant() &&
+            (s.wavelengthsNm().front() > kVisibleMinNm || s.wavelengthsNm().back() < kVisibleMaxNm))
             add(Severity::Warning, where,
                 "tabulated from " + formatNumber(s.wavelengthsNm().front()) + " to " +
-                    formatNumber(s.wavelengthsNm().back()) + " nm only; held constant beyond, up to 380-780 nm");
+                    formatNumber(s.wavelengthsNm().back()) +
+                    " nm only; held constant beyond, up to 380-780 nm");
     }
 
     void optionalSpectrum(const ParameterDecl& decl, const std::optional<Spectrum>& s) {
@@ -58,24 +59,26 @@ private:
         m_problems.push_back({severity, where, std::move(message)});
     }
 
-    bool checkValue(const ParameterDecl& decl, double value, const std::string& where, const std::string& at) {
+    bool checkValue(const ParameterDecl& decl, double value, const std::string& where,
+                    const std::string& at) {
         if (!std::isfinite(value)) {
             add(Severity::Error, where, "value" + at + " is not a finite number");
             return false;
         }
         if (!decl.allows(value)) {
             const bool below = decl.minExclusive ? value <= decl.min : value < decl.min;
-            const std::string limit = below ? (decl.minExclusive ? "must be above " : "is below the minimum ") +
-                                                  formatNumber(decl.min)
-                                            : "is above the maximum " + formatNumber(decl.max);
+            const std::string limit = below
+                                          ? (decl.minExclusive ? "must be above " : "is below the minimum ") +
+                                                formatNumber(decl.min)
+                                          : "is above the maximum " + formatNumber(decl.max);
             add(Severity::Error, where,
                 formatNumber(value) + at + " " + limit + " (allowed " + rangeText(decl) + ")");
             return false;
         }
         if (!decl.isTypical(value) && at.empty())
             add(Severity::Warning, where,
-                formatNumber(value) + " is outside the typical range " + formatNumber(decl.typicalMin) + " to " +
-                    formatNumber(decl.typicalMax));
+                formatNumber(value) + " is outside the typical range " + formatNumber(decl.typicalMin) +
+                    " to " + formatNumber(decl.typicalMax));
         return true;
     }
 
@@ -86,7 +89,9 @@ private:
 void checkDepthProfile(const DepthProfile& profile, const std::string& path, double volume_fraction,
                        double max_volume_fraction, std::vector<RecipeProblem>& problems) {
     const std::string where = path + " > depth_profile";
-    auto error = [&](std::string message) { problems.push_back({Severity::Error, where, std::move(message)}); };
+    auto error = [&](std::string message) {
+        problems.push_back({Severity::Error, where, std::move(message)});
+    };
     if (profile.depth.size() < 2) return error("needs at least two samples (depth 0 and depth 1)");
     if (profile.depth.front() != 0.0 || profile.depth.back() != 1.0)
         return error("depth must start at 0 (top of the layer) and end at 1 (bottom)");
@@ -115,7 +120,8 @@ double peakTotalVolumeFraction(const Layer& layer) {
         for (const auto& c : layer.components) {
             const auto* p = componentDepthProfile(c);
             const double mean = p != nullptr && p->has_value() ? (*p)->meanWeight() : 1.0;
-            const double shape = p != nullptr && p->has_value() && mean > 0.0 ? (*p)->weightAt(z) / mean : 1.0;
+            const double shape =
+                p != nullptr && p->has_value() && mean > 0.0 ? (*p)->weightAt(z) / mean : 1.0;
             total += componentVolumeFraction(c) * shape;
         }
         peak = std::max(peak, total);
@@ -123,24 +129,27 @@ double peakTotalVolumeFraction(const Layer& layer) {
     return peak;
 }
 
-template <class T> void checkComponent(const T& c, const std::string& path, std::vector<RecipeProblem>& problems) {
+template <class T>
+void checkComponent(const T& c, const std::string& path, std::vector<RecipeProblem>& problems) {
     if (c.name.empty()) problems.push_back({Severity::Error, path + " > name", "the component needs a name"});
     FieldChecker checker(problems, path);
     T::traverse(c, checker);
     if constexpr (std::is_same_v<T, MirrorFlake>) {
         const bool has_nk = c.metal_n.has_value() || c.metal_k.has_value();
         if (c.reflectance.has_value() == has_nk)
-            problems.push_back({Severity::Error, path + " > reflectance",
-                                "give either 'reflectance' or the metal's 'n' and 'k', exactly one of the two"});
+            problems.push_back(
+                {Severity::Error, path + " > reflectance",
+                 "give either 'reflectance' or the metal's 'n' and 'k', exactly one of the two"});
         else if (has_nk && (!c.metal_n || !c.metal_k))
             problems.push_back({Severity::Error, path + (c.metal_n ? " > k" : " > n"),
                                 "a metal's complex index needs both 'n' and 'k'"});
     }
     if constexpr (requires { c.depth_profile; }) {
         if (c.depth_profile) {
-            const ParameterDecl& decl = std::is_same_v<T, Pigment>       ? params::kPigmentVolumeFraction
-                                        : std::is_same_v<T, MirrorFlake> ? params::kMirrorVolumeFraction
-                                                                         : params::kInterferenceVolumeFraction;
+            const ParameterDecl& decl = std::is_same_v<T, Pigment> ? params::kPigmentVolumeFraction
+                                        : std::is_same_v<T, MirrorFlake>
+                                            ? params::kMirrorVolumeFraction
+                                            : params::kInterferenceVolumeFraction;
             checkDepthProfile(*c.depth_profile, path, c.volume_fraction, decl.max, problems);
         }
     }
@@ -154,32 +163,35 @@ void checkLayer(const Layer& layer, const std::string& path, std::vector<RecipeP
     Binder::traverse(layer.binder, binder_checker);
     for (std::size_t i = 0; i < layer.components.size(); ++i) {
         const Component& component = layer.components[i];
-        const std::string where = path + " > component " + std::to_string(i + 1) + " '" + componentName(component) +
-                                  "' (" + std::string(componentKind(component)) + ")";
+        const std::string where = path + " > component " + std::to_string(i + 1) + " '" +
+                                  componentName(component) + "' (" + std::string(componentKind(component)) +
+                                  ")";
         std::visit([&](const auto& c) { checkComponent(c, where, problems); }, component);
     }
     const double total = layer.totalVolumeFraction();
     if (total > 1.0) {
         problems.push_back({Severity::Error, path + " > components",
-                            "total volume fraction " + formatNumber(total) + " (" + formatNumber(100.0 * total) +
-                                "%) is above 1 (100%)"});
+                            "total volume fraction " + formatNumber(total) + " (" +
+                                formatNumber(100.0 * total) + "%) is above 1 (100%)"});
     } else if (const double peak = peakTotalVolumeFraction(layer); peak > 1.0) {
         problems.push_back({Severity::Error, path + " > components",
-                            "with the depth profiles the local total volume fraction reaches " + formatNumber(peak) +
-                                ", above 1 (100%)"});
+                            "with the depth profiles the local total volume fraction reaches " +
+                                formatNumber(peak) + ", above 1 (100%)"});
     }
 }
 
-} // namespace
+}  // namespace
 
 std::vector<RecipeProblem> checkRecipe(const Recipe& recipe) {
     std::vector<RecipeProblem> problems;
     if (recipe.name.empty()) problems.push_back({Severity::Error, "name", "the recipe needs a name"});
     FieldChecker(problems, "ambient").scalar(params::kAmbientIndex, recipe.ambient_refractive_index);
     if (recipe.layers.empty())
-        problems.push_back({Severity::Error, "layers", "the recipe has no layers; a paint needs at least one"});
+        problems.push_back(
+            {Severity::Error, "layers", "the recipe has no layers; a paint needs at least one"});
     for (std::size_t i = 0; i < recipe.layers.size(); ++i)
-        checkLayer(recipe.layers[i], "layer " + std::to_string(i + 1) + " '" + recipe.layers[i].name + "'", problems);
+        checkLayer(recipe.layers[i], "layer " + std::to_string(i + 1) + " '" + recipe.layers[i].name + "'",
+                   problems);
     std::visit(
         [&problems](const auto& s) {
             FieldChecker checker(problems, "substrate");
@@ -194,4 +206,4 @@ void validateRecipe(const Recipe& recipe, const std::string& source) {
         if (problem.severity == Severity::Error) throw InputError(source, problem.field, problem.message);
 }
 
-} // namespace paintlab
+}  // namespace paintlab

@@ -21,8 +21,7 @@ std::vector<double> visibleBands(std::size_t band_count) {
     if (band_count < 2) throw std::invalid_argument("visibleBands needs at least 2 bands");
     std::vector<double> grid(band_count);
     const double step = (kVisibleMaxNm - kVisibleMinNm) / static_cast<double>(band_count - 1);
-    for (std::size_t i = 0; i < band_count; ++i)
-        grid[i] = kVisibleMinNm + static_cast<double>(i) * step;
+    for (std::size_t i = 0; i < band_count; ++i) grid[i] = kVisibleMinNm + static_cast<double>(i) * step;
     return grid;
 }
 
@@ -70,4 +69,4 @@ Spectrum Spectrum::resampled(std::span<const double> wavelengths_nm) const {
 double Spectrum::minValue() const noexcept { return *std::min_element(m_values.begin(), m_values.end()); }
 double Spectrum::maxValue() const noexcept { return *std::max_element(m_values.begin(), m_values.end()); }
 
-} // namespace paintlab
+}  // namespace paintlab

@@ -39,5 +39,5 @@ TEST(Parameters, AllowsHonoursExclusiveMinimumAndNaN) {
     EXPECT_FALSE(params::kOrientationSpread.allows(std::numeric_limits<double>::quiet_NaN()));
 }
 
-} // namespace
-} // namespace paintlab
+}  // namespace
+}  // namespace paintlab

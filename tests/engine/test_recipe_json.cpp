@@ -46,9 +46,7 @@ void expectRoundTrip(const Recipe& recipe) {
     EXPECT_EQ(recipeToJson(again), text);
 }
 
-TEST(RecipeJson, RoundTripsExactly) {
-    expectRoundTrip(loadRecipeFile(dataDir() / "valid_minimal.json"));
-}
+TEST(RecipeJson, RoundTripsExactly) { expectRoundTrip(loadRecipeFile(dataDir() / "valid_minimal.json")); }
 
 TEST(RecipeJson, RoundTripsEveryDemoRecipe) {
     const auto files = demoRecipes();
@@ -111,8 +109,9 @@ TEST(RecipeJson, SaveIsAtomicAndReadable) {
 
 TEST(RecipeJson, ErrorsNameTheSourceAndField) {
     try {
-        parseRecipeJson(R"({"schema_version": 1, "name": "x", "layers": [{"name": "top"}], "substrate": {"kind": "black"}})",
-                        "inline.json");
+        parseRecipeJson(
+            R"({"schema_version": 1, "name": "x", "layers": [{"name": "top"}], "substrate": {"kind": "black"}})",
+            "inline.json");
         FAIL() << "expected InputError";
     } catch (const InputError& e) {
         EXPECT_EQ(e.source(), "inline.json");
@@ -125,11 +124,12 @@ TEST(RecipeJson, RejectsBooleansAsNumbersAndNonObjects) {
     EXPECT_THROW(parseRecipeJson(R"([1, 2])", "a"), InputError);
     EXPECT_THROW(parseRecipeJson("garbage", "a"), InputError);
     EXPECT_THROW(parseRecipeJson(R"({"schema_version": 1.5})", "a"), InputError);
-    EXPECT_THROW(parseRecipeJson(R"({"schema_version": 1, "name": "x", "layers": [{"name": "l", "thickness_um": true}],
+    EXPECT_THROW(
+        parseRecipeJson(R"({"schema_version": 1, "name": "x", "layers": [{"name": "l", "thickness_um": true}],
                                     "substrate": {"kind": "black"}})",
-                                 "a"),
-                 InputError);
+                        "a"),
+        InputError);
 }
 
-} // namespace
-} // namespace paintlab
+}  // namespace
+}  // namespace paintlab

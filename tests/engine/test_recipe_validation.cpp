@@ -155,5 +155,5 @@ TEST(RecipeValidation, LocalTotalVolumeFractionWithProfiles) {
     }
 }
 
-} // namespace
-} // namespace paintlab
+}  // namespace
+}  // namespace paintlab

@@ -62,5 +62,5 @@ TEST(Spectrum, RejectsMalformedTables) {
     EXPECT_THROW(Spectrum(std::numeric_limits<double>::infinity()), std::invalid_argument);
 }
 
-} // namespace
-} // namespace paintlab
+}  // namespace
+}  // namespace paintlab

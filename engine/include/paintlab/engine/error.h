@@ -20,8 +20,8 @@ public:
     // source: the file (or "<stdin>", "<argument>") the bad input came from; may be empty.
     // field: a path to the offending field, e.g. "layers[1] 'basecoat'.components[0].volume_fraction".
     InputError(std::string source, std::string field, const std::string& message)
-        : Error(compose(source, field, message)), m_source(std::move(source)),
-          m_field(std::move(field)), m_detail(message) {}
+        : Error(compose(source, field, message)), m_source(std::move(source)), m_field(std::move(field)),
+          m_detail(message) {}
 
     const std::string& source() const noexcept { return m_source; }
     const std::string& field() const noexcept { return m_field; }
@@ -41,4 +41,4 @@ private:
     std::string m_detail;
 };
 
-} // namespace paintlab
+}  // namespace paintlab

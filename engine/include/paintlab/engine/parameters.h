@@ -23,7 +23,7 @@ struct ParameterDecl {
     double min = 0.0;        // allowed range, inclusive unless minExclusive
     double max = 0.0;
     bool minExclusive = false;
-    bool required = false;      // if false, defaultValue is used when absent
+    bool required = false;  // if false, defaultValue is used when absent
     double defaultValue = 0.0;
     double typicalMin = 0.0;
     double typicalMax = 0.0;
@@ -76,9 +76,9 @@ extern const ParameterDecl kSubstrateIndex;
 // Depth profile samples.
 extern const ParameterDecl kProfileDepth;
 extern const ParameterDecl kProfileWeight;
-} // namespace params
+}  // namespace params
 
 // Every declaration above, for documentation, the GUI and tests.
 std::span<const ParameterDecl* const> allParameters();
 
-} // namespace paintlab
+}  // namespace paintlab

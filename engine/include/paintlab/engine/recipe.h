@@ -31,7 +31,7 @@ struct DepthProfile {
     std::vector<double> weight;  // >= 0, not all zero
 
     double weightAt(double z) const;
-    double meanWeight() const;  // integral of w over [0, 1] (trapezoid rule is exact here)
+    double meanWeight() const;                 // integral of w over [0, 1] (trapezoid rule is exact here)
     double peakRelativeConcentration() const;  // max(w) / mean(w)
     friend bool operator==(const DepthProfile&, const DepthProfile&) = default;
 };
@@ -221,4 +221,4 @@ struct Recipe {
     friend bool operator==(const Recipe&, const Recipe&) = default;
 };
 
-} // namespace paintlab
+}  // namespace paintlab

@@ -37,4 +37,4 @@ std::string recipeToJson(const Recipe& recipe);
 // Throws Error if the file cannot be written.
 void saveRecipeFile(const Recipe& recipe, const std::filesystem::path& path);
 
-} // namespace paintlab
+}  // namespace paintlab

@@ -26,4 +26,4 @@ std::vector<RecipeProblem> checkRecipe(const Recipe& recipe);
 // Throws InputError(source, field, message) for the first error; warnings pass.
 void validateRecipe(const Recipe& recipe, const std::string& source);
 
-} // namespace paintlab
+}  // namespace paintlab

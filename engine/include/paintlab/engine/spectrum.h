@@ -50,4 +50,4 @@ private:
     std::vector<double> m_values;
 };
 
-} // namespace paintlab
+}  // namespace paintlab

@@ -1,0 +1,110 @@
+#!/usr/bin/env bash
+# PaintLab set-up for Debian 12 (bookworm): installs what is missing, builds,
+# then runs the main job or the tests.
+#
+#   packaging/setup.sh run     install, build (Release), start the main job
+#   packaging/setup.sh test    install, build Release and ASan+UBSan, run every test
+#   packaging/setup.sh deps    install the Debian packages only
+#   packaging/setup.sh build   install and build Release only
+#
+# Idempotent: only missing packages are installed, and `apt-get update` runs
+# only when a missing package has no install candidate (stale or empty lists).
+# Works as root or through sudo. Every step is printed; a failure names the
+# package or step that failed and exits non-zero.
+set -euo pipefail
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+mode=${1:-run}
+jobs=$(nproc 2>/dev/null || echo 2)
+
+# Every Debian package the project needs, now and for the issues planned
+# (shared/ARCHITECTURE.md, shared/notes/debian12-stack.md).
+packages=(
+  # toolchain and test tools
+  build-essential cmake pkg-config git python3 clang-format clang-tidy
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # engine: linear algebra, parallelism, JSON, CLI, logging, colour tables
+  libeigen3-dev libtbb-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
+  colord-data liblcms2-dev libceres-dev libnlopt-cxx-dev
+  # database
+  libsqlite3-dev sqlite3
+  # ray maps: ray tracing, images, HDR environments, meshes
+  libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libassimp-dev assimp-testmodels
+  # workstation: Qt6 + VTK (VTK's non-Qt modules only; debian12-stack.md trap 1)
+  qt6-base-dev libqt6opengl6-dev qt6-svg-dev libvtk9-dev libgl-dev
+  # headless GUI tests and screenshots
+  xvfb xauth libgl1-mesa-dri libglx-mesa0
+)
+
+say() { printf '\033[1m[setup]\033[0m %s\n' "$*"; }
+die() { printf '\033[1;31m[setup] FAILED:\033[0m %s\n' "$*" >&2; exit 1; }
+
+as_root() {
+  if [[ $(id -u) -eq 0 ]]; then "$@"
+  elif command -v sudo >/dev/null 2>&1; then sudo "$@"
+  else die "need root to run '$*' (run as root, or install sudo)"; fi
+}
+
+installed() { [[ $(dpkg-query -W -f='${Status}' "$1" 2>/dev/null) == "install ok installed" ]]; }
+# (Output captured first: with pipefail, grep -q closing the pipe early would fail the pipeline.)
+has_candidate() { local policy; policy=$(apt-cache policy "$1" 2>/dev/null); [[ $policy == *"Candidate: "[!\(]* ]]; }
+
+install_packages() {
+  command -v dpkg-query >/dev/null || die "this is not a Debian system (no dpkg-query); PaintLab targets Debian 12"
+  local missing=()
+  for p in "${packages[@]}"; do installed "$p" || missing+=("$p"); done
+  if ((${#missing[@]} == 0)); then
+    say "all ${#packages[@]} Debian packages already installed"
+    return
+  fi
+  say "missing packages: ${missing[*]}"
+  local need_update=0
+  for p in "${missing[@]}"; do has_candidate "$p" || { need_update=1; break; }; done
+  if ((need_update)); then
+    say "package lists are stale or empty: apt-get update"
+    as_root apt-get update || die "apt-get update"
+  fi
+  for p in "${missing[@]}"; do has_candidate "$p" || die "package '$p' is not available from the configured Debian sources"; done
+  say "apt-get install ${missing[*]}"
+  as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}" \
+    || die "apt-get install of: ${missing[*]} (see the apt output above for the package that failed)"
+  for p in "${missing[@]}"; do installed "$p" || die "package '$p' did not install"; done
+  say "installed ${#missing[@]} packages"
+}
+
+build() {  # build PRESET
+  local preset=$1
+  say "configure ($preset)"
+  cmake -S "$root" --preset "$preset" >/dev/null || die "cmake configure ($preset)"
+  say "build ($preset, $jobs jobs)"
+  cmake --build "$root/build/$preset" -j "$jobs" || die "build ($preset)"
+}
+
+run_main_job() {
+  local cli="$root/build/release/cli/paintlab-cli"
+  say "main job: validate and show the bundled demo recipes (the workstation GUI arrives with issue 8)"
+  for recipe in "$root"/packaging/demo/recipes/*.json; do
+    "$cli" validate "$recipe" || die "demo recipe $recipe does not validate"
+    "$cli" show "$recipe" || die "paintlab-cli show $recipe"
+    echo
+  done
+}
+
+run_tests() {
+  say "tests: Release build (including clang-format and clang-tidy)"
+  (cd "$root/build/release" && ctest --output-on-failure -j "$jobs") || die "tests (Release)"
+  build asan
+  say "tests: AddressSanitizer + UndefinedBehaviorSanitizer build"
+  (cd "$root/build/asan" && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+     UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ctest --output-on-failure -j "$jobs") \
+    || die "tests (ASan+UBSan)"
+  say "all tests passed"
+}
+
+case $mode in
+  deps) install_packages ;;
+  build) install_packages; build release ;;
+  run) install_packages; build release; run_main_job ;;
+  test) install_packages; build release; run_tests ;;
+  *) die "unknown mode '$mode' (use: run, test, deps or build)" ;;
+esac
