@@ -16,4 +16,7 @@ using CommandAction = std::function<int()>;
 // Registers `validate` and `show`. The chosen command's action is stored in action.
 void addRecipeCommands(CLI::App& app, CommandAction& action);
 
+// Registers `slab`: totals of a single raw-medium slab (Prahl's UR1, UT1, URU, UTU).
+void addSlabCommand(CLI::App& app, CommandAction& action);
+
 }  // namespace paintlab::cli

@@ -23,6 +23,7 @@ int run(int argc, char** argv) {
 
     paintlab::cli::CommandAction action;
     paintlab::cli::addRecipeCommands(app, action);
+    paintlab::cli::addSlabCommand(app, action);
 
     try {
         app.parse(argc, argv);

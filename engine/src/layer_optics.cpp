@@ -75,7 +75,7 @@ struct SlabBuilder {
     }
 
     void operator()(const MirrorFlake& f) {
-        MirrorFlakeOptics o;
+        MirrorFlakeContent o;
         // A flake of thickness t occupies t per unit area of one face: volume
         // fraction c gives c / t of flake area per unit volume.
         const double c = f.volume_fraction * meanRelativeConcentration(f.depth_profile, z0, z1);
@@ -89,7 +89,7 @@ struct SlabBuilder {
     }
 
     void operator()(const InterferenceFlake& f) {
-        InterferenceFlakeOptics o;
+        InterferenceFlakeContent o;
         const double thickness_um = (f.mica_thickness_nm + 2.0 * f.tio2_thickness_nm) * 1e-3;
         const double c = f.volume_fraction * meanRelativeConcentration(f.depth_profile, z0, z1);
         o.area_density_per_um = thickness_um > 0.0 ? c / thickness_um : 0.0;

@@ -22,7 +22,7 @@ struct PhaseLobe {
     double g = 0.0;
 };
 
-struct MirrorFlakeOptics {
+struct MirrorFlakeContent {
     double area_density_per_um = 0.0;  // flake area (one face) per unit volume, 1/µm
     double orientation_spread_deg = 0.0;
     double diameter_um = 0.0;
@@ -32,7 +32,7 @@ struct MirrorFlakeOptics {
     std::optional<std::complex<double>> metal_index;
 };
 
-struct InterferenceFlakeOptics {
+struct InterferenceFlakeContent {
     double area_density_per_um = 0.0;
     double orientation_spread_deg = 0.0;
     double diameter_um = 0.0;
@@ -51,8 +51,8 @@ struct SlabOptics {
     double sigma_a_per_um = 0.0;  // binder + pigment absorption
     double sigma_s_per_um = 0.0;  // pigment scattering
     std::vector<PhaseLobe> lobes;
-    std::vector<MirrorFlakeOptics> mirror_flakes;
-    std::vector<InterferenceFlakeOptics> interference_flakes;
+    std::vector<MirrorFlakeContent> mirror_flakes;
+    std::vector<InterferenceFlakeContent> interference_flakes;
 
     double sigmaT() const noexcept { return sigma_a_per_um + sigma_s_per_um; }
     double albedo() const noexcept;            // single-scattering albedo of the continuous medium
