@@ -1,0 +1,76 @@
+#include "paintlab/engine/layered/phase_function.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace paintlab::layered {
+
+namespace {
+
+// Lambda_l^m(x) for l = m .. n_moments-1 by the stable upward recurrence in l
+// (e.g. Numerical Recipes 3rd ed., sec. 6.7, in its semi-normalised form):
+//   Lambda_m^m = prod_{k=1}^{m} sqrt((2k-1)/(2k)) (1 - x^2)^{m/2},
+//   Lambda_{m+1}^m = sqrt(2m+1) x Lambda_m^m,
+//   Lambda_l^m = ((2l-1) x Lambda_{l-1}^m - sqrt((l-1)^2 - m^2) Lambda_{l-2}^m) / sqrt(l^2 - m^2).
+// The sign (-1)^m of P_l^m cancels in h^m, which is a product of two.
+std::vector<double> seminormalisedLegendre(int m, int n_moments, double x) {
+    std::vector<double> out(static_cast<std::size_t>(n_moments), 0.0);
+    if (m >= n_moments) return out;
+    const double s = std::sqrt(std::max(0.0, 1.0 - x * x));
+    double pmm = 1.0;
+    for (int k = 1; k <= m; ++k) pmm *= std::sqrt((2.0 * k - 1.0) / (2.0 * k)) * s;
+    out[static_cast<std::size_t>(m)] = pmm;
+    if (m + 1 < n_moments) out[static_cast<std::size_t>(m + 1)] = std::sqrt(2.0 * m + 1.0) * x * pmm;
+    for (int l = m + 2; l < n_moments; ++l) {
+        const auto k = static_cast<std::size_t>(l);
+        out[k] = ((2.0 * l - 1.0) * x * out[k - 1] -
+                  std::sqrt((l - 1.0) * (l - 1.0) - static_cast<double>(m) * m) * out[k - 2]) /
+                 std::sqrt(static_cast<double>(l) * l - static_cast<double>(m) * m);
+    }
+    return out;
+}
+
+}  // namespace
+
+double DeltaMPhase::scaledAlbedo(double albedo) const {
+    const double denom = 1.0 - albedo * f;
+    return denom > 0.0 ? albedo * (1.0 - f) / denom : albedo;
+}
+
+double DeltaMPhase::scaledTau(double albedo, double tau) const { return (1.0 - albedo * f) * tau; }
+
+DeltaMPhase henyeyGreensteinDeltaM(double g, int n_moments) {
+    DeltaMPhase out;
+    out.f = std::pow(g, n_moments);
+    out.chi.resize(static_cast<std::size_t>(n_moments));
+    double gl = 1.0;
+    for (int l = 0; l < n_moments; ++l) {
+        out.chi[static_cast<std::size_t>(l)] = (gl - out.f) / (1.0 - out.f);
+        gl *= g;
+    }
+    return out;
+}
+
+PhaseMatrices phaseMatrices(const std::vector<double>& mu, const std::vector<double>& chi, int m) {
+    const auto n = static_cast<Eigen::Index>(mu.size());
+    const int n_moments = static_cast<int>(chi.size());
+    Eigen::MatrixXd lambda(n, n_moments);
+    for (Eigen::Index i = 0; i < n; ++i) {
+        const auto values = seminormalisedLegendre(m, n_moments, mu[static_cast<std::size_t>(i)]);
+        for (int l = 0; l < n_moments; ++l) lambda(i, l) = values[static_cast<std::size_t>(l)];
+    }
+    // Lambda_l^m(-x) = (-1)^(l+m) Lambda_l^m(x).
+    Eigen::VectorXd coeff_same(n_moments);
+    Eigen::VectorXd coeff_opposite(n_moments);
+    for (int l = 0; l < n_moments; ++l) {
+        const double c = (2.0 * l + 1.0) * chi[static_cast<std::size_t>(l)];
+        coeff_same(l) = c;
+        coeff_opposite(l) = ((l + m) % 2 == 0) ? c : -c;
+    }
+    PhaseMatrices h;
+    h.same = lambda * coeff_same.asDiagonal() * lambda.transpose();
+    h.opposite = lambda * coeff_opposite.asDiagonal() * lambda.transpose();
+    return h;
+}
+
+}  // namespace paintlab::layered
