@@ -19,4 +19,7 @@ void addRecipeCommands(CLI::App& app, CommandAction& action);
 // Registers `slab`: totals of a single raw-medium slab (Prahl's UR1, UT1, URU, UTU).
 void addSlabCommand(CLI::App& app, CommandAction& action);
 
+// Registers `brdf`, `eval` and `multiangle` (the fast model).
+void addBrdfCommands(CLI::App& app, CommandAction& action);
+
 }  // namespace paintlab::cli

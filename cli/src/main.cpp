@@ -16,7 +16,7 @@ constexpr int kExitInternal = 1;
 constexpr int kExitBadInput = 2;
 
 int run(int argc, char** argv) {
-    CLI::App app{"PaintLab command line: validate and inspect paint recipes.\n"
+    CLI::App app{"PaintLab command line: validate recipes, run the fast model, colour metrics.\n"
                  "Exit codes: 0 ok, 2 bad input (file and field named on stderr), 1 internal error."};
     app.set_version_flag("--version", std::string("paintlab-cli ") + PAINTLAB_VERSION);
     app.require_subcommand(1);
@@ -24,6 +24,7 @@ int run(int argc, char** argv) {
     paintlab::cli::CommandAction action;
     paintlab::cli::addRecipeCommands(app, action);
     paintlab::cli::addSlabCommand(app, action);
+    paintlab::cli::addBrdfCommands(app, action);
 
     try {
         app.parse(argc, argv);

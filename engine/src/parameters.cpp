@@ -68,7 +68,7 @@ const ParameterDecl kOrientationSpread{
     .defaultValue = 0.0,
     .typicalMin = 2.0,
     .typicalMax = 30.0,
-    .help = "Standard deviation of the flake normal's angle to the surface normal"};
+    .help = "Spread of flake normals: per-axis standard deviation of the tilt (flake_orientation.h)"};
 
 // Pigment volume concentration: the critical PVC of most systems is 0.5-0.6;
 // random close packing of spheres (0.64) bounds it physically.

@@ -1,0 +1,239 @@
+// `brdf`, `eval` and `multiangle`: the fast model from the command line.
+// Options and JSON fields are a public contract (issue 3): extend, never rename.
+
+#include "commands.h"
+
+#include "paintlab/engine/error.h"
+#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/multiangle.h"
+#include "paintlab/engine/recipe_json.h"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+namespace paintlab::cli {
+
+namespace {
+
+using nlohmann::ordered_json;
+
+struct BrdfOptions {
+    std::string recipe;
+    std::string preset = "standard";
+    std::string out;
+    std::string wi;
+    std::string wo;
+    double step_deg = 5.0;
+    bool json = false;
+};
+
+// Progress on stderr when a person is watching (a terminal); scripts get clean output.
+ProgressCallback terminalProgress() {
+    if (isatty(STDERR_FILENO) == 0) return {};
+    return [](double fraction) {
+        std::fprintf(stderr, "\rfast model: %3.0f%%", 100.0 * fraction);
+        if (fraction >= 1.0) std::fprintf(stderr, "\n");
+        return true;
+    };
+}
+
+LayeredBrdf runFastModel(const BrdfOptions& o) {
+    const Recipe recipe = loadRecipeFile(o.recipe);
+    return computeLayeredBrdf(recipe, presetSettings(presetFromName(o.preset)), terminalProgress());
+}
+
+// "THETA,PHI" in degrees; theta in [0, 90).
+Direction parseDirection(const std::string& text, const std::string& option) {
+    std::istringstream in(text);
+    double theta = NAN;
+    double phi = NAN;
+    char comma = 0;
+    if (!(in >> theta >> comma >> phi) || comma != ',' || !(in >> std::ws).eof())
+        throw InputError("<argument>", option, "'" + text + "' is not THETA,PHI in degrees (e.g. 45,0)");
+    if (!std::isfinite(theta) || !std::isfinite(phi) || theta < 0.0 || theta >= 90.0)
+        throw InputError("<argument>", option,
+                         "theta " + std::to_string(theta) + " must be in [0, 90) degrees");
+    return directionFromAnglesDeg(theta, phi);
+}
+
+ordered_json settingsJson(const LayeredBrdf& brdf, const std::string& preset) {
+    const auto& s = brdf.settings();
+    return {{"preset", preset},
+            {"nodes", s.nodes},
+            {"orders", s.orders},
+            {"bands", s.bands},
+            {"slices", s.slices},
+            {"max_start_tau", s.max_start_tau},
+            {"compute_seconds", brdf.computeSeconds()}};
+}
+
+std::vector<double> angleGrid(double step, double last) {
+    std::vector<double> grid;
+    for (double a = 0.0; a <= last + 1e-9; a += step) grid.push_back(a);
+    return grid;
+}
+
+int runBrdf(const BrdfOptions& o) {
+    if (!(o.step_deg >= 0.5 && o.step_deg <= 45.0))
+        throw InputError("<argument>", "--step", "must be between 0.5 and 45 degrees");
+    const LayeredBrdf brdf = runFastModel(o);
+    const auto wavelengths = brdf.wavelengthsNm();
+    // Regular grid: incidence and exit 0..85 deg, azimuth difference 0..180 deg
+    // (the paint is isotropic, so f depends on phi_o - phi_i only, symmetrically).
+    const auto thetas = angleGrid(o.step_deg, 85.0);
+    const auto phis = angleGrid(o.step_deg, 180.0);
+    const bool csv = o.out.size() > 4 && o.out.substr(o.out.size() - 4) == ".csv";
+    std::ostringstream text;
+    if (csv) {
+        text << "theta_i_deg,theta_o_deg,phi_deg";
+        for (double nm : wavelengths) text << ",f_" << nm << "nm_per_sr";
+        text << '\n';
+    }
+    ordered_json values = ordered_json::array();
+    for (double ti : thetas) {
+        ordered_json by_to = ordered_json::array();
+        for (double to : thetas) {
+            ordered_json by_phi = ordered_json::array();
+            for (double phi : phis) {
+                const auto f = brdf.eval(directionFromAnglesDeg(ti, 0.0), directionFromAnglesDeg(to, phi));
+                if (csv) {
+                    text << ti << ',' << to << ',' << phi;
+                    for (double v : f) text << ',' << v;
+                    text << '\n';
+                } else {
+                    by_phi.push_back(f);
+                }
+            }
+            if (!csv) by_to.push_back(std::move(by_phi));
+        }
+        if (!csv) values.push_back(std::move(by_to));
+    }
+    if (!csv) {
+        ordered_json out;
+        out["recipe"] = o.recipe;
+        out["settings"] = settingsJson(brdf, o.preset);
+        out["wavelengths_nm"] = std::vector<double>(wavelengths.begin(), wavelengths.end());
+        out["theta_i_deg"] = thetas;
+        out["theta_o_deg"] = thetas;
+        out["phi_deg"] = phis;
+        out["brdf_per_sr"] = std::move(values);  // [theta_i][theta_o][phi][band], mirror term excluded
+        ordered_json specular = ordered_json::array();
+        for (double ti : thetas) specular.push_back(brdf.specularReflectance(std::cos(ti * M_PI / 180.0)));
+        out["specular_reflectance"] =
+            std::move(specular);  // [theta_i][band], the top interface's mirror term
+        text << out.dump(1) << '\n';
+    }
+    if (o.out.empty()) {
+        std::cout << text.str();
+        return 0;
+    }
+    std::ofstream file(o.out, std::ios::binary | std::ios::trunc);
+    if (!file) throw InputError(o.out, "--out", "cannot open for writing");
+    file << text.str();
+    if (!file.flush()) throw Error(o.out + ": write failed");
+    std::cerr << "wrote " << o.out << " (" << (csv ? "CSV" : "JSON") << ", " << wavelengths.size()
+              << " bands, " << brdf.computeSeconds() << " s)\n";
+    return 0;
+}
+
+int runEval(const BrdfOptions& o) {
+    const Direction wi = parseDirection(o.wi, "--wi");
+    const Direction wo = parseDirection(o.wo, "--wo");
+    const LayeredBrdf brdf = runFastModel(o);
+    const auto f = brdf.eval(wi, wo);
+    const auto specular = brdf.specularReflectance(wi.z);
+    const auto wavelengths = brdf.wavelengthsNm();
+    if (o.json) {
+        ordered_json out;
+        out["recipe"] = o.recipe;
+        out["wi"] = o.wi;
+        out["wo"] = o.wo;
+        out["settings"] = settingsJson(brdf, o.preset);
+        out["wavelengths_nm"] = std::vector<double>(wavelengths.begin(), wavelengths.end());
+        out["brdf_per_sr"] = f;
+        out["specular_reflectance"] = specular;
+        std::cout << out.dump(2) << '\n';
+    } else {
+        std::printf("%10s %14s %14s\n", "lambda_nm", "f (1/sr)", "specular R");
+        for (std::size_t b = 0; b < f.size(); ++b)
+            std::printf("%10.1f %14.6g %14.6g\n", wavelengths[b], f[b], specular[b]);
+    }
+    return 0;
+}
+
+int runMultiangle(const BrdfOptions& o) {
+    const LayeredBrdf brdf = runFastModel(o);
+    const MultiAngleReport report = multiAngleColours(brdf);
+    if (o.json) {
+        ordered_json out;
+        out["recipe"] = o.recipe;
+        out["illuminant"] = std::string(toString(report.illuminant));
+        out["observer"] = std::string(toString(report.observer));
+        out["illumination_deg"] = kMultiAngleIlluminationDeg;
+        out["settings"] = settingsJson(brdf, o.preset);
+        ordered_json geometries = ordered_json::array();
+        for (const auto& c : report.colours)
+            geometries.push_back({{"aspecular_deg", c.aspecular_deg},
+                                  {"L", c.lab.L},
+                                  {"a", c.lab.a},
+                                  {"b", c.lab.b},
+                                  {"X", c.xyz.X},
+                                  {"Y", c.xyz.Y},
+                                  {"Z", c.xyz.Z},
+                                  {"reflectance_factor", c.reflectance_factor}});
+        out["geometries"] = std::move(geometries);
+        out["flop_index"] = report.flop_index;
+        std::cout << out.dump(2) << '\n';
+    } else {
+        std::printf("CIELAB (%s, %s), illumination 45 deg, preset %s\n",
+                    std::string(toString(report.illuminant)).c_str(),
+                    std::string(toString(report.observer)).c_str(), o.preset.c_str());
+        std::printf("%10s %8s %8s %8s\n", "geometry", "L*", "a*", "b*");
+        for (const auto& c : report.colours)
+            std::printf("  45as%-4g %8.2f %8.2f %8.2f\n", c.aspecular_deg, c.lab.L, c.lab.a, c.lab.b);
+        std::printf("flop index %.2f\n", report.flop_index);
+    }
+    return 0;
+}
+
+void addCommon(CLI::App* command, BrdfOptions& o) {
+    command->add_option("recipe", o.recipe, "Recipe JSON file")->required();
+    command->add_option("--preset", o.preset, "Accuracy preset: preview, standard or reference")
+        ->capture_default_str();
+}
+
+}  // namespace
+
+void addBrdfCommands(CLI::App& app, CommandAction& action) {
+    auto o = std::make_shared<BrdfOptions>();
+
+    CLI::App* brdf = app.add_subcommand("brdf", "Tabulate the paint's spectral BRDF (fast model)");
+    addCommon(brdf, *o);
+    brdf->add_option("--out", o->out, "Output file, .json or .csv (default: JSON on stdout)");
+    brdf->add_option("--step", o->step_deg, "Angular step of the table in degrees")->capture_default_str();
+    brdf->callback([o, &action] { action = [o] { return runBrdf(*o); }; });
+
+    CLI::App* eval = app.add_subcommand("eval", "Spectral BRDF value (1/sr) for one pair of directions");
+    addCommon(eval, *o);
+    eval->add_option("--wi", o->wi, "Direction to the light: THETA,PHI in degrees")->required();
+    eval->add_option("--wo", o->wo, "Direction to the viewer: THETA,PHI in degrees")->required();
+    eval->add_flag("--json", o->json, "Print JSON");
+    eval->callback([o, &action] { action = [o] { return runEval(*o); }; });
+
+    CLI::App* multiangle = app.add_subcommand(
+        "multiangle", "CIELAB at the multi-angle geometries 45as-15..110 and the flop index");
+    addCommon(multiangle, *o);
+    multiangle->add_flag("--json", o->json, "Print JSON");
+    multiangle->callback([o, &action] { action = [o] { return runMultiangle(*o); }; });
+}
+
+}  // namespace paintlab::cli
