@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -54,8 +55,8 @@ LayeredBrdf runFastModel(const BrdfOptions& o) {
 // "THETA,PHI" in degrees; theta in [0, 90).
 Direction parseDirection(const std::string& text, const std::string& option) {
     std::istringstream in(text);
-    double theta = NAN;
-    double phi = NAN;
+    double theta = std::numeric_limits<double>::quiet_NaN();
+    double phi = std::numeric_limits<double>::quiet_NaN();
     char comma = 0;
     if (!(in >> theta >> comma >> phi) || comma != ',' || !(in >> std::ws).eof())
         throw InputError("<argument>", option, "'" + text + "' is not THETA,PHI in degrees (e.g. 45,0)");

@@ -20,7 +20,7 @@ std::vector<double> seminormalisedLegendre(int m, int n_moments, double x) {
     double pmm = 1.0;
     for (int k = 1; k <= m; ++k) pmm *= std::sqrt((2.0 * k - 1.0) / (2.0 * k)) * s;
     out[static_cast<std::size_t>(m)] = pmm;
-    if (m + 1 < n_moments) out[static_cast<std::size_t>(m + 1)] = std::sqrt(2.0 * m + 1.0) * x * pmm;
+    if (m + 1 < n_moments) out[static_cast<std::size_t>(m) + 1] = std::sqrt(2.0 * m + 1.0) * x * pmm;
     for (int l = m + 2; l < n_moments; ++l) {
         const auto k = static_cast<std::size_t>(l);
         out[k] = ((2.0 * l - 1.0) * x * out[k - 1] -
