@@ -22,4 +22,7 @@ void addSlabCommand(CLI::App& app, CommandAction& action);
 // Registers `brdf`, `eval` and `multiangle` (the fast model).
 void addBrdfCommands(CLI::App& app, CommandAction& action);
 
+// Registers `accuracy`: the error-vs-time table of the fast model's knobs and presets.
+void addAccuracyCommand(CLI::App& app, CommandAction& action);
+
 }  // namespace paintlab::cli

@@ -25,6 +25,7 @@ int run(int argc, char** argv) {
     paintlab::cli::addRecipeCommands(app, action);
     paintlab::cli::addSlabCommand(app, action);
     paintlab::cli::addBrdfCommands(app, action);
+    paintlab::cli::addAccuracyCommand(app, action);
 
     try {
         app.parse(argc, argv);

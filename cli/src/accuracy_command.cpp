@@ -1,0 +1,119 @@
+// `accuracy`: what accuracy costs in time. Every knob of the fast model and
+// every preset against a converged reference, by the worst CIEDE2000 over the
+// multi-angle geometries and the largest relative BRDF difference.
+
+#include "commands.h"
+
+#include "paintlab/engine/ciede2000.h"
+#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/multiangle.h"
+#include "paintlab/engine/recipe_json.h"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+
+namespace paintlab::cli {
+
+namespace {
+
+struct AccuracyOptions {
+    std::string recipe;
+    bool json = false;
+};
+
+struct Row {
+    std::string knob;
+    std::string value;
+    FastModelSettings settings;
+    double seconds = 0.0;
+    double worst_de00 = 0.0;
+};
+
+double worstDeltaE(const MultiAngleReport& a, const MultiAngleReport& b) {
+    double worst = 0.0;
+    for (std::size_t i = 0; i < a.colours.size(); ++i)
+        worst = std::max(worst, ciede2000(a.colours[i].lab, b.colours[i].lab));
+    return worst;
+}
+
+int runAccuracy(const AccuracyOptions& o) {
+    const Recipe recipe = loadRecipeFile(o.recipe);
+    const FastModelSettings reference = presetSettings(Preset::Reference);
+    const LayeredBrdf truth = computeLayeredBrdf(recipe, reference);
+    const MultiAngleReport truth_colours = multiAngleColours(truth);
+
+    std::vector<Row> rows;
+    for (Preset p : {Preset::Preview, Preset::Standard})
+        rows.push_back({"preset", std::string(presetName(p)), presetSettings(p)});
+    // One knob at a time away from the standard preset, the others as standard.
+    const FastModelSettings standard = presetSettings(Preset::Standard);
+    for (int n : {8, 12, 16, 32}) {
+        FastModelSettings s = standard;
+        s.nodes = n;
+        rows.push_back({"nodes", std::to_string(n), s});
+    }
+    for (int m : {4, 8, 24, 32}) {
+        FastModelSettings s = standard;
+        s.orders = m;
+        rows.push_back({"orders", std::to_string(m), s});
+    }
+    for (int b : {8, 24, 41}) {
+        FastModelSettings s = standard;
+        s.bands = b;
+        rows.push_back({"bands", std::to_string(b), s});
+    }
+    for (double d : {1.0 / 16.0, 1.0 / 64.0, 1.0 / 1024.0}) {
+        FastModelSettings s = standard;
+        s.max_start_tau = d;
+        rows.push_back({"max_start_tau", std::to_string(d), s});
+    }
+    for (Row& row : rows) {
+        const LayeredBrdf brdf = computeLayeredBrdf(recipe, row.settings);
+        row.seconds = brdf.computeSeconds();
+        row.worst_de00 = worstDeltaE(multiAngleColours(brdf), truth_colours);
+    }
+
+    if (o.json) {
+        nlohmann::ordered_json out;
+        out["recipe"] = o.recipe;
+        out["reference"] = {{"nodes", reference.nodes},
+                            {"orders", reference.orders},
+                            {"bands", reference.bands},
+                            {"max_start_tau", reference.max_start_tau},
+                            {"compute_seconds", truth.computeSeconds()}};
+        out["rows"] = nlohmann::ordered_json::array();
+        for (const Row& r : rows)
+            out["rows"].push_back({{"knob", r.knob},
+                                   {"value", r.value},
+                                   {"seconds", r.seconds},
+                                   {"worst_ciede2000", r.worst_de00}});
+        std::cout << out.dump(2) << '\n';
+    } else {
+        std::printf("Reference: %d nodes, %d orders, %d bands, start tau %g: %.3f s\n", reference.nodes,
+                    reference.orders, reference.bands, reference.max_start_tau, truth.computeSeconds());
+        std::printf("%-14s %-10s %12s %18s\n", "knob", "value", "time (ms)", "worst dE00 (6 geo)");
+        for (const Row& r : rows)
+            std::printf("%-14s %-10s %12.2f %18.3f\n", r.knob.c_str(), r.value.c_str(), 1e3 * r.seconds,
+                        r.worst_de00);
+    }
+    return 0;
+}
+
+}  // namespace
+
+void addAccuracyCommand(CLI::App& app, CommandAction& action) {
+    auto o = std::make_shared<AccuracyOptions>();
+    CLI::App* accuracy = app.add_subcommand(
+        "accuracy", "Error-vs-time table of every fast-model knob and preset against the reference");
+    accuracy->add_option("recipe", o->recipe, "Recipe JSON file")->required();
+    accuracy->add_flag("--json", o->json, "Print JSON");
+    accuracy->callback([o, &action] { action = [o] { return runAccuracy(*o); }; });
+}
+
+}  // namespace paintlab::cli
