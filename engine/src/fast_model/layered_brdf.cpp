@@ -7,6 +7,10 @@
 
 #include <tbb/parallel_for.h>
 
+#include <optional>
+#include <utility>
+#include <variant>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -37,96 +41,301 @@ std::string_view presetName(Preset preset) {
 }
 
 FastModelSettings presetSettings(Preset preset) {
-    // Points on the accuracy-vs-time curves (docs/PERFORMANCE.md).
+    // Points on the measured accuracy-vs-time curves (tests/bench/bench_fast_model.cpp
+    // and the report of issue 3): worst CIEDE2000 over the six multi-angle
+    // geometries of the three demo paints against the reference preset, on the
+    // 2-core EPYC (milliseconds with both cores free / with one busy elsewhere):
+    //   preview   pearlescent 5 / 9.4 ms, dE 0.58; silver 3 / 5 ms, 0.04; solid red 2 / 4 ms, 0.08
+    //   standard  pearlescent 27 / 54 ms, dE 0.051; silver 15 / 27 ms, 0.010; solid red 11 / 21 ms, 0.037
+    // The colour error of the cheap presets is mostly spectral (few bands),
+    // hence output_bands; the angular grid converges fast.
     switch (preset) {
     case Preset::Preview:
         return {.nodes = 12,
                 .orders = 8,
                 .bands = 8,
-                .max_start_tau = 1.0 / 64.0,
+                .max_start_tau = 1.0 / 32.0,
                 .slices = 2,
-                .flake_polar = 12,
-                .flake_azimuth = 24};
+                .flake_polar = 4,
+                .flake_azimuth = 4,
+                .flake_table = 17,
+                .order_tolerance = 1e-3,
+                .output_bands = 41};
     case Preset::Standard:
-        return {.nodes = 24,
-                .orders = 16,
-                .bands = 16,
-                .max_start_tau = 1.0 / 256.0,
+        return {.nodes = 16,
+                .orders = 8,
+                .bands = 24,
+                .max_start_tau = 1.0 / 64.0,
                 .slices = 4,
-                .flake_polar = 24,
-                .flake_azimuth = 48};
+                .flake_polar = 6,
+                .flake_azimuth = 6,
+                .flake_table = 33,
+                .order_tolerance = 1e-4,
+                .output_bands = 81};
     case Preset::Reference:
+        // Converged: doubling nodes and orders (96, 64) changes the multi-angle
+        // reflectance factors of the demo paints by < 3.2e-5, a 4x smaller start
+        // by < 6e-7, a finer flake table and normal quadrature by < 2e-5.
         return {.nodes = 48,
-                .orders = 48,
-                .bands = 41,
+                .orders = 32,
+                .bands = 81,
                 .max_start_tau = 1.0 / 4096.0,
                 .slices = 8,
-                .flake_polar = 64,
-                .flake_azimuth = 128};
+                .flake_polar = 16,
+                .flake_azimuth = 16,
+                .flake_table = 257,
+                .order_tolerance = 1e-9,
+                .output_bands = 0};
     }
     return {};
 }
 
 namespace {
 
-LayeredBrdf::BandTable tabulateBand(const Recipe& recipe, double wavelength_nm,
-                                    const FastModelSettings& settings) {
-    const fast::BandStack stack = fast::buildBandStack(recipe, wavelength_nm, settings);
-    const fast::MediumNodes air = stack.grid.medium(stack.ambient_index);
-    const int na = static_cast<int>(air.node.size());
-    LayeredBrdf::BandTable table;
-    table.mu = air.quadrature.mu;
+constexpr double kColourMinNm = 400.0;
+constexpr double kColourMaxNm = 700.0;
+
+// The interpolation abscissae and pieces of the ambient's nodes (BandTable).
+void setInterpolation(const fast::StackQuadrature& grid, const fast::MediumNodes& air,
+                      LayeredBrdf::BandTable& table) {
+    const double n_ref = grid.referenceIndex();
+    table.reference_index = n_ref;
+    const auto na = air.node.size();
+    table.node_angle.resize(na);
+    for (std::size_t k = 0; k < na; ++k) {
+        const int node = air.node[k];
+        table.node_angle[k] =
+            std::atan2(grid.invariant(node) / n_ref, grid.muRef()[static_cast<std::size_t>(node)]);
+    }
+    table.piece_begin.clear();
+    table.piece_mu_low.clear();
+    for (std::size_t k = 0; k < na; ++k) {
+        const int interval = grid.interval(air.node[k]);
+        if (k == 0 || interval != grid.interval(air.node[k - 1])) {
+            table.piece_begin.push_back(static_cast<int>(k));
+            // The ambient's lowest node may sit in an interval that it only partly fills.
+            table.piece_mu_low.push_back(k == 0 ? 0.0 : grid.intervalLow(interval));
+        }
+    }
+    table.piece_begin.push_back(static_cast<int>(na));
+    table.node_bary.assign(na, 1.0);
+    table.mirror_bary.assign(na, 0.0);
+    for (std::size_t p = 0; p + 1 < table.piece_begin.size(); ++p) {
+        const auto b = static_cast<std::size_t>(table.piece_begin[p]);
+        const auto e = static_cast<std::size_t>(table.piece_begin[p + 1]);
+        // The piece holding the normal (angle 0) is mirrored: nodes +-theta.
+        bool mirrored = false;
+        for (std::size_t k = b; k < e; ++k) mirrored = mirrored || table.node_angle[k] == 0.0;
+        std::vector<double> x(table.node_angle.begin() + static_cast<std::ptrdiff_t>(b),
+                              table.node_angle.begin() + static_cast<std::ptrdiff_t>(e));
+        if (mirrored)
+            for (std::size_t k = b; k < e; ++k)
+                if (table.node_angle[k] > 0.0) x.push_back(-table.node_angle[k]);
+        const auto weight = [&x](double xk) {
+            double w = 1.0;
+            for (double xl : x)
+                if (xl != xk) w /= xk - xl;
+            return w;
+        };
+        for (std::size_t k = b; k < e; ++k) {
+            table.node_bary[k] = weight(table.node_angle[k]);
+            if (mirrored && table.node_angle[k] > 0.0) table.mirror_bary[k] = weight(-table.node_angle[k]);
+        }
+    }
+}
+
+// One band's stack and the parts of its table that do not depend on the order.
+struct BandWork {
+    fast::BandStack stack;
+    fast::MediumNodes air;
+    double n_top = 1.0;
+    int orders = 0;  // orders actually computed (the rest are negligible, see activeOrders)
+};
+
+// The number of leading Fourier orders worth computing: order m >= 1 is
+// negligible when every slab's kernel is below tolerance x its order-0
+// kernel and the substrate does not reflect in it; the kernels' Fourier
+// coefficients fall monotonically with m (smooth lobes: HG's g^m, the
+// flakes' Gaussian-like azimuthal lobes), so the first negligible order ends
+// the series.
+int activeOrders(const fast::BandStack& stack, const FastModelSettings& settings) {
+    for (int m = 1; m < settings.orders; ++m) {
+        if (stack.substrate[static_cast<std::size_t>(m)].cwiseAbs().maxCoeff() > 0.0) continue;
+        bool negligible = true;
+        for (const auto& element : stack.elements) {
+            const auto* slab = std::get_if<fast::SlabElement>(&element);
+            if (slab == nullptr) continue;
+            const auto& k0 = slab->kernels.orders[0];
+            const auto& km = slab->kernels.orders[static_cast<std::size_t>(m)];
+            const double scale = std::max(k0.same.cwiseAbs().maxCoeff(), k0.opposite.cwiseAbs().maxCoeff());
+            const double size = std::max(km.same.cwiseAbs().maxCoeff(), km.opposite.cwiseAbs().maxCoeff());
+            if (size > settings.order_tolerance * scale) negligible = false;
+        }
+        if (negligible) return m;
+    }
+    return settings.orders;
+}
+
+BandWork prepareBand(const Recipe& recipe, double wavelength_nm, const FastModelSettings& settings,
+                     LayeredBrdf::BandTable& table) {
+    BandWork work{fast::buildBandStack(recipe, wavelength_nm, settings), {}, 0.0, 0};
+    work.air = work.stack.grid.medium(work.stack.ambient_index);
+    work.n_top = recipe.layers.front().binder.refractive_index(wavelength_nm);
+    work.orders = activeOrders(work.stack, settings);
+    const int na = static_cast<int>(work.air.node.size());
+    table.mu = work.air.quadrature.mu;
     table.flux_weight.resize(na);
-    for (int i = 0; i < na; ++i) table.flux_weight(i) = air.quadrature.fluxWeight(i);
+    for (int i = 0; i < na; ++i) table.flux_weight(i) = work.air.quadrature.fluxWeight(i);
     // The top interface's mirror term, reported apart from the BRDF.
-    const double n_top = recipe.layers.front().binder.refractive_index(wavelength_nm);
     table.specular.resize(na);
     for (int i = 0; i < na; ++i)
         table.specular(i) =
-            fresnelDielectric(table.mu[static_cast<std::size_t>(i)], n_top / stack.ambient_index);
-    for (int m = 0; m < settings.orders; ++m) {
-        const Eigen::MatrixXd R = fast::stackReflection(stack, m, settings);
-        Eigen::MatrixXd f(na, na);
-        for (int i = 0; i < na; ++i)
-            for (int j = 0; j < na; ++j)
-                f(i, j) = R(air.node[static_cast<std::size_t>(i)], air.node[static_cast<std::size_t>(j)]);
-        if (m == 0) table.albedo = f.colwise().sum().transpose();
-        if (std::abs(n_top - stack.ambient_index) > 1e-9) f.diagonal() -= table.specular;
-        // Flux-to-flux G to BRDF: f = G / (pi c_out) (a Lambertian G = rho c gives rho / pi).
-        // Stored divided by the top interface's transmittance in and out: everything
-        // below the coat leaves through it, and (1 - r(mu)) is what varies fast near
-        // grazing, so the quotient is smooth and interpolates well in mu.
-        for (int i = 0; i < na; ++i) {
-            f.row(i) /= std::numbers::pi * table.flux_weight(i) * (1.0 - table.specular(i));
-            f.col(i) /= 1.0 - table.specular(i);
-        }
-        table.f.push_back(std::move(f));
+            fresnelDielectric(table.mu[static_cast<std::size_t>(i)], work.n_top / work.stack.ambient_index);
+    setInterpolation(work.stack.grid, work.air, table);
+    // Orders not computed stay zero.
+    table.f.assign(static_cast<std::size_t>(settings.orders), Eigen::MatrixXd::Zero(na, na));
+    return work;
+}
+
+// f^m of one band (and its albedo for m = 0).
+void tabulateOrder(const BandWork& work, int m, const FastModelSettings& settings,
+                   LayeredBrdf::BandTable& table) {
+    const Eigen::MatrixXd R = fast::stackReflection(work.stack, m, settings);
+    const auto& air = work.air;
+    const int na = static_cast<int>(air.node.size());
+    Eigen::MatrixXd f(na, na);
+    for (int i = 0; i < na; ++i)
+        for (int j = 0; j < na; ++j)
+            f(i, j) = R(air.node[static_cast<std::size_t>(i)], air.node[static_cast<std::size_t>(j)]);
+    if (m == 0) table.albedo = f.colwise().sum().transpose();
+    if (std::abs(work.n_top - work.stack.ambient_index) > 1e-9) f.diagonal() -= table.specular;
+    // Flux-to-flux G to BRDF: f = G / (pi c_out) (a Lambertian G = rho c gives rho / pi).
+    // Stored divided by the top interface's transmittance in and out: everything
+    // below the coat leaves through it, and (1 - r(mu)) is what varies fast near
+    // grazing, so the quotient is smooth and interpolates well.
+    for (int i = 0; i < na; ++i) {
+        f.row(i) /= std::numbers::pi * table.flux_weight(i) * (1.0 - table.specular(i));
+        f.col(i) /= 1.0 - table.specular(i);
     }
-    return table;
+    table.f[static_cast<std::size_t>(m)] = std::move(f);
 }
 
-// Linear interpolation weights of x on an ascending grid, held constant beyond the ends.
-struct Lerp {
-    int i0 = 0;
-    int i1 = 0;
-    double t = 0.0;
-};
-
-Lerp lerpOn(const std::vector<double>& grid, double x) {
-    const int n = static_cast<int>(grid.size());
-    if (n == 1 || x <= grid.front()) return {0, 0, 0.0};
-    if (x >= grid.back()) return {n - 1, n - 1, 0.0};
-    const auto it = std::upper_bound(grid.begin(), grid.end(), x);
-    const int i1 = static_cast<int>(it - grid.begin());
-    const int i0 = i1 - 1;
-    return {i0, i1,
-            (x - grid[static_cast<std::size_t>(i0)]) /
-                (grid[static_cast<std::size_t>(i1)] - grid[static_cast<std::size_t>(i0)])};
+// Interpolation basis of an ambient direction with cosine mu_ambient on the
+// band's nodes: the barycentric Lagrange weights of its piece (BandTable),
+// folded by parity for the mirrored piece: `even` for even Fourier orders,
+// `odd` for odd ones. Both are resized to the node count; entries outside the
+// piece are zero.
+void interpolationBasis(const LayeredBrdf::BandTable& t, double ambient_index, double mu_ambient,
+                        Eigen::VectorXd& even, Eigen::VectorXd& odd) {
+    const auto na = static_cast<Eigen::Index>(t.mu.size());
+    even.setZero(na);
+    odd.setZero(na);
+    if (na == 0) return;
+    const double mu = std::clamp(mu_ambient, 0.0, 1.0);
+    const double s = ambient_index * std::sqrt(std::max(0.0, 1.0 - mu * mu)) / t.reference_index;
+    const double mu_ref = std::sqrt(std::max(0.0, 1.0 - s * s));
+    const double x = std::atan2(s, mu_ref);
+    std::size_t p = 0;
+    while (p + 2 < t.piece_begin.size() && t.piece_mu_low[p + 1] <= mu_ref) ++p;
+    const auto b = static_cast<Eigen::Index>(t.piece_begin[p]);
+    const auto e = static_cast<Eigen::Index>(t.piece_begin[p + 1]);
+    for (Eigen::Index k = b; k < e; ++k) {
+        const double angle = t.node_angle[static_cast<std::size_t>(k)];
+        if (x == angle) {  // on a node (also -angle: x >= 0 and angle 0 there)
+            even.setZero();
+            odd.setZero();
+            even(k) = 1.0;
+            odd(k) = angle == 0.0 ? 0.0 : 1.0;
+            return;
+        }
+    }
+    double sum = 0.0;
+    for (Eigen::Index k = b; k < e; ++k) {
+        const auto kk = static_cast<std::size_t>(k);
+        const double plus = t.node_bary[kk] / (x - t.node_angle[kk]);
+        const double minus = t.mirror_bary[kk] == 0.0 ? 0.0 : t.mirror_bary[kk] / (x + t.node_angle[kk]);
+        even(k) = plus + minus;
+        odd(k) = plus - minus;
+        sum += plus + minus;
+    }
+    even /= sum;
+    odd /= sum;
 }
 
-double bilinear(const Eigen::MatrixXd& f, const Lerp& a, const Lerp& b) {
-    return (1 - a.t) * ((1 - b.t) * f(a.i0, b.i0) + b.t * f(a.i0, b.i1)) +
-           a.t * ((1 - b.t) * f(a.i1, b.i0) + b.t * f(a.i1, b.i1));
+// The table at wavelength nm from the computed bands around it: 4-point
+// Lagrange (cubic) weights in wavelength over the nearest computed bands, each
+// band's f^m moved onto the grid of the nearest one by its own angular
+// interpolation (the grids differ slightly with the binder's dispersion):
+// f^m = sum_k c_k P_k f_k^m P_k^T, P_k the rows of interpolation bases of the
+// target nodes in band k (even or odd by the order's parity). Tables are
+// stored divided by the top interface's transmittance, so what is
+// interpolated is the smooth part; the Fresnel terms are recomputed exactly.
+LayeredBrdf::BandTable spectralInterpolation(const std::vector<double>& band_nm,
+                                             const std::vector<LayeredBrdf::BandTable>& bands, double nm,
+                                             double ambient_index, double n_top) {
+    const int count = static_cast<int>(band_nm.size());
+    int nearest = 0;
+    for (int b = 1; b < count; ++b)
+        if (std::abs(band_nm[static_cast<std::size_t>(b)] - nm) <
+            std::abs(band_nm[static_cast<std::size_t>(nearest)] - nm))
+            nearest = b;
+    if (std::abs(band_nm[static_cast<std::size_t>(nearest)] - nm) < 1e-9)
+        return bands[static_cast<std::size_t>(nearest)];
+    // Four computed bands around nm (fewer if there are fewer).
+    int width = std::min(4, count);
+    int first = 0;
+    while (first + 1 < count && band_nm[static_cast<std::size_t>(first) + 1] < nm) ++first;
+    first = std::clamp(first - (width / 2 - 1), 0, count - width);
+    if (nm < band_nm.front() || nm > band_nm.back()) {  // held constant beyond the computed range
+        width = 1;
+        first = nearest;
+    }
+    LayeredBrdf::BandTable t = bands[static_cast<std::size_t>(nearest)];  // grid and layout
+    const auto na = static_cast<Eigen::Index>(t.mu.size());
+    for (auto& f : t.f) f.setZero(na, na);
+    t.albedo.setZero(na);
+    Eigen::VectorXd even;
+    Eigen::VectorXd odd;
+    for (int k = first; k < first + width; ++k) {
+        double c = 1.0;
+        for (int l = first; l < first + width; ++l)
+            if (l != k)
+                c *= (nm - band_nm[static_cast<std::size_t>(l)]) /
+                     (band_nm[static_cast<std::size_t>(k)] - band_nm[static_cast<std::size_t>(l)]);
+        const auto& src = bands[static_cast<std::size_t>(k)];
+        const auto ns = static_cast<Eigen::Index>(src.mu.size());
+        Eigen::MatrixXd P_even(na, ns);
+        Eigen::MatrixXd P_odd(na, ns);
+        for (Eigen::Index i = 0; i < na; ++i) {
+            interpolationBasis(src, ambient_index, t.mu[static_cast<std::size_t>(i)], even, odd);
+            P_even.row(i) = even.transpose();
+            P_odd.row(i) = odd.transpose();
+        }
+        for (std::size_t m = 0; m < t.f.size() && m < src.f.size(); ++m) {
+            const Eigen::MatrixXd& P = m % 2 == 0 ? P_even : P_odd;
+            t.f[m] += c * (P * src.f[m] * P.transpose());
+        }
+        t.albedo += c * (P_even * src.albedo);
+    }
+    for (Eigen::Index i = 0; i < na; ++i)
+        t.specular(i) = fresnelDielectric(t.mu[static_cast<std::size_t>(i)], n_top / ambient_index);
+    return t;
+}
+
+// The wavelengths the model runs at. Without spectral refinement: the
+// visible bands themselves. With it (output_bands > bands): spread evenly over
+// the range where the colour-matching functions weigh (kColourMinNm..kColourMaxNm);
+// beyond it the tables are held constant, where the CIE 1964 weights under D65
+// are below ~1 % of their peak.
+std::vector<double> computedBands(const FastModelSettings& settings) {
+    const auto count = static_cast<std::size_t>(std::max(2, settings.bands));
+    if (settings.output_bands <= settings.bands) return visibleBands(count);
+    const double lo = kColourMinNm;
+    const double hi = kColourMaxNm;
+    std::vector<double> nm(count);
+    for (std::size_t i = 0; i < count; ++i)
+        nm[i] = lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(count - 1);
+    return nm;
 }
 
 }  // namespace
@@ -136,25 +345,51 @@ LayeredBrdf computeLayeredBrdf(const Recipe& recipe, const FastModelSettings& se
     const auto start = std::chrono::steady_clock::now();
     LayeredBrdf brdf;
     brdf.m_settings = settings;
-    brdf.m_wavelengths_nm = visibleBands(static_cast<std::size_t>(std::max(2, settings.bands)));
+    brdf.m_wavelengths_nm = computedBands(settings);
     brdf.m_ambient_index = recipe.ambient_refractive_index;
     brdf.m_bands.resize(brdf.m_wavelengths_nm.size());
     std::atomic<bool> cancelled{false};
     std::atomic<int> done{0};
     std::mutex progress_mutex;
     const auto count = static_cast<int>(brdf.m_wavelengths_nm.size());
-    // Bands are independent: one task each (Eigen runs single-threaded inside).
+    // Stage 1, per band: the stack (slab kernels) and the order-free table parts.
+    std::vector<std::optional<BandWork>> work(static_cast<std::size_t>(count));
     tbb::parallel_for(0, count, [&](int b) {
+        const auto k = static_cast<std::size_t>(b);
+        work[k].emplace(prepareBand(recipe, brdf.m_wavelengths_nm[k], settings, brdf.m_bands[k]));
+    });
+    // Stage 2: the (band, order) pairs are independent; one task each, so
+    // both cores stay busy however bands and orders are balanced (Eigen runs
+    // single-threaded inside).
+    std::vector<std::pair<int, int>> pairs;
+    for (int b = 0; b < count; ++b)
+        for (int m = 0; m < work[static_cast<std::size_t>(b)]->orders; ++m) pairs.emplace_back(b, m);
+    const auto total = static_cast<int>(pairs.size());
+    tbb::parallel_for(0, total, [&](int p) {
         if (cancelled.load()) return;
-        brdf.m_bands[static_cast<std::size_t>(b)] =
-            tabulateBand(recipe, brdf.m_wavelengths_nm[static_cast<std::size_t>(b)], settings);
+        const auto [b, m] = pairs[static_cast<std::size_t>(p)];
+        tabulateOrder(*work[static_cast<std::size_t>(b)], m, settings,
+                      brdf.m_bands[static_cast<std::size_t>(b)]);
         const int finished = ++done;
         if (progress) {
             const std::lock_guard lock(progress_mutex);
-            if (!progress(double(finished) / count)) cancelled = true;
+            if (!progress(double(finished) / total)) cancelled = true;
         }
     });
     if (cancelled) throw Error("fast model: cancelled");
+    if (settings.output_bands > count) {
+        // Spectral refinement of the tables (FastModelSettings::output_bands).
+        const std::vector<double> out_nm = visibleBands(static_cast<std::size_t>(settings.output_bands));
+        std::vector<LayeredBrdf::BandTable> out(out_nm.size());
+        tbb::parallel_for(0, static_cast<int>(out_nm.size()), [&](int o) {
+            const auto k = static_cast<std::size_t>(o);
+            out[k] =
+                spectralInterpolation(brdf.m_wavelengths_nm, brdf.m_bands, out_nm[k], brdf.m_ambient_index,
+                                      recipe.layers.front().binder.refractive_index(out_nm[k]));
+        });
+        brdf.m_wavelengths_nm = out_nm;
+        brdf.m_bands = std::move(out);
+    }
     for (double nm : brdf.m_wavelengths_nm)
         brdf.m_top_index_per_band.push_back(recipe.layers.front().binder.refractive_index(nm));
     brdf.m_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -170,17 +405,22 @@ void LayeredBrdf::eval(const Direction& wi, const Direction& wo, std::span<doubl
     const double phi_i = std::atan2(wi.y, wi.x);
     const double phi_o = std::atan2(wo.y, wo.x);
     const double dphi = phi_o - phi_i;
+    Eigen::VectorXd out_even;
+    Eigen::VectorXd out_odd;
+    Eigen::VectorXd in_even;
+    Eigen::VectorXd in_odd;
     for (std::size_t b = 0; b < m_bands.size() && b < out.size(); ++b) {
         const BandTable& t = m_bands[b];
-        const Lerp a = lerpOn(t.mu, std::min(1.0, wo.z));
-        const Lerp c = lerpOn(t.mu, std::min(1.0, wi.z));
+        interpolationBasis(t, m_ambient_index, wo.z, out_even, out_odd);
+        interpolationBasis(t, m_ambient_index, wi.z, in_even, in_odd);
         const double eta = m_top_index_per_band[b] / m_ambient_index;
         const double transmit = (1.0 - fresnelDielectric(wi.z, eta)) * (1.0 - fresnelDielectric(wo.z, eta));
         double value = 0.0;
         for (std::size_t m = 0; m < t.f.size(); ++m) {
             const double sign = (m % 2 == 0) ? 1.0 : -1.0;
             const double weight = m == 0 ? 1.0 : 2.0 * sign * std::cos(double(m) * dphi);
-            value += weight * bilinear(t.f[m], a, c);
+            value +=
+                m % 2 == 0 ? weight * out_even.dot(t.f[m] * in_even) : weight * out_odd.dot(t.f[m] * in_odd);
         }
         out[b] = std::max(0.0, transmit * value);  // a truncated Fourier series can ring slightly below zero
     }
@@ -195,9 +435,11 @@ std::vector<double> LayeredBrdf::specularReflectance(double cos_theta) const {
 
 std::vector<double> LayeredBrdf::albedo(const Direction& wi) const {
     std::vector<double> a;
+    Eigen::VectorXd even;
+    Eigen::VectorXd odd;
     for (const auto& t : m_bands) {
-        const Lerp l = lerpOn(t.mu, std::clamp(wi.z, 0.0, 1.0));
-        a.push_back((1 - l.t) * t.albedo(l.i0) + l.t * t.albedo(l.i1));
+        interpolationBasis(t, m_ambient_index, wi.z, even, odd);  // the albedo is even in theta
+        a.push_back(even.dot(t.albedo));
     }
     return a;
 }

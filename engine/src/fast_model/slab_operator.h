@@ -30,14 +30,16 @@ struct OrderKernel {
 
 struct SlabKernels {
     Eigen::VectorXd extinction_per_um;  // e_i
-    Eigen::VectorXd scattering_per_um;  // what direction j scatters in all, sum_i w_i (K_same + K_opp)_ij at m = 0
-    std::vector<OrderKernel> orders;    // m = 0 .. M
+    Eigen::VectorXd
+        scattering_per_um;  // what direction j scatters in all, sum_i w_i (K_same + K_opp)_ij at m = 0
+    std::vector<OrderKernel> orders;  // m = 0 .. M
     double max_extinction_per_um = 0.0;
 };
 
 struct FlakeSampling {
-    int polar = 24;    // stratified samples of the flake normal's polar angle
-    int azimuth = 48;  // and azimuth (over the full circle)
+    int polar = 24;    // Gauss nodes in the flake normal's tilt (per smooth piece)
+    int azimuth = 48;  // and azimuth (per smooth piece of [0, pi])
+    int table = 129;   // cosines of the flakes' R(cos), T(cos) table
 };
 
 // Kernels of the slab for orders 0..max_order on the medium quadrature q

@@ -77,7 +77,7 @@ std::vector<MatrixXd> substrateReflection(const Recipe& recipe, const StackQuadr
 // node trapped between two totally reflecting faces of a clear layer gets no
 // light (Y's row is zero) but makes (I - B) singular; its equation is
 // replaced by X_k = 0.
-MatrixXd solveLoop(MatrixXd B, const MatrixXd& Y) {
+MatrixXd solveLoop(const MatrixXd& B, const MatrixXd& Y) {
     const auto n = B.rows();
     MatrixXd M = MatrixXd::Identity(n, n) - B;
     for (Eigen::Index k = 0; k < n; ++k) {
@@ -99,7 +99,7 @@ BandStack buildBandStack(const Recipe& recipe, double wavelength_nm, const FastM
         wavelength_nm, StackQuadrature(settings.nodes, indices), recipe.ambient_refractive_index, {}, {}};
 
     double n_above = recipe.ambient_refractive_index;
-    const FlakeSampling sampling{settings.flake_polar, settings.flake_azimuth};
+    const FlakeSampling sampling{settings.flake_polar, settings.flake_azimuth, settings.flake_table};
     for (const auto& layer : recipe.layers) {
         const double n_layer = layer.binder.refractive_index(wavelength_nm);
         if (std::abs(n_layer - n_above) > kSameIndex)
@@ -121,13 +121,15 @@ BandStack buildBandStack(const Recipe& recipe, double wavelength_nm, const FastM
 MatrixXd stackReflection(const BandStack& stack, int m, const FastModelSettings& settings) {
     const int n = stack.grid.size();
     MatrixXd R = stack.substrate[static_cast<std::size_t>(m)];
-    for (auto it = stack.elements.rbegin(); it != stack.elements.rend(); ++it) {
-        if (const auto* e = std::get_if<InterfaceElement>(&*it)) {
+    // Bottom-up (an index loop: clang 14's ranges do not accept libstdc++ 12's reverse view).
+    for (std::size_t k = stack.elements.size(); k-- > 0;) {
+        const auto& element = stack.elements[k];
+        if (const auto* e = std::get_if<InterfaceElement>(&element)) {
             // R_new = R01 + T10 (I - R R10)^-1 R T01, all of the interface diagonal.
             const MatrixXd X = solveLoop(R * e->R10.asDiagonal(), R * e->T01.asDiagonal());
             R = MatrixXd(e->R01.asDiagonal()) + e->T10.asDiagonal() * X;
         } else {
-            const auto& slab = std::get<SlabElement>(*it);
+            const auto& slab = std::get<SlabElement>(element);
             const layered::LayerOperator local = slabOperator(slab.kernels, slab.medium.quadrature, m,
                                                               slab.thickness_um, settings.max_start_tau);
             // Embed on the full grid: nodes that do not exist in this medium pass untouched.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace paintlab::fast {
 
@@ -21,19 +22,34 @@ StackQuadrature::StackQuadrature(int n_nodes, const std::vector<double>& indices
     splits.erase(std::unique(splits.begin(), splits.end(), [](double a, double b) { return b - a < 1e-12; }),
                  splits.end());
     const int intervals = static_cast<int>(splits.size()) - 1;
-    // Nodes proportional to interval length, at least two per interval; the
-    // last interval (towards the normal) uses Gauss-Radau with a node at mu = 1
-    // so that normal incidence and exit are on the grid (Prahl's choice).
+    // Nodes in proportion to the flux each interval carries, b^2 - a^2 (as the
+    // slab quadrature does, quadrature.h), at least two per interval, by
+    // largest remainders. The interval towards the normal is the escape cone of
+    // the lowest index (the ambient's, in a paint): the only directions the
+    // outside sees, where the BRDF is evaluated and its lobes are; a share
+    // by length gave it about 26 % of the nodes under a 1.5 coat, by flux 45 %.
     std::vector<int> counts(static_cast<std::size_t>(intervals), 2);
-    int remaining = std::max(0, n_nodes - 2 * intervals);
-    for (int i = 0; i < intervals && remaining > 0; ++i) {
-        const double length = splits[static_cast<std::size_t>(i) + 1] - splits[static_cast<std::size_t>(i)];
-        const int extra =
-            std::min(remaining, static_cast<int>(std::floor(length * (n_nodes - 2 * intervals))));
-        counts[static_cast<std::size_t>(i)] += extra;
-        remaining -= extra;
+    const int spare = std::max(0, n_nodes - 2 * intervals);
+    std::vector<std::pair<double, int>> remainders;
+    int given = 0;
+    for (int i = 0; i < intervals; ++i) {
+        const double a = splits[static_cast<std::size_t>(i)];
+        const double b = splits[static_cast<std::size_t>(i) + 1];
+        const double share = (b * b - a * a) * spare;
+        const int whole = static_cast<int>(std::floor(share));
+        counts[static_cast<std::size_t>(i)] += whole;
+        given += whole;
+        remainders.emplace_back(share - whole, i);
     }
-    counts[counts.size() - 1] += remaining;  // intervals >= 1: splits holds 0 and 1
+    std::sort(remainders.begin(), remainders.end(), [](const auto& x, const auto& y) {
+        return x.first > y.first || (x.first == y.first && x.second > y.second);
+    });
+    for (std::size_t r = 0; given < spare && r < remainders.size(); ++r, ++given)
+        ++counts[static_cast<std::size_t>(remainders[r].second)];
+    counts.back() += spare - given;  // intervals >= 1: splits holds 0 and 1
+    // Gauss-Legendre per interval; the last (towards the normal) Gauss-Radau
+    // with a node at mu = 1 so that normal incidence and exit are on the grid
+    // (Prahl's choice).
     for (int i = 0; i < intervals; ++i) {
         std::vector<double> x;
         std::vector<double> w;
@@ -45,6 +61,8 @@ StackQuadrature::StackQuadrature(int n_nodes, const std::vector<double>& indices
             layered::gaussLegendre(counts[static_cast<std::size_t>(i)], a, b, x, w);
         m_mu_ref.insert(m_mu_ref.end(), x.begin(), x.end());
         m_weight_ref.insert(m_weight_ref.end(), w.begin(), w.end());
+        m_interval.insert(m_interval.end(), x.size(), i);
+        m_interval_low.push_back(a);
     }
 }
 

@@ -38,6 +38,11 @@ public:
     const std::vector<double>& weightRef() const { return m_weight_ref; }
     // sin(theta) in the reference medium times n_ref.
     double invariant(int k) const;
+    // Index of the split interval node k lies in (ascending with mu), and the
+    // lower end in mu_ref of interval i: the nodes of one interval are one
+    // Gauss rule, so a function smooth there interpolates spectrally.
+    int interval(int k) const { return m_interval[static_cast<std::size_t>(k)]; }
+    double intervalLow(int i) const { return m_interval_low[static_cast<std::size_t>(i)]; }
     // The nodes that exist in a medium of this index, with their cosines and weights there.
     MediumNodes medium(double index) const;
 
@@ -45,6 +50,8 @@ private:
     double m_n_ref = 1.0;
     std::vector<double> m_mu_ref;
     std::vector<double> m_weight_ref;
+    std::vector<int> m_interval;
+    std::vector<double> m_interval_low;
 };
 
 }  // namespace paintlab::fast

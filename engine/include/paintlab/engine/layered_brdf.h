@@ -24,11 +24,22 @@ namespace paintlab {
 struct FastModelSettings {
     int nodes = 24;                       // quadrature nodes per hemisphere
     int orders = 16;                      // Fourier orders 0 .. orders-1
-    int bands = 16;                       // wavelengths over 380-780 nm
+    int bands = 16;                       // wavelengths computed, over 380-780 nm (400-700 with output_bands)
     double max_start_tau = 1.0 / 1024.0;  // largest optical thickness of the starting sublayer
     int slices = 4;                       // slices per layer with a depth-varying concentration
-    int flake_polar = 24;                 // flake-normal samples (polar x azimuth) for the flake kernels
-    int flake_azimuth = 48;
+    int flake_polar = 12;  // Gauss nodes (tilt x azimuth, per smooth piece) for the flake totals
+    int flake_azimuth = 12;
+    int flake_table = 129;  // cosines at which the flakes' reflectance is tabulated (cubic in between)
+    // Fourier orders beyond the first whose kernels (every slab's largest
+    // |K^m| relative to its |K^0|) fall below this are not computed (their
+    // f^m are zero), unless the substrate reflects in that order (a mirror).
+    double order_tolerance = 1e-6;
+    // When larger than `bands`: the model runs at `bands` wavelengths and the
+    // tables are then interpolated (cubic in wavelength) to this many, which
+    // are what wavelengthsNm() and bands() report. Reflectance spectra of
+    // paints are smooth on the scale of the band spacing, while colour from a
+    // linearly interpolated coarse spectrum is not accurate (8 bands: dE ~1).
+    int output_bands = 0;
 };
 
 enum class Preset { Preview, Standard, Reference };
@@ -66,6 +77,25 @@ public:
         Eigen::VectorXd specular;        // top-interface reflectance at mu
         Eigen::VectorXd albedo;          // directional-hemispherical, incl. specular
         Eigen::VectorXd flux_weight;     // of mu in the ambient medium (sum 1)
+        // Interpolation (eval, albedo): f^m is analytic in the polar angle
+        // theta_ref that a direction has in the stack's densest medium (index
+        // reference_index), sin^m theta times a smooth function, and every
+        // quadrature interval of the grid is one Gauss rule; so within each
+        // interval f^m is interpolated by the polynomial through its nodes in
+        // theta_ref (barycentric form). Nodes [piece_begin[p], piece_begin[p+1])
+        // form interval p, whose lower end is piece_mu_low[p] (cosine in the
+        // reference medium). The interval that reaches the normal (theta 0) is
+        // extended to negative angles by the parity of f^m (even for even m,
+        // odd for odd m): its Gauss nodes, clustered in mu, are evenly spread
+        // in theta near 0, and a polynomial through them alone would suffer
+        // Runge's phenomenon there; mirrored, the node set is clustered at both
+        // of its ends, as interpolation needs.
+        double reference_index = 1.0;
+        std::vector<double> node_angle;   // theta_ref of each node (rad)
+        std::vector<double> node_bary;    // barycentric weights within its (extended) piece
+        std::vector<double> mirror_bary;  // weights of the mirrored nodes -theta (0: none)
+        std::vector<int> piece_begin;     // pieces + 1 entries
+        std::vector<double> piece_mu_low;
     };
     const std::vector<BandTable>& bands() const { return m_bands; }
 
@@ -80,7 +110,8 @@ private:
 };
 
 // Runs the fast model. The recipe must be valid (validateRecipe). Throws
-// Error("cancelled") if progress returns false. Bands run in parallel (TBB).
+// Error("cancelled") if progress returns false. The slab kernels of the bands,
+// then the (band, Fourier order) pairs run in parallel (TBB).
 LayeredBrdf computeLayeredBrdf(const Recipe& recipe, const FastModelSettings& settings,
                                const ProgressCallback& progress = {});
 

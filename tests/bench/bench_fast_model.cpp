@@ -1,0 +1,99 @@
+// The fast model's cost: every preset on every demo recipe, and how the time
+// grows with nodes, Fourier orders and bands, and the cost of one doubling
+// step per node count (issue 3, "Speed"). Figures for docs/PERFORMANCE.md come
+// from running bench_engine directly; the smoke test only checks they run.
+#include "paintlab/engine/layered/layer_operator.h"
+#include "paintlab/engine/layered/phase_function.h"
+#include "paintlab/engine/layered/quadrature.h"
+#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/recipe_json.h"
+
+#include <benchmark/benchmark.h>
+
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+namespace {
+
+const std::filesystem::path kDemo = std::filesystem::path(PAINTLAB_DEMO_DIR) / "recipes";
+constexpr std::array<const char*, 3> kRecipes{"pearlescent-two-layer", "silver-metallic", "solid-red"};
+
+paintlab::Recipe demo(int index) {
+    return paintlab::loadRecipeFile(kDemo /
+                                    (std::string(kRecipes[static_cast<std::size_t>(index)]) + ".json"));
+}
+
+// Arguments: recipe index, preset (0 preview, 1 standard, 2 reference).
+void BM_FastModelPreset(benchmark::State& state) {
+    const auto recipe = demo(static_cast<int>(state.range(0)));
+    const auto preset = static_cast<paintlab::Preset>(state.range(1));
+    const auto settings = paintlab::presetSettings(preset);
+    state.SetLabel(std::string(kRecipes[static_cast<std::size_t>(state.range(0))]) + "/" +
+                   std::string(paintlab::presetName(preset)));
+    for (auto _ : state) benchmark::DoNotOptimize(paintlab::computeLayeredBrdf(recipe, settings));
+}
+BENCHMARK(BM_FastModelPreset)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_FastModelPreset)
+    ->ArgsProduct({{0, 1, 2}, {2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
+
+// Scaling on the pearlescent demo around the standard preset: one knob at a time.
+enum Knob { kNodes, kOrders, kBands };
+
+void BM_FastModelScaling(benchmark::State& state) {
+    const auto recipe = demo(0);
+    auto settings = paintlab::presetSettings(paintlab::Preset::Standard);
+    const auto value = static_cast<int>(state.range(1));
+    switch (static_cast<Knob>(state.range(0))) {
+    case kNodes:
+        settings.nodes = value;
+        state.SetLabel("nodes " + std::to_string(value));
+        break;
+    case kOrders:
+        settings.orders = value;
+        settings.order_tolerance = 0.0;  // every order computed
+        state.SetLabel("orders " + std::to_string(value));
+        break;
+    case kBands:
+        settings.bands = value;
+        state.SetLabel("bands " + std::to_string(value));
+        break;
+    }
+    for (auto _ : state) benchmark::DoNotOptimize(paintlab::computeLayeredBrdf(recipe, settings));
+}
+BENCHMARK(BM_FastModelScaling)
+    ->ArgsProduct({{kNodes}, {12, 16, 24, 32, 48}})
+    ->ArgsProduct({{kOrders}, {4, 8, 16, 32}})
+    ->ArgsProduct({{kBands}, {4, 8, 16, 32}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// One doubling step (LU of I - R R and three products) of an n-node slab:
+// 16 doublings of a g = 0.75 slab divided by 16.
+void BM_DoublingStep(benchmark::State& state) {
+    const int n = static_cast<int>(state.range(0));
+    const auto q = paintlab::layered::makeQuadrature(n, 1.5);
+    const auto phase = paintlab::layered::henyeyGreensteinDeltaM(0.75, n);
+    const auto h = paintlab::layered::phaseMatrices(q.mu, phase.chi, 0);
+    paintlab::layered::DoublingOptions options;
+    options.max_start_tau = 1.0 / 1024.0;
+    for (auto _ : state)
+        benchmark::DoNotOptimize(paintlab::layered::homogeneousSlab(q, h, 0.9, 64.0, 0, options));
+    state.counters["s_per_doubling"] =
+        benchmark::Counter(16.0 * static_cast<double>(state.iterations()),
+                           benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_DoublingStep)
+    ->Arg(8)
+    ->Arg(16)
+    ->Arg(24)
+    ->Arg(32)
+    ->Arg(48)
+    ->Arg(64)
+    ->Unit(benchmark::kMicrosecond);
+
+}  // namespace
