@@ -25,4 +25,7 @@ void addBrdfCommands(CLI::App& app, CommandAction& action);
 // Registers `accuracy`: the error-vs-time table of the fast model's knobs and presets.
 void addAccuracyCommand(CLI::App& app, CommandAction& action);
 
+// Registers `mc` and `compare`: the Monte Carlo full model and its comparison with the fast model.
+void addMcCommands(CLI::App& app, CommandAction& action);
+
 }  // namespace paintlab::cli

@@ -26,6 +26,7 @@ int run(int argc, char** argv) {
     paintlab::cli::addSlabCommand(app, action);
     paintlab::cli::addBrdfCommands(app, action);
     paintlab::cli::addAccuracyCommand(app, action);
+    paintlab::cli::addMcCommands(app, action);
 
     try {
         app.parse(argc, argv);

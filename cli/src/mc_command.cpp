@@ -1,0 +1,348 @@
+// `mc` and `compare`: the Monte Carlo full model from the command line, and
+// its comparison with the fast model at the multi-angle geometries.
+// Options and JSON fields are a public contract (issue 4): extend, never rename.
+
+#include "commands.h"
+
+#include "paintlab/engine/error.h"
+#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/montecarlo/monte_carlo.h"
+#include "paintlab/engine/multiangle.h"
+#include "paintlab/engine/recipe_json.h"
+#include "paintlab/engine/spectrum.h"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <string>
+
+namespace paintlab::cli {
+
+namespace {
+
+using nlohmann::ordered_json;
+
+struct McOptions {
+    std::string recipe;
+    // Unset: -1 and NaN (so that an explicit 0 is rejected, not ignored).
+    std::int64_t samples = -1;
+    double rel_error = std::numeric_limits<double>::quiet_NaN();
+    double seconds = std::numeric_limits<double>::quiet_NaN();
+    std::uint64_t seed = 1;
+    int bands = 8;
+    std::string preset = "standard";
+    std::string out;
+    bool json = false;
+    bool explicit_flakes = false;
+    double cone_deg = 0.0;  // 0: next-event estimator (explicit flakes default to 5)
+};
+
+constexpr std::int64_t kDefaultSamples = 20000;
+constexpr double kSummaryMinNm = 400.0;  // compare's summary range
+constexpr double kSummaryMaxNm = 700.0;
+constexpr std::int64_t kMaxSamples = 1000000000;
+
+// The stop rule from the options: exactly one of --samples, --rel-error, --seconds (default: samples).
+mc::McSettings mcSettings(const McOptions& o) {
+    const bool has_samples = o.samples != -1;
+    const bool has_rel_error = !std::isnan(o.rel_error);
+    const bool has_seconds = !std::isnan(o.seconds);
+    if (int(has_samples) + int(has_rel_error) + int(has_seconds) > 1)
+        throw InputError("<argument>", "--samples/--rel-error/--seconds", "give at most one stopping rule");
+    if (has_samples && !(o.samples >= 1 && o.samples <= kMaxSamples))
+        throw InputError("<argument>", "--samples", std::to_string(o.samples) + " must be in [1, 1e9]");
+    if (has_rel_error && !(o.rel_error >= 1e-4 && o.rel_error < 1.0))
+        throw InputError("<argument>", "--rel-error", std::to_string(o.rel_error) + " must be in [1e-4, 1)");
+    if (has_seconds && !(o.seconds > 0.0 && o.seconds <= 86400.0))
+        throw InputError("<argument>", "--seconds", std::to_string(o.seconds) + " must be in (0, 86400]");
+    if (!(o.cone_deg >= 0.0 && o.cone_deg <= 30.0))
+        throw InputError("<argument>", "--cone", std::to_string(o.cone_deg) + " must be in [0, 30] degrees");
+    mc::McSettings s;
+    s.seed = o.seed;
+    s.explicit_flakes = o.explicit_flakes;
+    s.histogram_cone_deg = o.cone_deg > 0.0 ? o.cone_deg : (o.explicit_flakes ? 5.0 : 0.0);
+    s.max_paths = has_samples ? o.samples : kDefaultSamples;
+    if (has_rel_error) {
+        s.max_paths = kMaxSamples;
+        s.target_rel_error = o.rel_error;
+        s.max_seconds = 600.0;  // a safety net, reported in the settings
+    }
+    if (has_seconds) {
+        s.max_paths = kMaxSamples;
+        s.max_seconds = o.seconds;
+    }
+    return s;
+}
+
+ProgressCallback terminalProgress(const char* what) {
+    if (isatty(STDERR_FILENO) == 0) return {};
+    return [what](double fraction) {
+        std::fprintf(stderr, "\r%s: %3.0f%%", what, 100.0 * fraction);
+        if (fraction >= 1.0) std::fprintf(stderr, "\n");
+        return true;
+    };
+}
+
+// Incidence 0 (albedo only) and 45 degrees with the six multi-angle detectors.
+std::vector<mc::IncidenceRequest> multiAngleRequests() {
+    mc::IncidenceRequest normal{directionFromAnglesDeg(0.0, 0.0), {}};
+    mc::IncidenceRequest oblique{multiAngleGeometry(kAspecularAnglesDeg[0]).wi, {}};
+    for (double as : kAspecularAnglesDeg) oblique.wo.push_back(multiAngleGeometry(as).wo);
+    return {normal, oblique};
+}
+
+ordered_json estimatesJson(const mc::McResult& r, std::size_t incidence, int exit /* -1: albedo */) {
+    std::vector<double> mean;
+    std::vector<double> se;
+    for (const auto& band : r.bands) {
+        const auto& e =
+            exit < 0 ? band[incidence].albedo : band[incidence].brdf_per_sr[static_cast<std::size_t>(exit)];
+        mean.push_back(e.mean);
+        se.push_back(e.std_error);
+    }
+    return {{"mean", mean}, {"std_error", se}};
+}
+
+ordered_json settingsJson(const mc::McSettings& s, const mc::McResult& r) {
+    return {{"seed", s.seed},
+            {"explicit_flakes", s.explicit_flakes},
+            {"histogram_cone_deg", s.histogram_cone_deg},
+            {"max_paths", s.max_paths},
+            {"target_rel_error", s.target_rel_error},
+            {"max_seconds", s.max_seconds},
+            {"paths", r.total_paths},
+            {"compute_seconds", r.seconds}};
+}
+
+void emit(const McOptions& o, const std::string& text) {
+    if (o.out.empty()) {
+        std::cout << text;
+        return;
+    }
+    std::ofstream file(o.out, std::ios::binary | std::ios::trunc);
+    if (!file) throw InputError(o.out, "--out", "cannot open for writing");
+    file << text;
+    if (!file.flush()) throw Error(o.out + ": write failed");
+    std::cerr << "wrote " << o.out << '\n';
+}
+
+void checkBands(int bands) {
+    if (bands < 2 || bands > 81)
+        throw InputError("<argument>", "--bands", std::to_string(bands) + " must be in [2, 81]");
+}
+
+int runMc(const McOptions& o) {
+    checkBands(o.bands);
+    const mc::McSettings settings = mcSettings(o);
+    const Recipe recipe = loadRecipeFile(o.recipe);
+    const auto wavelengths = visibleBands(static_cast<std::size_t>(o.bands));
+    const auto requests = multiAngleRequests();
+    const mc::McResult r = mc::runMonteCarlo(recipe, wavelengths, requests, settings, terminalProgress("mc"));
+    std::ostringstream text;
+    if (o.json || (!o.out.empty())) {
+        ordered_json out;
+        out["recipe"] = o.recipe;
+        out["settings"] = settingsJson(settings, r);
+        out["wavelengths_nm"] = wavelengths;
+        ordered_json albedo = ordered_json::array();
+        albedo.push_back({{"theta_i_deg", 0.0}, {"albedo", estimatesJson(r, 0, -1)}});
+        albedo.push_back({{"theta_i_deg", kMultiAngleIlluminationDeg}, {"albedo", estimatesJson(r, 1, -1)}});
+        out["albedo"] = std::move(albedo);  // directional-hemispherical, mirror term included
+        ordered_json geometries = ordered_json::array();
+        for (std::size_t k = 0; k < kAspecularAnglesDeg.size(); ++k)
+            geometries.push_back({{"aspecular_deg", kAspecularAnglesDeg[k]},
+                                  {"brdf_per_sr", estimatesJson(r, 1, static_cast<int>(k))}});
+        out["geometries"] = std::move(geometries);  // mirror term excluded
+        out["notes"] = mc::estimatorLimitations(recipe);
+        text << out.dump(1) << '\n';
+    } else {
+        std::printf("Monte Carlo, %lld paths in %.2f s (seed %llu)\n", static_cast<long long>(r.total_paths),
+                    r.seconds, static_cast<unsigned long long>(settings.seed));
+        std::printf("%10s %20s %20s", "lambda_nm", "albedo 0deg", "albedo 45deg");
+        for (double as : kAspecularAnglesDeg) std::printf("   f 45as%-4g (1/sr)", as);
+        std::printf("\n");
+        for (std::size_t b = 0; b < wavelengths.size(); ++b) {
+            const auto& band = r.bands[b];
+            std::printf("%10.1f %11.5f+-%-7.5f %11.5f+-%-7.5f", wavelengths[b], band[0].albedo.mean,
+                        band[0].albedo.std_error, band[1].albedo.mean, band[1].albedo.std_error);
+            for (const auto& e : band[1].brdf_per_sr) std::printf(" %11.5g+-%-7.2g", e.mean, e.std_error);
+            std::printf("\n");
+        }
+        for (const auto& note : mc::estimatorLimitations(recipe)) std::printf("note: %s\n", note.c_str());
+    }
+    if (!text.str().empty()) emit(o, text.str());
+    return 0;
+}
+
+// The fast model's f averaged over a histogram cone as the MC estimates it:
+// int_cone f cos dw / int_cone cos dw (midpoint rule in the cone angle and azimuth).
+std::vector<double> coneAverage(const LayeredBrdf& fast, const Direction& wi, const Direction& axis,
+                                double cone_deg) {
+    if (!(cone_deg > 0.0)) return fast.eval(wi, axis);
+    const double alpha = cone_deg * M_PI / 180.0;
+    const double sign = std::copysign(1.0, axis.z);
+    const double a = -1.0 / (sign + axis.z);
+    const double b = axis.x * axis.y * a;
+    const Direction b1{1.0 + sign * axis.x * axis.x * a, sign * b, -sign * axis.x};
+    const Direction b2{b, sign + axis.y * axis.y * a, -axis.y};
+    std::vector<double> sum(fast.wavelengthsNm().size(), 0.0);
+    double weight_sum = 0.0;
+    const int n_beta = 8;
+    const int n_psi = 24;
+    for (int i = 0; i < n_beta; ++i) {
+        const double beta = (i + 0.5) / n_beta * alpha;
+        for (int j = 0; j < n_psi; ++j) {
+            const double psi = (j + 0.5) / n_psi * 2.0 * M_PI;
+            const double s = std::sin(beta) * std::cos(psi);
+            const double t = std::sin(beta) * std::sin(psi);
+            const Direction w{std::cos(beta) * axis.x + s * b1.x + t * b2.x,
+                              std::cos(beta) * axis.y + s * b1.y + t * b2.y,
+                              std::cos(beta) * axis.z + s * b1.z + t * b2.z};
+            const double weight = std::sin(beta) * std::max(w.z, 0.0);
+            const auto f = fast.eval(wi, w);
+            for (std::size_t k = 0; k < f.size(); ++k) sum[k] += weight * f[k];
+            weight_sum += weight;
+        }
+    }
+    for (auto& v : sum) v /= weight_sum;
+    return sum;
+}
+
+int runCompare(const McOptions& o) {
+    const mc::McSettings settings = mcSettings(o);
+    Preset preset = Preset::Standard;
+    try {
+        preset = presetFromName(o.preset);
+    } catch (const InputError& e) {
+        throw InputError("<argument>", "--preset", e.detail());
+    }
+    const Recipe recipe = loadRecipeFile(o.recipe);
+    const LayeredBrdf fast =
+        computeLayeredBrdf(recipe, presetSettings(preset), terminalProgress("fast model"));
+    const auto wavelengths = fast.wavelengthsNm();
+    const auto requests = multiAngleRequests();
+    const mc::McResult r = mc::runMonteCarlo(recipe, wavelengths, requests, settings, terminalProgress("mc"));
+    // Per geometry: the band-mean f of both models, their relative difference
+    // and the largest |z| over bands (z = (mc - fast) / se_mc).
+    ordered_json geometries = ordered_json::array();
+    struct Row {
+        double aspecular, fast_mean, mc_mean, mc_se, rel, max_z;
+    };
+    std::vector<Row> rows;
+    for (std::size_t k = 0; k < kAspecularAnglesDeg.size(); ++k) {
+        const MultiAngleGeometry g = multiAngleGeometry(kAspecularAnglesDeg[k]);
+        const auto f_fast = coneAverage(fast, g.wi, g.wo, settings.histogram_cone_deg);
+        Row row{kAspecularAnglesDeg[k], 0.0, 0.0, 0.0, 0.0, 0.0};
+        std::vector<double> f_mc;
+        std::vector<double> se;
+        double var = 0.0;
+        double nb = 0.0;
+        for (std::size_t b = 0; b < wavelengths.size(); ++b) {
+            const auto& e = r.bands[b][1].brdf_per_sr[k];
+            f_mc.push_back(e.mean);
+            se.push_back(e.std_error);
+            // The summary covers 400-700 nm, where the fast model computes its
+            // colour bands (outside it extrapolates; layered_brdf.h output_bands).
+            if (wavelengths[b] < kSummaryMinNm || wavelengths[b] > kSummaryMaxNm) continue;
+            nb += 1.0;
+            row.fast_mean += f_fast[b];
+            row.mc_mean += e.mean;
+            var += e.std_error * e.std_error;
+            if (e.std_error > 0.0)
+                row.max_z = std::max(row.max_z, std::abs(e.mean - f_fast[b]) / e.std_error);
+        }
+        nb = std::max(nb, 1.0);
+        row.fast_mean /= nb;
+        row.mc_mean /= nb;
+        row.mc_se = std::sqrt(var) / nb;
+        row.rel = row.fast_mean > 0.0 ? (row.mc_mean - row.fast_mean) / row.fast_mean : 0.0;
+        rows.push_back(row);
+        geometries.push_back({{"aspecular_deg", row.aspecular},
+                              {"fast_brdf_per_sr", f_fast},
+                              {"mc_brdf_per_sr", f_mc},
+                              {"mc_std_error", se},
+                              {"band_mean_relative_difference", row.rel},
+                              {"max_abs_z", row.max_z}});
+    }
+    if (o.json) {
+        ordered_json out;
+        out["recipe"] = o.recipe;
+        out["preset"] = o.preset;
+        out["fast_seconds"] = fast.computeSeconds();
+        out["mc_seconds"] = r.seconds;
+        out["mc_settings"] = settingsJson(settings, r);
+        out["wavelengths_nm"] = std::vector<double>(wavelengths.begin(), wavelengths.end());
+        out["geometries"] = std::move(geometries);
+        out["notes"] = mc::estimatorLimitations(recipe);
+        emit(o, out.dump(1) + '\n');
+        return 0;
+    }
+    std::ostringstream text;
+    char line[256];
+    std::snprintf(line, sizeof line, "fast model (%s): %.3f s; Monte Carlo: %.2f s, %lld paths\n",
+                  o.preset.c_str(), fast.computeSeconds(), r.seconds, static_cast<long long>(r.total_paths));
+    text << line;
+    std::snprintf(line, sizeof line, "%10s %14s %14s %12s %10s %8s\n", "geometry", "fast f (1/sr)",
+                  "MC f (1/sr)", "MC std err", "rel diff", "max|z|");
+    text << line;
+    for (const auto& row : rows) {
+        std::snprintf(line, sizeof line, "  45as%-4g %14.6g %14.6g %12.2g %9.2f%% %8.2f\n", row.aspecular,
+                      row.fast_mean, row.mc_mean, row.mc_se, 100.0 * row.rel, row.max_z);
+        text << line;
+    }
+    text << "(band means over the bands in 400-700 nm; z per band = (MC - fast) / MC std err";
+    if (settings.histogram_cone_deg > 0.0)
+        text << "; both averaged over a " << settings.histogram_cone_deg << " deg cone";
+    if (settings.explicit_flakes) text << "; explicit flakes";
+    text << ")\n";
+    for (const auto& note : mc::estimatorLimitations(recipe)) text << "note: " << note << '\n';
+    emit(o, text.str());
+    return 0;
+}
+
+void addStopOptions(CLI::App* command, McOptions& o) {
+    command->add_option("recipe", o.recipe, "Recipe JSON file")->required();
+    command->add_option("--samples", o.samples, "Paths per band and incidence (default 20000)");
+    command->add_option("--rel-error", o.rel_error, "Stop at this relative standard error of every estimate");
+    command->add_option("--seconds", o.seconds,
+                        "Time budget in seconds (shared evenly by bands and incidences)");
+    command->add_option("--seed", o.seed, "Random seed (same seed, same numbers)")->capture_default_str();
+    command->add_option("--out", o.out, "Write the output to this file");
+    command->add_flag("--json", o.json, "Print JSON");
+    command->add_flag("--explicit-flakes", o.explicit_flakes,
+                      "Trace explicit flakes in a periodic tile (Embree) instead of the continuum");
+    command->add_option("--cone", o.cone_deg,
+                        "Histogram estimator: cone half-angle in degrees (default: next-event; 5 with "
+                        "--explicit-flakes); f is then the cone average");
+}
+
+}  // namespace
+
+void addMcCommands(CLI::App& app, CommandAction& action) {
+    auto o = std::make_shared<McOptions>();
+
+    CLI::App* mc = app.add_subcommand("mc", "Monte Carlo full model: albedo at 0 and 45 deg, BRDF at the "
+                                            "multi-angle geometries, with std errors");
+    addStopOptions(mc, *o);
+    mc->add_option("--bands", o->bands, "Wavelength bands over 380-780 nm")->capture_default_str();
+    mc->callback([o, &action] { action = [o] { return runMc(*o); }; });
+
+    CLI::App* compare = app.add_subcommand(
+        "compare", "Fast vs full model at the multi-angle geometries, with the time each took");
+    addStopOptions(compare, *o);
+    compare->add_option("--preset", o->preset, "Fast-model preset (its bands are the MC's bands)")
+        ->capture_default_str();
+    compare->callback([o, &action] { action = [o] { return runCompare(*o); }; });
+}
+
+}  // namespace paintlab::cli

@@ -1,0 +1,230 @@
+#include "flake_tile.h"
+
+#include "mc_random.h"
+
+#include "paintlab/engine/error.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <variant>
+
+namespace paintlab::mc {
+
+namespace {
+
+constexpr int kSides = 16;  // a flake is a regular 16-gon with the disk's area
+
+void onEmbreeError(void* user, RTCError /*code*/, const char* message) {
+    auto* text = static_cast<std::string*>(user);
+    if (text->empty()) *text = message != nullptr ? message : "unknown Embree error";
+}
+
+// Relative depth in [0, 1] drawn from a piecewise-linear profile by rejection.
+double sampleDepth(const DepthProfile* profile, PathRng& rng) {
+    if (profile == nullptr) return rng.uniform();
+    const double peak = *std::max_element(profile->weight.begin(), profile->weight.end());
+    if (!(peak > 0.0)) return rng.uniform();
+    for (int tries = 0; tries < 100000; ++tries) {
+        const double z = rng.uniform();
+        if (rng.uniform() * peak < profile->weightAt(z)) return z;
+    }
+    return rng.uniform();
+}
+
+// Van der Corput radical inverse of i in the given base (Halton sequence).
+double radicalInverse(std::uint64_t i, std::uint64_t base) {
+    double inverse = 0.0;
+    double scale = 1.0 / static_cast<double>(base);
+    for (; i > 0; i /= base, scale /= static_cast<double>(base))
+        inverse += static_cast<double>(i % base) * scale;
+    return inverse;
+}
+
+}  // namespace
+
+std::vector<FlakeGeometry> layerFlakeGeometries(const Layer& layer) {
+    // Area density as layer_optics.cpp forms it (whole-layer mean), with the same "present" test.
+    std::vector<FlakeGeometry> mirrors;
+    std::vector<FlakeGeometry> pearls;
+    for (const auto& component : layer.components) {
+        if (const auto* m = std::get_if<MirrorFlake>(&component)) {
+            const double density =
+                m->volume_fraction * meanRelativeConcentration(m->depth_profile, 0.0, 1.0) / m->thickness_um;
+            if (density > 0.0)
+                mirrors.push_back({density, m->diameter_um, m->orientation_spread_deg,
+                                   m->depth_profile ? &*m->depth_profile : nullptr});
+        } else if (const auto* p = std::get_if<InterferenceFlake>(&component)) {
+            const double thickness_um = (p->mica_thickness_nm + 2.0 * p->tio2_thickness_nm) * 1e-3;
+            const double density =
+                thickness_um > 0.0 ? p->volume_fraction *
+                                         meanRelativeConcentration(p->depth_profile, 0.0, 1.0) / thickness_um
+                                   : 0.0;
+            if (density > 0.0)
+                pearls.push_back({density, p->diameter_um, p->orientation_spread_deg,
+                                  p->depth_profile ? &*p->depth_profile : nullptr});
+        }
+    }
+    mirrors.insert(mirrors.end(), pearls.begin(), pearls.end());
+    return mirrors;
+}
+
+struct FlakeTile::Impl {
+    RTCDevice device = nullptr;
+    RTCScene scene = nullptr;
+    std::vector<int> kind_of_geometry;
+    std::string error;
+    ~Impl() {
+        if (scene != nullptr) rtcReleaseScene(scene);
+        if (device != nullptr) rtcReleaseDevice(device);
+    }
+    void check(const char* what) const {
+        if (!error.empty()) throw Error(std::string("Embree (") + what + "): " + error);
+    }
+};
+
+FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, double bottom_um,
+                     std::uint64_t seed, int target_flakes, int max_flakes)
+    : m_impl(std::make_unique<Impl>()) {
+    const double height = bottom_um - top_um;
+    double per_area = 0.0;  // flakes per µm^2 of surface
+    double d_max = 0.0;
+    for (const auto& k : kinds) {
+        const double area = 0.25 * std::numbers::pi * k.diameter_um * k.diameter_um;
+        if (area > 0.0) per_area += k.area_density_per_um * height / area;
+        d_max = std::max(d_max, k.diameter_um);
+    }
+    m_side_um = per_area > 0.0 ? std::max(2.0 * d_max, std::sqrt(target_flakes / per_area)) : 1.0;
+    const double L = m_side_um;
+
+    m_impl->device = rtcNewDevice("threads=1");
+    if (m_impl->device == nullptr) throw Error("Embree: cannot create a device");
+    rtcSetDeviceErrorFunction(m_impl->device, onEmbreeError, &m_impl->error);
+    m_impl->scene = rtcNewScene(m_impl->device);
+    m_impl->check("scene");
+    PathRng rng(seed, 0x666c616b65ULL, 0, 0);
+    for (std::size_t k = 0; k < kinds.size(); ++k) {
+        const FlakeGeometry& kind = kinds[k];
+        const double area = 0.25 * std::numbers::pi * kind.diameter_um * kind.diameter_um;
+        if (!(area > 0.0) || !(kind.area_density_per_um > 0.0)) continue;
+        const auto wanted = std::llround(kind.area_density_per_um * height * L * L / area);
+        const auto count = std::min<long long>(wanted, max_flakes);
+        if (count <= 0) continue;
+        // Circumradius of the 16-gon with the disk's area.
+        const double radius =
+            0.5 * kind.diameter_um *
+            std::sqrt(2.0 * std::numbers::pi / (kSides * std::sin(2.0 * std::numbers::pi / kSides)));
+        const FlakeOrientation orientation(kind.spread_deg);
+        std::vector<float> vertices;
+        std::vector<unsigned> triangles;
+        // Depths first, in order from the top: the normals are then assigned
+        // from a Halton sequence (bases 2, 3) in that order, so that the flakes
+        // of any depth range (a ray mostly meets the upper ones) represent D
+        // evenly; independent draws would leave a tile-wide sampling error
+        // that no path count reduces (measured: +-20 % in f at 2000 flakes).
+        std::vector<double> depths(static_cast<std::size_t>(count));
+        for (auto& z : depths) z = sampleDepth(kind.profile, rng);
+        std::sort(depths.begin(), depths.end());
+        const double shift1 = rng.uniform();
+        const double shift2 = rng.uniform();
+        for (long long f = 0; f < count; ++f) {
+            const auto index = static_cast<std::uint64_t>(f);
+            const FlakeNormal n = orientation.sample(std::fmod(radicalInverse(index, 2) + shift1, 1.0),
+                                                     std::fmod(radicalInverse(index, 3) + shift2, 1.0));
+            const Vec3 normal{n.x, n.y, n.z};
+            // Keep the flake inside the film where it fits (a real flake cannot poke out).
+            const double half_height = radius * std::sqrt(std::max(0.0, 1.0 - n.z * n.z));
+            double z_rel = depths[static_cast<std::size_t>(f)];
+            if (height > 2.0 * half_height) {
+                const double lo = half_height / height;
+                z_rel = lo + z_rel * (1.0 - 2.0 * lo);
+            }
+            const Vec3 centre{rng.uniform() * L, rng.uniform() * L, -(top_um + z_rel * height)};
+            // Basis in the flake's plane.
+            const double sign = std::copysign(1.0, normal.z);
+            const double a = -1.0 / (sign + normal.z);
+            const double b = normal.x * normal.y * a;
+            const Vec3 b1{1.0 + sign * normal.x * normal.x * a, sign * b, -sign * normal.x};
+            const Vec3 b2{b, sign + normal.y * normal.y * a, -normal.y};
+            const double rotation = 2.0 * std::numbers::pi * rng.uniform();
+            for (int dx = -1; dx <= 1; ++dx)
+                for (int dy = -1; dy <= 1; ++dy) {
+                    const double cx = centre.x + dx * L;
+                    const double cy = centre.y + dy * L;
+                    if (cx + radius < 0.0 || cx - radius > L || cy + radius < 0.0 || cy - radius > L)
+                        continue;
+                    const auto first = static_cast<unsigned>(vertices.size() / 3);
+                    vertices.insert(vertices.end(), {static_cast<float>(cx), static_cast<float>(cy),
+                                                     static_cast<float>(centre.z)});
+                    for (int s = 0; s < kSides; ++s) {
+                        const double phi = rotation + 2.0 * std::numbers::pi * s / kSides;
+                        const double u = radius * std::cos(phi);
+                        const double v = radius * std::sin(phi);
+                        vertices.insert(vertices.end(), {static_cast<float>(cx + u * b1.x + v * b2.x),
+                                                         static_cast<float>(cy + u * b1.y + v * b2.y),
+                                                         static_cast<float>(centre.z + u * b1.z + v * b2.z)});
+                        triangles.insert(triangles.end(),
+                                         {first, first + 1U + static_cast<unsigned>(s),
+                                          first + 1U + static_cast<unsigned>((s + 1) % kSides)});
+                    }
+                }
+            m_flakes += 1;
+        }
+        RTCGeometry geometry = rtcNewGeometry(m_impl->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices.size() / 3));
+        auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0,
+                                                                  RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+                                                                  triangles.size() / 3));
+        m_impl->check("buffers");
+        std::copy(vertices.begin(), vertices.end(), vb);
+        std::copy(triangles.begin(), triangles.end(), ib);
+        rtcCommitGeometry(geometry);
+        const unsigned id = rtcAttachGeometry(m_impl->scene, geometry);
+        rtcReleaseGeometry(geometry);
+        if (m_impl->kind_of_geometry.size() <= id) m_impl->kind_of_geometry.resize(id + 1, -1);
+        m_impl->kind_of_geometry[id] = static_cast<int>(k);
+    }
+    rtcCommitScene(m_impl->scene);
+    m_impl->check("commit");
+}
+
+FlakeTile::~FlakeTile() = default;
+FlakeTile::FlakeTile(FlakeTile&&) noexcept = default;
+FlakeTile& FlakeTile::operator=(FlakeTile&&) noexcept = default;
+
+FlakeHit FlakeTile::intersect(const Vec3& origin, const Vec3& dir, double t_near, double t_far) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh{};
+    rh.ray.org_x = static_cast<float>(origin.x);
+    rh.ray.org_y = static_cast<float>(origin.y);
+    rh.ray.org_z = static_cast<float>(origin.z);
+    rh.ray.dir_x = static_cast<float>(dir.x);
+    rh.ray.dir_y = static_cast<float>(dir.y);
+    rh.ray.dir_z = static_cast<float>(dir.z);
+    rh.ray.tnear = static_cast<float>(t_near);
+    rh.ray.tfar = std::isfinite(t_far) ? static_cast<float>(t_far) : std::numeric_limits<float>::infinity();
+    rh.ray.mask = 0xFFFFFFFFU;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(m_impl->scene, &context, &rh);
+    FlakeHit hit;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+    const auto nx = static_cast<double>(rh.hit.Ng_x);
+    const auto ny = static_cast<double>(rh.hit.Ng_y);
+    const auto nz = static_cast<double>(rh.hit.Ng_z);
+    const double len = std::sqrt(nx * nx + ny * ny + nz * nz);
+    if (!(len > 0.0)) return hit;
+    hit.t = static_cast<double>(rh.ray.tfar);
+    hit.normal = {nx / len, ny / len, nz / len};
+    hit.kind = m_impl->kind_of_geometry[rh.hit.geomID];
+    return hit;
+}
+
+}  // namespace paintlab::mc

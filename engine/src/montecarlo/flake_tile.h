@@ -1,0 +1,60 @@
+#pragma once
+// Explicit flakes of one layer: a laterally periodic tile of side L (µm)
+// filled with flat polygons (regular 16-gons of the flake's area) with
+// sampled position (uniform laterally, depth from the concentration profile)
+// and normal (FlakeOrientation), intersected with Embree. Flakes that cross
+// the tile's sides are repeated one period over, so a ray inside the tile
+// sees everything it can hit there; the walk wraps rays at the sides.
+// The only file of the engine that includes Embree (with flake_tile.cpp).
+
+#include "mc_stack.h"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace paintlab::mc {
+
+// What the tile needs of one kind of flake (the optics come from FlakeKind per wavelength).
+struct FlakeGeometry {
+    double area_density_per_um = 0.0;  // mean over the layer
+    double diameter_um = 0.0;
+    double spread_deg = 0.0;
+    const DepthProfile* profile = nullptr;  // null: uniform in depth
+};
+
+// The flake kinds of a layer in the order of layerFlakeKinds (mc_stack.h):
+// mirror flakes, then interference flakes, each present one in component order.
+std::vector<FlakeGeometry> layerFlakeGeometries(const Layer& layer);
+
+struct FlakeHit {
+    double t = 0.0;
+    Vec3 normal;    // unit, either side
+    int kind = -1;  // index into the layer's FlakeGeometry list; -1: no hit
+};
+
+class FlakeTile {
+public:
+    // Throws Error if Embree fails. target_flakes sets the tile size (at least
+    // two diameters of the largest flake); max_flakes caps the count.
+    FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, double bottom_um, std::uint64_t seed,
+              int target_flakes, int max_flakes);
+    ~FlakeTile();
+    FlakeTile(const FlakeTile&) = delete;
+    FlakeTile& operator=(const FlakeTile&) = delete;
+    FlakeTile(FlakeTile&&) noexcept;
+    FlakeTile& operator=(FlakeTile&&) noexcept;
+
+    double sideUm() const { return m_side_um; }
+    std::int64_t flakeCount() const { return m_flakes; }
+    // Nearest flake along origin + t dir, t in (t_near, t_far). Thread-safe.
+    FlakeHit intersect(const Vec3& origin, const Vec3& dir, double t_near, double t_far) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> m_impl;
+    double m_side_um = 0.0;
+    std::int64_t m_flakes = 0;
+};
+
+}  // namespace paintlab::mc

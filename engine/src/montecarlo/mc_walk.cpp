@@ -1,0 +1,306 @@
+#include "mc_walk.h"
+
+#include "paintlab/engine/fresnel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace paintlab::mc {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kTileEpsilonUm = 1e-3;  // ray offset from the flake just left (float geometry)
+
+// Orthonormal basis around a unit vector (Duff et al., JCGT 2017).
+void basis(const Vec3& n, Vec3& b1, Vec3& b2) {
+    const double sign = std::copysign(1.0, n.z);
+    const double a = -1.0 / (sign + n.z);
+    const double b = n.x * n.y * a;
+    b1 = {1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x};
+    b2 = {b, sign + n.y * n.y * a, -n.y};
+}
+
+Vec3 around(const Vec3& axis, double cos_theta, double phi) {
+    Vec3 b1;
+    Vec3 b2;
+    basis(axis, b1, b2);
+    const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+    const double cx = sin_theta * std::cos(phi);
+    const double cy = sin_theta * std::sin(phi);
+    return {cx * b1.x + cy * b2.x + cos_theta * axis.x, cx * b1.y + cy * b2.y + cos_theta * axis.y,
+            cx * b1.z + cy * b2.z + cos_theta * axis.z};
+}
+
+// Inverse-CDF sample of the Henyey-Greenstein cosine (e.g. pbrt-v4, SampleHenyeyGreenstein).
+double sampleHgCos(double g, double u) {
+    if (std::abs(g) < 1e-3) return 1.0 - 2.0 * u;
+    const double q = (1.0 - g * g) / (1.0 + g - 2.0 * g * u);
+    return std::clamp((1.0 + g * g - q * q) / (2.0 * g), -1.0, 1.0);
+}
+
+// Snell at a planar interface: tangential components scale by n_from / n_to.
+Vec3 refract(const Vec3& v, double n_from, double n_to) {
+    const double ratio = n_from / n_to;
+    Vec3 out{v.x * ratio, v.y * ratio, 0.0};
+    const double z = std::sqrt(std::max(0.0, 1.0 - out.x * out.x - out.y * out.y));
+    out.z = v.z < 0.0 ? -z : z;
+    return out;
+}
+
+struct Walker {
+    const PaintStack& stack;
+    std::span<const ExitChain> chains;
+    std::span<const HistogramBin> bins;
+    std::span<const LayerFlakes> explicit_flakes;
+    PathRng& rng;
+    const WalkSettings& settings;
+    std::span<double> brdf_out;
+    Vec3 v;
+    double weight;
+    double x = 0.0;  // lateral position (µm), only used with explicit flakes
+    double y = 0.0;
+    std::size_t j = 0;   // slice
+    double depth = 0.0;  // µm below the top of the paint
+
+    void move(double t) {
+        x += v.x * t;
+        y += v.y * t;
+    }
+
+    // Left through the top (v already refracted into the ambient): the
+    // histogram bins that contain the exit direction.
+    void escape() {
+        for (std::size_t k = 0; k < bins.size(); ++k)
+            if (dot(v, bins[k].wo) >= bins[k].cos_cone) brdf_out[k] += weight / bins[k].projected_solid_angle;
+    }
+
+    // An explicit flake hit with unit normal n: reflect, pass or absorb.
+    bool explicitFlakeEvent(const FlakeKind& f, const Vec3& n) {
+        const double vn = dot(v, n);
+        const double c = std::abs(vn);
+        const double R = f.R(c);
+        const double u = rng.uniform();
+        if (u < R) {
+            v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
+            return roulette();
+        }
+        return u < R + f.T(c);
+    }
+
+    // Explicit flakes of the current layer along the free path t (medium) and
+    // to_boundary (slice): 1 = a flake was hit and handled, 2 = the ray
+    // wrapped at the tile's side, 0 = nothing in the way, -1 = the path ended.
+    int traceTile(const Slice& s, double t, double to_boundary) {
+        if (explicit_flakes.empty()) return 0;
+        const LayerFlakes& lf = explicit_flakes[static_cast<std::size_t>(s.layer)];
+        if (lf.tile == nullptr) return 0;
+        const double L = lf.tile->sideUm();
+        // Into [0, L] (a new layer's tile may be smaller); the sides themselves stay,
+        // so a ray just wrapped to x = L moving towards -x is not wrapped back.
+        if (x < 0.0 || x > L) x -= L * std::floor(x / L);
+        if (y < 0.0 || y > L) y -= L * std::floor(y / L);
+        const double inf = std::numeric_limits<double>::infinity();
+        const double tx = v.x > 0.0 ? (L - x) / v.x : (v.x < 0.0 ? -x / v.x : inf);
+        const double ty = v.y > 0.0 ? (L - y) / v.y : (v.y < 0.0 ? -y / v.y : inf);
+        const double t_side = std::min(tx, ty);
+        const double t_far = std::min({t, to_boundary, t_side});
+        const FlakeHit hit = lf.tile->intersect({x, y, -depth}, v, kTileEpsilonUm, t_far);
+        if (hit.kind >= 0) {
+            move(hit.t);
+            depth = std::clamp(depth - v.z * hit.t, s.top_um, s.bottom_um);
+            return explicitFlakeEvent(lf.kinds[static_cast<std::size_t>(hit.kind)], hit.normal) ? 1 : -1;
+        }
+        if (t_side < t && t_side < to_boundary) {
+            move(t_side);
+            depth = std::clamp(depth - v.z * t_side, s.top_um, s.bottom_um);
+            if (tx <= ty)
+                x = v.x > 0.0 ? 0.0 : L;
+            else
+                y = v.y > 0.0 ? 0.0 : L;
+            return 2;
+        }
+        return 0;
+    }
+
+    // Next-event estimate from a collision in slice j with sampling rate sigma.
+    void scoreCollision(const Slice& s, double sigma) {
+        for (std::size_t k = 0; k < chains.size(); ++k) {
+            const ExitChain& c = chains[k];
+            const double mu = c.mu[j];
+            if (mu <= 0.0) continue;
+            const double e = c.extinction[j];
+            double value = 0.0;
+            if (c.up[j] > 0.0)
+                value += s.kernel(v, c.direction(stack, j, true)) * std::exp(-e * (depth - s.top_um) / mu) *
+                         c.up[j];
+            if (c.down[j] > 0.0)
+                value += s.kernel(v, c.direction(stack, j, false)) *
+                         std::exp(-e * (s.bottom_um - depth) / mu) * c.down[j];
+            brdf_out[k] += weight * value / (sigma * mu);
+        }
+    }
+
+    // Returns false when the path ends.
+    bool roulette() {
+        if (weight >= settings.roulette_weight) return true;
+        if (weight <= 0.0 || rng.uniform() >= weight / settings.roulette_weight) return false;
+        weight = settings.roulette_weight;
+        return true;
+    }
+
+    // A flake collision: sample a normal from D weighted by |v.n| (the flakes a
+    // ray meets), then reflect, pass (interference flakes) or absorb.
+    bool flakeEvent(const FlakeKind& f) {
+        FlakeNormal n = f.orientation.sample(rng.uniform(), rng.uniform());
+        if (!f.orientation.isDelta()) {
+            for (int tries = 0; tries < 100000; ++tries) {
+                if (rng.uniform() < std::abs(v.x * n.x + v.y * n.y + v.z * n.z)) break;
+                n = f.orientation.sample(rng.uniform(), rng.uniform());
+            }
+        }
+        const double vn = v.x * n.x + v.y * n.y + v.z * n.z;
+        const double c = std::abs(vn);
+        const double R = f.R(c);
+        const double T = f.T(c);
+        const double u = rng.uniform();
+        if (u < R) {
+            v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
+            return true;
+        }
+        return u < R + T;  // transmitted light goes straight on
+    }
+
+    bool collide(const Slice& s, double sigma, double flake_rate) {
+        scoreCollision(s, sigma);
+        const double scatter = s.sigma_s_per_um + flake_rate;
+        if (!(scatter > 0.0)) return false;  // a pure absorber
+        weight *= scatter / sigma;           // absorption by weighting
+        double u = rng.uniform() * scatter;
+        if (u < s.sigma_s_per_um) {
+            double pick = rng.uniform();
+            double g = 0.0;
+            for (const auto& lobe : s.lobes) {
+                g = lobe.g;
+                if ((pick -= lobe.weight) < 0.0) break;
+            }
+            v = around(v, sampleHgCos(g, rng.uniform()), 2.0 * kPi * rng.uniform());
+        } else {
+            u -= s.sigma_s_per_um;
+            std::size_t k = 0;
+            for (; k + 1 < s.flakes.size(); ++k) {
+                const double rate = s.flakeRate(k, std::abs(v.z));
+                if (u < rate) break;
+                u -= rate;
+            }
+            if (!flakeEvent(s.flakes[k])) return false;
+        }
+        return roulette();
+    }
+
+    bool crossInterface(double n_from, double n_to) {
+        if (std::abs(n_from - n_to) < 1e-12) return true;
+        if (rng.uniform() < fresnelDielectric(std::abs(v.z), n_to / n_from)) {
+            v.z = -v.z;
+            return false;
+        }
+        v = refract(v, n_from, n_to);
+        return true;
+    }
+
+    bool substrate(const Slice& s) {
+        switch (stack.substrate) {
+        case SubstrateKind::Black:
+            return false;
+        case SubstrateKind::Lambertian: {
+            for (std::size_t k = 0; k < chains.size(); ++k)
+                brdf_out[k] += weight * stack.lambert_albedo / kPi * chains[k].lambert;
+            weight *= stack.lambert_albedo;
+            const double u1 = rng.uniform();
+            const double phi = 2.0 * kPi * rng.uniform();
+            const double r = std::sqrt(u1);
+            v = {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u1))};
+            return roulette();
+        }
+        case SubstrateKind::Metal:
+            weight *= stack.substrateMirrorReflectance(std::abs(v.z));
+            v.z = -v.z;
+            return roulette();
+        case SubstrateKind::Transparent:
+            if (rng.uniform() < fresnelDielectric(std::abs(v.z), stack.below_n / s.n)) {
+                v.z = -v.z;
+                return true;
+            }
+            return false;
+        }
+        return false;
+    }
+
+    // The weight that leaves through the top; 0 when the path is absorbed or lost.
+    double run() {
+        const std::size_t count = stack.slices.size();
+        for (int event = 0; event < settings.max_events; ++event) {
+            const Slice& s = stack.slices[j];
+            const double abs_cos = std::abs(v.z);
+            if (abs_cos < 1e-12) return 0.0;  // exactly grazing: never reaches a boundary
+            double flake_rate = 0.0;
+            for (std::size_t k = 0; k < s.flakes.size(); ++k) flake_rate += s.flakeRate(k, abs_cos);
+            const double sigma = s.sigma_a_per_um + s.sigma_s_per_um + flake_rate;
+            const double to_boundary = (v.z < 0.0 ? s.bottom_um - depth : depth - s.top_um) / abs_cos;
+            const double t =
+                sigma > 0.0 ? -std::log1p(-rng.uniform()) / sigma : std::numeric_limits<double>::infinity();
+            // Free paths are memoryless: after a flake or a wrap, a new one is drawn.
+            const int tile = traceTile(s, t, to_boundary);
+            if (tile < 0) return 0.0;
+            if (tile > 0) continue;
+            if (t < to_boundary) {
+                move(t);
+                depth = std::clamp(depth - v.z * t, s.top_um, s.bottom_um);
+                if (!collide(s, sigma, flake_rate)) return 0.0;
+                continue;
+            }
+            move(to_boundary);
+            if (v.z < 0.0) {
+                depth = s.bottom_um;
+                if (j + 1 < count) {
+                    if (crossInterface(s.n, stack.slices[j + 1].n)) ++j;
+                } else if (!substrate(s)) {
+                    return 0.0;
+                }
+            } else {
+                depth = s.top_um;
+                if (j == 0) {
+                    if (crossInterface(s.n, stack.ambient_n)) {
+                        escape();
+                        return weight;
+                    }
+                } else if (crossInterface(s.n, stack.slices[j - 1].n)) {
+                    --j;
+                }
+            }
+        }
+        return 0.0;
+    }
+};
+
+}  // namespace
+
+double tracePath(const PathContext& context, Vec3 v, double weight, double x, double y, PathRng& rng,
+                 std::span<double> f_out) {
+    Walker walker{context.stack,
+                  context.chains,
+                  context.bins,
+                  context.explicit_flakes,
+                  rng,
+                  context.settings,
+                  f_out,
+                  v,
+                  weight,
+                  x,
+                  y};
+    return walker.run();
+}
+
+}  // namespace paintlab::mc
