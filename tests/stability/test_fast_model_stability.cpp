@@ -5,6 +5,8 @@
 #include "paintlab/engine/layered_brdf.h"
 #include "paintlab/engine/recipe_validation.h"
 
+#include "test_recipes.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +14,10 @@
 
 namespace paintlab {
 namespace {
+
+using test::mirrorFlake;
+using test::pigment;
+using test::rawMedium;
 
 FastModelSettings coarse() {
     FastModelSettings s;
@@ -39,36 +45,6 @@ Recipe recipeOf(std::vector<Layer> layers, Substrate substrate = LambertianSubst
     r.layers = std::move(layers);
     r.substrate = std::move(substrate);
     return r;
-}
-
-Pigment pigment(double c, double sigma_a, double sigma_s, double g) {
-    Pigment p;
-    p.name = "pigment";
-    p.volume_fraction = c;
-    p.sigma_a_per_um = Spectrum(sigma_a);
-    p.sigma_s_per_um = Spectrum(sigma_s);
-    p.hg_g = g;
-    return p;
-}
-
-MirrorFlake mirror(double c, double spread_deg, double reflectance = 0.9) {
-    MirrorFlake f;
-    f.name = "flake";
-    f.volume_fraction = c;
-    f.diameter_um = 15.0;
-    f.thickness_um = 0.3;
-    f.orientation_spread_deg = spread_deg;
-    f.reflectance = Spectrum(reflectance);
-    return f;
-}
-
-RawMedium raw(double albedo, double tau, double g) {
-    RawMedium m;
-    m.name = "raw";
-    m.albedo = Spectrum(albedo);
-    m.optical_thickness = Spectrum(tau);
-    m.hg_g = g;
-    return m;
 }
 
 void expectSane(const Recipe& recipe, const FastModelSettings& settings = coarse()) {
@@ -113,16 +89,16 @@ TEST(FastModelStability, NodesNextToTheCriticalAngle) {
 
 TEST(FastModelStability, ConservativeThickLayer) {
     Layer l = layer("thick white", 50.0, 1.5);
-    l.components = {raw(1.0, 1e4, 0.0)};
+    l.components = {rawMedium(1.0, 1e4, 0.0)};
     expectSane(recipeOf({l}, BlackSubstrate{}));
 }
 
 TEST(FastModelStability, VanishingAndMaximalConcentrations) {
     Layer tiny = layer("tiny", 20.0);
-    tiny.components = {pigment(1e-12, 10.0, 10.0, 0.5), mirror(1e-12, 10.0)};
+    tiny.components = {pigment(1e-12, 10.0, 10.0, 0.5), mirrorFlake(1e-12, 10.0, 0.9)};
     expectSane(recipeOf({tiny}));
     Layer full = layer("full", 20.0);
-    full.components = {pigment(0.34, 5.0, 20.0, 0.5), mirror(0.3, 10.0)};
+    full.components = {pigment(0.34, 5.0, 20.0, 0.5), mirrorFlake(0.3, 10.0, 0.9)};
     expectSane(recipeOf({full}));
 }
 
@@ -130,14 +106,14 @@ TEST(FastModelStability, FlakeSpreadExtremes) {
     for (double spread : {0.1, 90.0}) {
         SCOPED_TRACE(spread);
         Layer l = layer("flakes", 15.0);
-        l.components = {mirror(0.05, spread)};
+        l.components = {mirrorFlake(0.05, spread, 0.9)};
         expectSane(recipeOf({l}));
     }
 }
 
 TEST(FastModelStability, PerfectlyReflectingFlakes) {
     Layer l = layer("mirrors", 15.0);
-    l.components = {mirror(0.1, 5.0, 1.0)};
+    l.components = {mirrorFlake(0.1, 5.0, 1.0)};
     expectSane(recipeOf({l}, LambertianSubstrate{Spectrum(1.0)}));
 }
 
@@ -183,9 +159,9 @@ TEST(FastModelStability, OneAndTwentyLayers) {
 
 TEST(FastModelStability, MixedTinyAndHugeOpticalThicknesses) {
     Layer tiny = layer("tiny", 10.0);
-    tiny.components = {raw(0.9, 1e-9, 0.5)};
+    tiny.components = {rawMedium(0.9, 1e-9, 0.5)};
     Layer huge = layer("huge", 10.0);
-    huge.components = {raw(0.99, 1e3, 0.8)};
+    huge.components = {rawMedium(0.99, 1e3, 0.8)};
     expectSane(recipeOf({tiny, huge}));
 }
 

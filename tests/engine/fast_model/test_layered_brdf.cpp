@@ -10,6 +10,8 @@
 #include "slab_operator.h"
 #include "stack_quadrature.h"
 
+#include "test_recipes.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,28 +21,10 @@
 namespace paintlab {
 namespace {
 
+using test::oneLayerRecipe;
+using test::rawMedium;
+
 constexpr double kPi = std::numbers::pi;
-
-Recipe oneLayer(double n_binder, double thickness_um, Substrate substrate) {
-    Recipe r;
-    r.name = "test";
-    Layer layer;
-    layer.name = "layer";
-    layer.thickness_um = thickness_um;
-    layer.binder.refractive_index = Spectrum(n_binder);
-    r.layers = {layer};
-    r.substrate = std::move(substrate);
-    return r;
-}
-
-RawMedium rawMedium(double albedo, double tau, double g) {
-    RawMedium raw;
-    raw.name = "raw";
-    raw.albedo = Spectrum(albedo);
-    raw.optical_thickness = Spectrum(tau);
-    raw.hg_g = g;
-    return raw;
-}
 
 FastModelSettings settings(int nodes = 24, int orders = 16) {
     FastModelSettings s;
@@ -71,7 +55,7 @@ TEST(FastModelClosedForm, ClearCoatOverLambertianBase) {
     const double n = 1.5;
     const double rho = 0.6;
     const LayeredBrdf brdf =
-        computeLayeredBrdf(oneLayer(n, 40.0, LambertianSubstrate{Spectrum(rho)}), settings());
+        computeLayeredBrdf(oneLayerRecipe(n, 40.0, LambertianSubstrate{Spectrum(rho)}), settings());
     const double r_i = internalDiffuseReflectance(n);
     for (double theta_i : {0.0, 20.0, 45.0, 70.0}) {
         for (double theta_o : {0.0, 30.0, 60.0, 80.0}) {
@@ -96,7 +80,7 @@ TEST(FastModelClosedForm, ClearCoatOverLambertianBase) {
 
 TEST(FastModelClosedForm, IndexMatchedAbsorberOverLambertianBase) {
     // No interface, no scattering: f = rho/pi exp(-tau/mu_i - tau/mu_o).
-    Recipe r = oneLayer(1.0, 10.0, LambertianSubstrate{Spectrum(0.8)});
+    Recipe r = oneLayerRecipe(1.0, 10.0, LambertianSubstrate{Spectrum(0.8)});
     r.layers[0].components = {rawMedium(0.0, 0.5, 0.0)};
     const LayeredBrdf brdf = computeLayeredBrdf(r, settings());
     for (double theta_i : {0.0, 35.0, 60.0}) {
@@ -118,7 +102,7 @@ TEST(FastModelClosedForm, SingleScatteringLimitOfAThinSlab) {
     // tau << 1, index-matched, black below: f = a p(Theta) / (4 pi) (1 - e^{-tau(1/mu_i + 1/mu_o)}) / (mu_i +
     // mu_o), Theta between the incident propagation direction -wi and wo (Chandrasekhar 1960, sec. 47).
     const double a = 0.8, tau = 1e-3, g = 0.5;
-    Recipe r = oneLayer(1.0, 1.0, BlackSubstrate{});
+    Recipe r = oneLayerRecipe(1.0, 1.0, BlackSubstrate{});
     r.layers[0].components = {rawMedium(a, tau, g)};
     const LayeredBrdf brdf = computeLayeredBrdf(r, settings(32, 32));
     for (double theta_i : {20.0, 50.0}) {
@@ -171,7 +155,7 @@ TEST(FastModelClosedForm, SemiInfiniteIsotropicScatteringFollowsTheHFunction) {
     // f = (a / 4 pi) H(mu_i) H(mu_o) / (mu_i + mu_o) for a semi-infinite isotropic
     // medium without interfaces (Chandrasekhar 1960, ch. IV); tau = 10^4 is semi-infinite here.
     const double a = 0.9;
-    Recipe r = oneLayer(1.0, 10.0, BlackSubstrate{});
+    Recipe r = oneLayerRecipe(1.0, 10.0, BlackSubstrate{});
     r.layers[0].components = {rawMedium(a, 1e4, 0.0)};
     const LayeredBrdf brdf = computeLayeredBrdf(r, settings(24, 2));
     const HFunction H(a);
@@ -194,7 +178,7 @@ TEST(FastModelClosedForm, HorizontalMirrorFlakesAreATwoStreamProblem) {
     // problem with S = A rho_f, K = A (1 - rho_f):
     //   R = sinh(b S X) / (a sinh(b S X) + b cosh(b S X)), a = (S + K)/S, b = sqrt(a^2 - 1).
     const double c = 0.02, t_um = 0.5, X = 20.0, rho_f = 0.8;
-    Recipe r = oneLayer(1.0, X, BlackSubstrate{});
+    Recipe r = oneLayerRecipe(1.0, X, BlackSubstrate{});
     MirrorFlake flake;
     flake.name = "mirror";
     flake.volume_fraction = c;
@@ -225,7 +209,7 @@ TEST(FastModelClosedForm, HorizontalMirrorFlakesAreATwoStreamProblem) {
 TEST(FastModelEnergy, NothingAbsorbsNothingIsLost) {
     // Conservative scattering, white mirror flakes and a white base under a
     // coat: every direction's albedo is 1 (the mirror term included).
-    Recipe r = oneLayer(1.5, 15.0, LambertianSubstrate{Spectrum(1.0)});
+    Recipe r = oneLayerRecipe(1.5, 15.0, LambertianSubstrate{Spectrum(1.0)});
     MirrorFlake flake;
     flake.name = "white mirror";
     flake.volume_fraction = 0.03;
@@ -243,7 +227,7 @@ TEST(FastModelEnergy, NonAbsorbingInterferenceFlakesConserveEnergy) {
     // straight on; in a clear binder over a white base nothing can be lost, so
     // the albedo is 1 in every direction at every band (the flakes' R + T = 1
     // and the kernel's energy bookkeeping both tested at once).
-    Recipe r = oneLayer(1.5, 15.0, LambertianSubstrate{Spectrum(1.0)});
+    Recipe r = oneLayerRecipe(1.5, 15.0, LambertianSubstrate{Spectrum(1.0)});
     InterferenceFlake pearl;
     pearl.name = "pearl";
     pearl.volume_fraction = 0.06;

@@ -14,6 +14,8 @@
 #include "paintlab/engine/montecarlo/monte_carlo.h"
 #include "paintlab/engine/thin_film.h"
 
+#include "test_recipes.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,40 +27,12 @@
 namespace paintlab {
 namespace {
 
+using test::mirrorFlake;
+using test::oneLayerRecipe;
+using test::rawMedium;
+
 constexpr double kPi = std::numbers::pi;
 constexpr double kZ = 4.0;
-
-Recipe oneLayer(double n_binder, double thickness_um, Substrate substrate) {
-    Recipe r;
-    r.name = "test";
-    Layer layer;
-    layer.name = "layer";
-    layer.thickness_um = thickness_um;
-    layer.binder.refractive_index = Spectrum(n_binder);
-    r.layers = {layer};
-    r.substrate = std::move(substrate);
-    return r;
-}
-
-RawMedium rawMedium(double albedo, double tau, double g) {
-    RawMedium raw;
-    raw.name = "raw";
-    raw.albedo = Spectrum(albedo);
-    raw.optical_thickness = Spectrum(tau);
-    raw.hg_g = g;
-    return raw;
-}
-
-MirrorFlake mirrorFlake(double volume_fraction, double spread_deg, double reflectance) {
-    MirrorFlake flake;
-    flake.name = "mirror";
-    flake.volume_fraction = volume_fraction;
-    flake.thickness_um = 0.5;
-    flake.diameter_um = 15.0;
-    flake.orientation_spread_deg = spread_deg;
-    flake.reflectance = Spectrum(reflectance);
-    return flake;
-}
 
 mc::McSettings mcSettings(std::int64_t paths, std::uint64_t seed = 7) {
     mc::McSettings s;
@@ -125,7 +99,7 @@ TEST(MonteCarloEnergy, ConservativeMediumOverWhiteBaseReturnsEveryPath) {
     // Albedo-1 scattering under a 1.5 coat over a white Lambertian base:
     // nothing absorbs, so every path leaves with its entry weight (1 - R) and
     // the albedo is exactly 1 path by path (zero variance).
-    Recipe r = oneLayer(1.5, 20.0, LambertianSubstrate{Spectrum(1.0)});
+    Recipe r = oneLayerRecipe(1.5, 20.0, LambertianSubstrate{Spectrum(1.0)});
     r.layers[0].components = {rawMedium(1.0, 3.0, 0.7)};
     const auto req = requests(kGeometries);
     const mc::McResult mc = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, mcSettings(4000));
@@ -143,7 +117,7 @@ TEST(MonteCarloClosedForm, PureAbsorberOverLambertianBase) {
     const double tau = 0.5;
     const double rho = 0.8;
     const double thickness = 10.0;
-    Recipe r = oneLayer(1.0, thickness, LambertianSubstrate{Spectrum(rho)});
+    Recipe r = oneLayerRecipe(1.0, thickness, LambertianSubstrate{Spectrum(rho)});
     r.layers[0].binder.absorption_per_um = Spectrum(tau / thickness);
     double two_e3 = 0.0;
     const int steps = 200000;
@@ -168,7 +142,7 @@ TEST(MonteCarloClosedForm, ClearCoatOverLambertianBase) {
     // coat's internal diffuse reflectance (the fast model's test has the derivation).
     const double n = 1.5;
     const double rho = 0.6;
-    const Recipe r = oneLayer(n, 40.0, LambertianSubstrate{Spectrum(rho)});
+    const Recipe r = oneLayerRecipe(n, 40.0, LambertianSubstrate{Spectrum(rho)});
     double r_i = 0.0;
     const int steps = 200000;
     for (int i = 0; i < steps; ++i) {
@@ -193,13 +167,13 @@ TEST(MonteCarloClosedForm, ClearCoatOverLambertianBase) {
 TEST(MonteCarloVsFastModel, IndexMatchedScatteringSlabOverBlack) {
     // Pure radiative transfer (van de Hulst's a = 0.9, b = 2 slab with g = 0.5).
     // Fast model error: 0.2 % (its delta-M and 32-node quadrature; convergence tests in fast_model).
-    Recipe r = oneLayer(1.0, 20.0, BlackSubstrate{});
+    Recipe r = oneLayerRecipe(1.0, 20.0, BlackSubstrate{});
     r.layers[0].components = {rawMedium(0.9, 2.0, 0.5)};
     compareWithFastModel(r, 40000, 2e-3);
 }
 
 TEST(MonteCarloVsFastModel, CoatedScatteringSlabOverLambertianBase) {
-    Recipe r = oneLayer(1.5, 20.0, LambertianSubstrate{Spectrum(0.5)});
+    Recipe r = oneLayerRecipe(1.5, 20.0, LambertianSubstrate{Spectrum(0.5)});
     r.layers[0].components = {rawMedium(0.8, 1.0, 0.3)};
     compareWithFastModel(r, 40000, 2e-3);
 }
@@ -215,7 +189,7 @@ TEST(MonteCarloConsistency, MetalMirrorBaseTwoEstimatorsAndReciprocity) {
     const double n = 1.5;
     const double tau = 0.5;
     const std::complex<double> metal(1.2, 6.0);
-    Recipe r = oneLayer(n, 20.0, MetalSubstrate{Spectrum(metal.real()), Spectrum(metal.imag())});
+    Recipe r = oneLayerRecipe(n, 20.0, MetalSubstrate{Spectrum(metal.real()), Spectrum(metal.imag())});
     r.layers[0].components = {rawMedium(0.7, tau, 0.0)};
     std::vector<double> mu_nodes;
     std::vector<double> mu_weights;
@@ -268,7 +242,7 @@ TEST(MonteCarloVsFastModel, MirrorFlakesWithPigmentUnderCoat) {
     // collision): 15 deg spread, area density 0.02 / 0.5 = 0.04 per µm over 20
     // µm (0.8 flake layers' worth of coverage), a scattering pigment, a 1.5
     // coat and a grey base. Fast model error: 1 % (flake lobe on 32 nodes x 32 orders).
-    Recipe r = oneLayer(1.5, 20.0, LambertianSubstrate{Spectrum(0.3)});
+    Recipe r = oneLayerRecipe(1.5, 20.0, LambertianSubstrate{Spectrum(0.3)});
     r.layers[0].components = {rawMedium(0.8, 0.5, 0.2), mirrorFlake(0.01, 15.0, 0.7)};
     compareWithFastModel(r, 40000, 1e-2);
 }
@@ -281,7 +255,7 @@ TEST(MonteCarloClosedForm, HorizontalMirrorFlakesAreATwoStreamProblem) {
     // The walk is checked through the albedo (escaping paths); next-event f
     // cannot see a delta-oriented flake (monte_carlo.h).
     const double c = 0.02, t_um = 0.5, X = 20.0, rho_f = 0.8;
-    Recipe r = oneLayer(1.0, X, BlackSubstrate{});
+    Recipe r = oneLayerRecipe(1.0, X, BlackSubstrate{});
     MirrorFlake flake = mirrorFlake(c, 0.0, rho_f);
     flake.thickness_um = t_um;
     r.layers[0].components = {flake};
@@ -304,7 +278,7 @@ TEST(MonteCarloClosedForm, HorizontalMirrorFlakesAreATwoStreamProblem) {
 TEST(MonteCarloEnergy, LosslessInterferenceFlakesConserveEnergy) {
     // Non-absorbing pearl flakes (R + T = 1 at every angle) and a white base:
     // every path returns, path by path.
-    Recipe r = oneLayer(1.5, 20.0, LambertianSubstrate{Spectrum(1.0)});
+    Recipe r = oneLayerRecipe(1.5, 20.0, LambertianSubstrate{Spectrum(1.0)});
     InterferenceFlake flake;
     flake.name = "pearl";
     flake.volume_fraction = 0.02;
@@ -319,7 +293,7 @@ TEST(MonteCarloEnergy, LosslessInterferenceFlakesConserveEnergy) {
 }
 
 TEST(MonteCarloStopping, RelativeErrorTimeBudgetAndCancel) {
-    Recipe r = oneLayer(1.5, 20.0, LambertianSubstrate{Spectrum(0.5)});
+    Recipe r = oneLayerRecipe(1.5, 20.0, LambertianSubstrate{Spectrum(0.5)});
     r.layers[0].components = {rawMedium(0.8, 1.0, 0.3)};
     const auto req = requests(kGeometries);
     const std::vector<double> wavelengths{550.0};
@@ -347,7 +321,7 @@ TEST(MonteCarloStopping, RelativeErrorTimeBudgetAndCancel) {
 }
 
 TEST(MonteCarloDeterminism, SameSeedSameNumbersAnyThreadCount) {
-    Recipe r = oneLayer(1.5, 20.0, LambertianSubstrate{Spectrum(0.5)});
+    Recipe r = oneLayerRecipe(1.5, 20.0, LambertianSubstrate{Spectrum(0.5)});
     r.layers[0].components = {rawMedium(0.8, 1.0, 0.3)};
     const auto req = requests(kGeometries);
     auto s = mcSettings(5000, 11);
