@@ -31,7 +31,6 @@ const std::string& componentName(const Component& component) {
 }
 
 double componentVolumeFraction(const Component& component) {
-    if (std::holds_alternative<RawMedium>(component)) return 0.0;
     return std::visit(
         [](const auto& c) {
             if constexpr (requires { c.volume_fraction; })
