@@ -396,6 +396,37 @@ LayeredBrdf computeLayeredBrdf(const Recipe& recipe, const FastModelSettings& se
     return brdf;
 }
 
+LayeredBrdf LayeredBrdf::withTables(const LayeredBrdf& grid, std::vector<BandTable> tables, double seconds) {
+    if (tables.size() != grid.m_bands.size())
+        throw InputError("tables", "bands", "expected " + std::to_string(grid.m_bands.size()) + " bands");
+    for (std::size_t b = 0; b < tables.size(); ++b) {
+        const BandTable& g = grid.m_bands[b];
+        BandTable& t = tables[b];
+        const auto n = static_cast<Eigen::Index>(g.mu.size());
+        if (t.f.size() != g.f.size() || t.albedo.size() != n)
+            throw InputError("tables", "f",
+                             "band " + std::to_string(b) + " does not match the grid's orders or nodes");
+        for (const Eigen::MatrixXd& fm : t.f)
+            if (fm.rows() != n || fm.cols() != n)
+                throw InputError("tables", "f",
+                                 "band " + std::to_string(b) + " does not match the grid's nodes");
+        // Everything but the estimates comes from the grid.
+        t.mu = g.mu;
+        t.specular = g.specular;
+        t.flux_weight = g.flux_weight;
+        t.reference_index = g.reference_index;
+        t.node_angle = g.node_angle;
+        t.node_bary = g.node_bary;
+        t.mirror_bary = g.mirror_bary;
+        t.piece_begin = g.piece_begin;
+        t.piece_mu_low = g.piece_mu_low;
+    }
+    LayeredBrdf brdf = grid;
+    brdf.m_bands = std::move(tables);
+    brdf.m_seconds = seconds;
+    return brdf;
+}
+
 void LayeredBrdf::eval(const Direction& wi, const Direction& wo, std::span<double> out) const {
     std::fill(out.begin(), out.end(), 0.0);
     if (!(wi.z > 0.0) || !(wo.z > 0.0)) return;

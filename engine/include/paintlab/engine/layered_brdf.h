@@ -99,6 +99,13 @@ public:
     };
     const std::vector<BandTable>& bands() const { return m_bands; }
 
+    // The same wavelengths, grid, interpolation and mirror term as `grid`,
+    // with each band's f^m and albedo replaced by `tables` (same node counts:
+    // InputError otherwise). This is how another estimator of the same paint
+    // (the full model's projection on this basis, montecarlo/mc_table.h)
+    // becomes a LayeredBrdf that every tool (eval, multiangle, relight) takes.
+    static LayeredBrdf withTables(const LayeredBrdf& grid, std::vector<BandTable> tables, double seconds);
+
 private:
     friend LayeredBrdf computeLayeredBrdf(const Recipe&, const FastModelSettings&, const ProgressCallback&);
     std::vector<double> m_wavelengths_nm;
