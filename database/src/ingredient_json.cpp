@@ -1,0 +1,250 @@
+// Reader of ingredient files (ingredient_json.h). Strict: every key is
+// either consumed or reported as unknown, so a typo never passes silently.
+
+#include "paintlab/database/ingredient_json.h"
+
+#include "paintlab/engine/error.h"
+
+#include <nlohmann/json.hpp>
+
+#include <set>
+
+namespace paintlab::db {
+
+namespace {
+
+using Json = nlohmann::json;
+
+// One JSON object being read: remembers the keys taken, reports the rest.
+class ObjectReader {
+public:
+    ObjectReader(const Json& object, std::string field, const std::string& source)
+        : m_object(object), m_field(std::move(field)), m_source(source) {
+        if (!object.is_object()) fail("", "expected an object");
+    }
+
+    bool has(const std::string& key) const { return m_object.contains(key); }
+
+    const Json& get(const std::string& key) {
+        if (!m_object.contains(key)) fail(key, "missing");
+        m_taken.insert(key);
+        return m_object.at(key);
+    }
+
+    std::string text(const std::string& key) {
+        const Json& value = get(key);
+        if (!value.is_string()) fail(key, "expected a string");
+        return value.get<std::string>();
+    }
+    std::string optionalText(const std::string& key) { return has(key) ? text(key) : std::string(); }
+
+    double number(const std::string& key) {
+        const Json& value = get(key);
+        if (!value.is_number()) fail(key, "expected a number");
+        return value.get<double>();
+    }
+    std::optional<double> optionalNumber(const std::string& key) {
+        if (!has(key)) return std::nullopt;
+        return number(key);
+    }
+
+    std::string fieldOf(const std::string& key) const { return key.empty() ? m_field : m_field + "." + key; }
+
+    [[noreturn]] void fail(const std::string& key, const std::string& message) const {
+        throw InputError(m_source, fieldOf(key), message);
+    }
+
+    void finish() const {
+        for (const auto& item : m_object.items())
+            if (m_taken.count(item.key()) == 0) fail(item.key(), "unknown field");
+    }
+
+private:
+    const Json& m_object;
+    std::string m_field;
+    const std::string& m_source;
+    std::set<std::string> m_taken;
+};
+
+std::vector<double> numbers(ObjectReader& reader, const std::string& key) {
+    const Json& value = reader.get(key);
+    if (!value.is_array() || value.empty()) reader.fail(key, "expected a non-empty array of numbers");
+    std::vector<double> out;
+    for (const auto& item : value) {
+        if (!item.is_number()) reader.fail(key, "expected a non-empty array of numbers");
+        out.push_back(item.get<double>());
+    }
+    return out;
+}
+
+// Reads spectra.<key> into the ingredient's provenance map and returns the spectrum.
+class SpectraReader {
+public:
+    SpectraReader(ObjectReader& parent, Ingredient& ingredient, const std::string& source)
+        : m_reader(parent.get("spectra"), parent.fieldOf("spectra"), source), m_ingredient(ingredient),
+          m_source(source) {}
+
+    bool has(std::string_view key) const { return m_reader.has(std::string(key)); }
+
+    Spectrum take(std::string_view key_view) {
+        const std::string key(key_view);
+        ObjectReader spectrum(m_reader.get(key), m_reader.fieldOf(key), m_source);
+        SpectrumInfo info{spectrum.text("unit"), spectrum.text("source"), spectrum.optionalText("date")};
+        Spectrum out;
+        try {
+            if (spectrum.has("value")) {
+                out = Spectrum(spectrum.number("value"));
+            } else {
+                auto wavelengths = numbers(spectrum, "wavelengths_nm");
+                auto values = numbers(spectrum, "values");
+                out = Spectrum(std::move(wavelengths), std::move(values));
+            }
+        } catch (const std::invalid_argument& e) {
+            spectrum.fail("", e.what());
+        }
+        spectrum.finish();
+        m_ingredient.spectrum_info[key] = std::move(info);
+        return out;
+    }
+
+    std::optional<Spectrum> takeOptional(std::string_view key) {
+        if (!has(key)) return std::nullopt;
+        return take(key);
+    }
+
+    void finish() const { m_reader.finish(); }
+
+private:
+    ObjectReader m_reader;
+    Ingredient& m_ingredient;
+    const std::string& m_source;
+};
+
+Ingredient readIngredient(const Json& json, const std::string& field, const std::string& source) {
+    ObjectReader r(json, field, source);
+    Ingredient ing;
+    const std::string kind_text = r.text("kind");
+    const auto kind = parseIngredientKind(kind_text);
+    if (!kind)
+        r.fail("kind", "unknown kind '" + kind_text +
+                           "' (binder, pigment, mirror_flake, interference_flake or substrate)");
+    ing.name = r.text("name");
+    ing.description = r.optionalText("description");
+    ing.source = r.optionalText("source");
+    ing.density_g_cm3 = r.optionalNumber("density_g_cm3");
+    ing.density_source = r.optionalText("density_source");
+    if (r.has("tags")) {
+        const Json& tags = r.get("tags");
+        if (!tags.is_array()) r.fail("tags", "expected an array of strings");
+        for (const auto& tag : tags) {
+            if (!tag.is_string()) r.fail("tags", "expected an array of strings");
+            ing.tags.push_back(tag.get<std::string>());
+        }
+    }
+    if (r.has("limits")) {
+        ObjectReader limits(r.get("limits"), r.fieldOf("limits"), source);
+        ing.limits = {limits.optionalNumber("max_volume_fraction"), limits.optionalNumber("min_thickness_um"),
+                      limits.optionalNumber("max_thickness_um")};
+        limits.finish();
+    }
+    SpectraReader spectra(r, ing, source);
+    switch (*kind) {
+    case IngredientKind::Binder: {
+        Binder data;
+        data.name = ing.name;
+        data.refractive_index = spectra.take(params::kBinderIndex.key);
+        data.absorption_per_um = spectra.take(params::kBinderAbsorption.key);
+        ing.data = std::move(data);
+        break;
+    }
+    case IngredientKind::Pigment: {
+        Pigment data;
+        data.name = ing.name;
+        data.source = ing.source;
+        data.hg_g = r.number("hg_g");
+        data.particle_diameter_um = r.number("particle_diameter_um");
+        data.sigma_a_per_um = spectra.take(params::kPigmentSigmaA.key);
+        data.sigma_s_per_um = spectra.take(params::kPigmentSigmaS.key);
+        ing.data = std::move(data);
+        break;
+    }
+    case IngredientKind::MirrorFlake: {
+        MirrorFlake data;
+        data.name = ing.name;
+        data.source = ing.source;
+        data.diameter_um = r.number("diameter_um");
+        ing.diameter_sd_um = r.optionalNumber("diameter_sd_um").value_or(0.0);
+        data.thickness_um = r.number("thickness_um");
+        data.orientation_spread_deg = r.number("orientation_spread_deg");
+        data.reflectance = spectra.takeOptional(params::kMirrorReflectance.key);
+        data.metal_n = spectra.takeOptional(params::kMetalN.key);
+        data.metal_k = spectra.takeOptional(params::kMetalK.key);
+        ing.data = std::move(data);
+        break;
+    }
+    case IngredientKind::InterferenceFlake: {
+        InterferenceFlake data;
+        data.name = ing.name;
+        data.source = ing.source;
+        data.diameter_um = r.number("diameter_um");
+        ing.diameter_sd_um = r.optionalNumber("diameter_sd_um").value_or(0.0);
+        data.orientation_spread_deg = r.number("orientation_spread_deg");
+        data.mica_thickness_nm = r.number("mica_thickness_nm");
+        data.mica_thickness_spread_nm = r.number("mica_thickness_spread_nm");
+        data.tio2_thickness_nm = r.number("tio2_thickness_nm");
+        data.tio2_thickness_spread_nm = r.number("tio2_thickness_spread_nm");
+        data.mica_refractive_index = spectra.take(params::kMicaIndex.key);
+        data.tio2_refractive_index = spectra.take(params::kTio2Index.key);
+        ing.data = std::move(data);
+        break;
+    }
+    case IngredientKind::Substrate: {
+        const std::string substrate_kind = r.text("substrate_kind");
+        if (substrate_kind == LambertianSubstrate::kKind)
+            ing.data = Substrate{LambertianSubstrate{spectra.take(params::kSubstrateAlbedo.key)}};
+        else if (substrate_kind == MetalSubstrate::kKind)
+            ing.data = Substrate{
+                MetalSubstrate{spectra.take(params::kMetalN.key), spectra.take(params::kMetalK.key)}};
+        else if (substrate_kind == BlackSubstrate::kKind)
+            ing.data = Substrate{BlackSubstrate{}};
+        else if (substrate_kind == TransparentSubstrate::kKind)
+            ing.data = Substrate{TransparentSubstrate{r.number("refractive_index")}};
+        else
+            r.fail("substrate_kind", "unknown substrate kind '" + substrate_kind +
+                                         "' (lambertian, metal, black or transparent)");
+        break;
+    }
+    }
+    spectra.finish();
+    r.finish();
+    return ing;
+}
+
+}  // namespace
+
+std::vector<Ingredient> parseIngredientsJson(std::string_view text, const std::string& source) {
+    Json document;
+    try {
+        document = Json::parse(text);
+    } catch (const Json::parse_error& e) {
+        throw InputError(source, "", std::string("not valid JSON: ") + e.what());
+    }
+    ObjectReader r(document, "", source);
+    if (r.text("format") != "paintlab-ingredients") r.fail("format", "expected \"paintlab-ingredients\"");
+    const double version = r.number("format_version");
+    if (version != 1.0) r.fail("format_version", "only version 1 is known to this build");
+    r.optionalText("generated_by");
+    const Json& list = r.get("ingredients");
+    if (!list.is_array()) r.fail("ingredients", "expected an array");
+    std::vector<Ingredient> out;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        std::string field = "ingredients[" + std::to_string(i) + "]";
+        if (list[i].is_object() && list[i].contains("name") && list[i]["name"].is_string())
+            field.append(" '").append(list[i]["name"].get<std::string>()).append("'");
+        out.push_back(readIngredient(list[i], field, source));
+    }
+    r.finish();
+    return out;
+}
+
+}  // namespace paintlab::db
