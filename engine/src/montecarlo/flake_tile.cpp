@@ -45,7 +45,90 @@ double radicalInverse(std::uint64_t i, std::uint64_t base) {
     return inverse;
 }
 
+Vec3 cross(const Vec3& a, const Vec3& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+// Placed flakes binned by lateral position (cells at least one flake
+// diameter wide, wrapping), for the overlap test.
+class LateralGrid {
+public:
+    LateralGrid(double side_um, double max_radius_um)
+        : m_side(side_um),
+          m_cells(static_cast<int>(std::clamp(side_um / (2.0 * max_radius_um), 1.0, double(kMaxCells)))) {
+        m_bins.resize(static_cast<std::size_t>(m_cells) * static_cast<std::size_t>(m_cells));
+    }
+
+    void add(const PlacedFlake& flake, std::size_t index) { m_bins[bin(flake.centre)].push_back(index); }
+
+    // Whether `flake` intersects a placed one, each at its nearest periodic image.
+    bool collides(const PlacedFlake& flake, const std::vector<PlacedFlake>& placed) const {
+        const int ci = cell(flake.centre.x);
+        const int cj = cell(flake.centre.y);
+        const int reach = std::min(1, m_cells / 2);  // a small grid: every cell once
+        for (int di = -reach; di <= reach + (m_cells == 2 ? -1 : 0); ++di)
+            for (int dj = -reach; dj <= reach + (m_cells == 2 ? -1 : 0); ++dj) {
+                const auto b = static_cast<std::size_t>(wrap(ci + di) * m_cells + wrap(cj + dj));
+                for (std::size_t index : m_bins[b]) {
+                    PlacedFlake other = placed[index];
+                    other.centre.x -= m_side * std::round((other.centre.x - flake.centre.x) / m_side);
+                    other.centre.y -= m_side * std::round((other.centre.y - flake.centre.y) / m_side);
+                    if (disksIntersect(flake, other)) return true;
+                }
+            }
+        return false;
+    }
+
+private:
+    int cell(double x) const { return std::clamp(static_cast<int>(x / m_side * m_cells), 0, m_cells - 1); }
+    int wrap(int i) const { return ((i % m_cells) + m_cells) % m_cells; }
+    std::size_t bin(const Vec3& c) const { return static_cast<std::size_t>(cell(c.x) * m_cells + cell(c.y)); }
+
+    static constexpr int kMaxCells = 256;  // wider cells only cost more candidate pairs
+    double m_side;
+    int m_cells;
+    std::vector<std::vector<std::size_t>> m_bins;
+};
+
 }  // namespace
+
+bool disksIntersect(const PlacedFlake& a, const PlacedFlake& b) {
+    const Vec3 d = cross(a.normal, b.normal);
+    const double dd = dot(d, d);
+    const Vec3 ab{b.centre.x - a.centre.x, b.centre.y - a.centre.y, b.centre.z - a.centre.z};
+    const double reach = a.radius_um + b.radius_um;
+    if (dot(ab, ab) >= reach * reach) return false;
+    if (dd < 1e-12) {
+        // Parallel planes: only coplanar disks can meet (1e-9 µm: float-free exact data).
+        return std::abs(dot(ab, a.normal)) < 1e-9;
+    }
+    // A point of the line where the planes n.x = h meet: (h_a (n_b x d) + h_b (d x n_a)) / |d|^2.
+    const double ha = dot(a.normal, a.centre);
+    const double hb = dot(b.normal, b.centre);
+    const Vec3 p = cross(b.normal, d);
+    const Vec3 q = cross(d, a.normal);
+    const Vec3 p0{(ha * p.x + hb * q.x) / dd, (ha * p.y + hb * q.y) / dd, (ha * p.z + hb * q.z) / dd};
+    const double len = std::sqrt(dd);
+    const Vec3 u{d.x / len, d.y / len, d.z / len};
+    // Each disk's chord on that line: [t - h, t + h] around the foot of its centre.
+    auto chord = [&](const PlacedFlake& f, double& lo, double& hi) {
+        const Vec3 c{f.centre.x - p0.x, f.centre.y - p0.y, f.centre.z - p0.z};
+        const double t = dot(c, u);
+        const double dist2 = dot(c, c) - t * t;
+        const double r2 = f.radius_um * f.radius_um;
+        if (dist2 >= r2) return false;
+        const double h = std::sqrt(r2 - dist2);
+        lo = t - h;
+        hi = t + h;
+        return true;
+    };
+    double a_lo = 0.0;
+    double a_hi = 0.0;
+    double b_lo = 0.0;
+    double b_hi = 0.0;
+    if (!chord(a, a_lo, a_hi) || !chord(b, b_lo, b_hi)) return false;
+    return std::max(a_lo, b_lo) < std::min(a_hi, b_hi);
+}
 
 std::vector<FlakeGeometry> layerFlakeGeometries(const Layer& layer) {
     // Area density as layer_optics.cpp forms it (whole-layer mean), with the same "present" test.
@@ -88,7 +171,7 @@ struct FlakeTile::Impl {
 };
 
 FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, double bottom_um,
-                     std::uint64_t seed, int target_flakes, int max_flakes)
+                     std::uint64_t seed, int target_flakes, int max_flakes, bool reject_overlaps)
     : m_impl(std::make_unique<Impl>()) {
     const double height = bottom_um - top_um;
     double per_area = 0.0;  // flakes per µm^2 of surface
@@ -100,6 +183,10 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
     }
     m_side_um = per_area > 0.0 ? std::max(2.0 * d_max, std::sqrt(target_flakes / per_area)) : 1.0;
     const double L = m_side_um;
+    // Circumradius of the 16-gon with the disk's area.
+    const double circumradius_factor =
+        std::sqrt(2.0 * std::numbers::pi / (kSides * std::sin(2.0 * std::numbers::pi / kSides)));
+    LateralGrid grid(L, std::max(0.5 * d_max * circumradius_factor, 1e-6));
 
     m_impl->device = rtcNewDevice("threads=1");
     if (m_impl->device == nullptr) throw Error("Embree: cannot create a device");
@@ -114,10 +201,7 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
         const auto wanted = std::llround(kind.area_density_per_um * height * L * L / area);
         const auto count = std::min<long long>(wanted, max_flakes);
         if (count <= 0) continue;
-        // Circumradius of the 16-gon with the disk's area.
-        const double radius =
-            0.5 * kind.diameter_um *
-            std::sqrt(2.0 * std::numbers::pi / (kSides * std::sin(2.0 * std::numbers::pi / kSides)));
+        const double radius = 0.5 * kind.diameter_um * circumradius_factor;
         const FlakeOrientation orientation(kind.spread_deg);
         std::vector<float> vertices;
         std::vector<unsigned> triangles;
@@ -143,7 +227,22 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
                 const double lo = half_height / height;
                 z_rel = lo + z_rel * (1.0 - 2.0 * lo);
             }
-            const Vec3 centre{rng.uniform() * L, rng.uniform() * L, -(top_um + z_rel * height)};
+            Vec3 centre{rng.uniform() * L, rng.uniform() * L, -(top_um + z_rel * height)};
+            if (reject_overlaps) {
+                int tries = 0;
+                while (grid.collides({centre, normal, radius, static_cast<int>(k)}, m_placed)) {
+                    if (++tries == 1000)
+                        throw InputError("recipe", "flakes",
+                                         "no place without overlaps for flake " + std::to_string(f + 1) +
+                                             " of " + std::to_string(count) + " (" +
+                                             std::to_string(kind.diameter_um) +
+                                             " µm): the concentration is too high to reject overlaps");
+                    centre.x = rng.uniform() * L;
+                    centre.y = rng.uniform() * L;
+                }
+            }
+            grid.add({centre, normal, radius, static_cast<int>(k)}, m_placed.size());
+            m_placed.push_back({centre, normal, radius, static_cast<int>(k)});
             // Basis in the flake's plane.
             const double sign = std::copysign(1.0, normal.z);
             const double a = -1.0 / (sign + normal.z);

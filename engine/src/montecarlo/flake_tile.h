@@ -27,6 +27,21 @@ struct FlakeGeometry {
 // mirror flakes, then interference flakes, each present one in component order.
 std::vector<FlakeGeometry> layerFlakeGeometries(const Layer& layer);
 
+// A placed flake as a thickness-less disk: its centre (z = minus the depth,
+// µm), unit normal and the radius that encloses its polygon.
+struct PlacedFlake {
+    Vec3 centre;
+    Vec3 normal;
+    double radius_um = 0.0;
+    int kind = 0;
+};
+
+// Whether two thickness-less disks share a point: parallel ones only when
+// coplanar and closer than the sum of the radii; otherwise each disk cuts
+// the line where the planes meet in a chord, and the disks intersect when
+// the chords overlap. No periodic images: the caller shifts b.
+bool disksIntersect(const PlacedFlake& a, const PlacedFlake& b);
+
 struct FlakeHit {
     double t = 0.0;
     Vec3 normal;    // unit, either side
@@ -36,9 +51,15 @@ struct FlakeHit {
 class FlakeTile {
 public:
     // Throws Error if Embree fails. target_flakes sets the tile size (at least
-    // two diameters of the largest flake); max_flakes caps the count.
+    // two diameters of the largest flake); max_flakes caps the count. With
+    // reject_overlaps a flake that intersects one already placed (periodic
+    // images included; disks of the polygon's circumradius, so the traced
+    // polygons cannot intersect either) is moved to a new lateral position
+    // (its depth and normal stay, so the depth profile and the
+    // orientation distribution are kept); InputError if a flake finds no free
+    // place in 1000 draws (the concentration is too high for flat flakes).
     FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, double bottom_um, std::uint64_t seed,
-              int target_flakes, int max_flakes);
+              int target_flakes, int max_flakes, bool reject_overlaps = false);
     ~FlakeTile();
     FlakeTile(const FlakeTile&) = delete;
     FlakeTile& operator=(const FlakeTile&) = delete;
@@ -47,6 +68,8 @@ public:
 
     double sideUm() const { return m_side_um; }
     std::int64_t flakeCount() const { return m_flakes; }
+    // Every flake once (centres inside the tile; the copies over its sides are not listed).
+    const std::vector<PlacedFlake>& flakes() const { return m_placed; }
     // Nearest flake along origin + t dir, t in (t_near, t_far). Thread-safe.
     FlakeHit intersect(const Vec3& origin, const Vec3& dir, double t_near, double t_far) const;
 
@@ -55,6 +78,7 @@ private:
     std::unique_ptr<Impl> m_impl;
     double m_side_um = 0.0;
     std::int64_t m_flakes = 0;
+    std::vector<PlacedFlake> m_placed;
 };
 
 }  // namespace paintlab::mc

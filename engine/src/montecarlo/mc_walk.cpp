@@ -55,6 +55,7 @@ struct Walker {
     std::span<const ExitChain> chains;
     std::span<const HistogramBin> bins;
     std::span<const LayerFlakes> explicit_flakes;
+    const FourierCells* fourier;
     PathRng& rng;
     const WalkSettings& settings;
     std::span<double> brdf_out;
@@ -64,6 +65,7 @@ struct Walker {
     double y = 0.0;
     std::size_t j = 0;   // slice
     double depth = 0.0;  // µm below the top of the paint
+    double transmitted = 0.0;
 
     void move(double t) {
         x += v.x * t;
@@ -75,6 +77,31 @@ struct Walker {
     void escape() {
         for (std::size_t k = 0; k < bins.size(); ++k)
             if (dot(v, bins[k].wo) >= bins[k].cos_cone) brdf_out[k] += weight / bins[k].projected_solid_angle;
+        if (fourier != nullptr) project(*fourier);
+    }
+
+    void project(const FourierCells& cells) {
+        const double mu = std::clamp(v.z, 0.0, 1.0);
+        const double t_out = 1.0 - fresnelDielectric(mu, cells.top_eta);
+        if (!(t_out > 0.0)) return;
+        const auto it = std::lower_bound(cells.upper_mu.begin(), cells.upper_mu.end(), mu);
+        const auto cell =
+            std::min(static_cast<std::size_t>(it - cells.upper_mu.begin()), cells.scale.size() - 1);
+        // cos(m delta) by the Chebyshev recurrence from cos(delta).
+        const double sin_o = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+        const double c =
+            sin_o > 1e-12 ? std::clamp((v.x * cells.cos_in + v.y * cells.sin_in) / sin_o, -1.0, 1.0) : 1.0;
+        const double value = weight / t_out * cells.scale[cell];
+        double* out = brdf_out.data() + cells.offset + cell * static_cast<std::size_t>(cells.orders);
+        double previous = 1.0;
+        double current = c;
+        out[0] += value;
+        for (int m = 1; m < cells.orders; ++m) {
+            out[m] += value * current;
+            const double next = 2.0 * c * current - previous;
+            previous = current;
+            current = next;
+        }
     }
 
     // An explicit flake hit with unit normal n: reflect, pass or absorb.
@@ -233,6 +260,7 @@ struct Walker {
                 v.z = -v.z;
                 return true;
             }
+            transmitted = weight;
             return false;
         }
         return false;
@@ -287,12 +315,13 @@ struct Walker {
 
 }  // namespace
 
-double tracePath(const PathContext& context, Vec3 v, double weight, double x, double y, PathRng& rng,
-                 std::span<double> f_out) {
+PathOutcome tracePath(const PathContext& context, Vec3 v, double weight, double x, double y, PathRng& rng,
+                      std::span<double> f_out) {
     Walker walker{context.stack,
                   context.chains,
                   context.bins,
                   context.explicit_flakes,
+                  context.fourier,
                   rng,
                   context.settings,
                   f_out,
@@ -300,7 +329,8 @@ double tracePath(const PathContext& context, Vec3 v, double weight, double x, do
                   weight,
                   x,
                   y};
-    return walker.run();
+    const double escaped = walker.run();
+    return {escaped, walker.transmitted};
 }
 
 }  // namespace paintlab::mc

@@ -6,6 +6,7 @@
 #include "mc_stack.h"
 
 #include <span>
+#include <vector>
 
 namespace paintlab::mc {
 
@@ -31,20 +32,46 @@ struct LayerFlakes {
     std::vector<FlakeKind> kinds;
 };
 
+// Projection of what escapes on the fast model's basis (mc_table.h): the
+// ambient cosines are cut into cells around the nodes, and an escape with
+// weight w at cosine mu_o in cell c and azimuth delta from the incident
+// propagation direction adds w cos(m delta) / T(mu_o) * scale[c] to the
+// entry (c, m), m < orders. With scale[c] = 1 / (2 pi T(mu_i) int_c mu dmu)
+// the mean is the cell's mu-weighted average of f^m / (T(mu_i) T(mu_o)), the
+// convention of LayeredBrdf::BandTable (f = T_i T_o sum_m (2 - delta_m0)
+// f^m cos(m delta)).
+struct FourierCells {
+    std::vector<double> upper_mu;  // ascending upper edges (the last is 1)
+    std::vector<double> scale;     // per cell
+    int orders = 1;
+    double top_eta = 1.0;  // n_top / n_ambient, for T(mu_o) = 1 - Fresnel
+    double cos_in = 1.0;   // azimuth of the incident propagation direction
+    double sin_in = 0.0;
+    std::size_t offset = 0;  // index of entry (0, 0) in f_out; entry (c, m) at offset + c * orders + m
+};
+
 struct PathContext {
     const PaintStack& stack;
     std::span<const ExitChain> chains;             // next-event estimator (empty: off)
     std::span<const HistogramBin> bins;            // histogram estimator (empty: off)
     std::span<const LayerFlakes> explicit_flakes;  // per layer (empty: flakes are a continuum)
     WalkSettings settings;
+    const FourierCells* fourier = nullptr;  // projection (null: off)
+};
+
+// What one path carries out of the paint (power per unit incident power).
+struct PathOutcome {
+    double escaped = 0.0;      // through the top interface
+    double transmitted = 0.0;  // into a transparent substrate
 };
 
 // Traces a path that has just been refracted into the top slice with
 // propagation direction v (v.z < 0) and weight (power per unit surface area)
 // `weight`, starting at lateral position (x, y). Adds to f_out[k] the
-// estimate of f for chains[k] or bins[k] and returns the weight that leaves
-// through the top interface. Never throws.
-double tracePath(const PathContext& context, Vec3 v, double weight, double x, double y, PathRng& rng,
-                 std::span<double> f_out);
+// estimate of f for chains[k] or bins[k] (and the projection's entries) and
+// returns the weight that leaves through the top and through a transparent
+// substrate. Never throws.
+PathOutcome tracePath(const PathContext& context, Vec3 v, double weight, double x, double y, PathRng& rng,
+                      std::span<double> f_out);
 
 }  // namespace paintlab::mc

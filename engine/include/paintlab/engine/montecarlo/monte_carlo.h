@@ -80,6 +80,16 @@ struct McSettings {
     bool explicit_flakes = false;
     int tile_flakes = 20000;       // flakes per tile aimed at (sets the tile's side, >= 2 diameters)
     int max_tile_flakes = 200000;  // per kind and layer
+    // Explicit flakes: a flake that intersects one already placed (thickness-less
+    // disks, periodic images included) is moved elsewhere (flake_tile.h).
+    bool reject_overlaps = false;
+    // The paths of each (band, incidence) are split by chunk into this many
+    // batches (chunk c into batch c mod batches). With explicit flakes every
+    // batch traces its own tile realisation (own seed), and the standard errors
+    // are those of the batches' means (batches - 1 degrees of freedom), so they
+    // include the randomness of the flake arrangement; otherwise they are over
+    // paths. tabulateMonteCarlo (mc_table.h) also keeps one table per batch.
+    int batches = 8;
 };
 
 struct Estimate {
@@ -97,6 +107,7 @@ struct IncidenceRequest {
 struct IncidenceResult {
     double specular = 0.0;              // top interface's mirror reflectance (exact, in albedo)
     Estimate albedo;                    // directional-hemispherical, mirror term included
+    Estimate transmittance;             // into a transparent substrate (0 for the others)
     std::vector<Estimate> brdf_per_sr;  // f(wi, wo[k]), mirror term excluded
     std::int64_t paths = 0;
     double seconds = 0.0;

@@ -1,0 +1,81 @@
+#pragma once
+// The Monte Carlo runner behind runMonteCarlo (monte_carlo.h) and
+// tabulateMonteCarlo (mc_table.h): the flake tiles of every batch, the
+// paint at one wavelength, and one (band, incidence) job run in
+// deterministic chunks until its stop rule.
+//
+// Every path yields one sample vector: [0] the weight that escapes through
+// the top, [1] the weight transmitted into a transparent substrate, then f at
+// each exit direction, then the projection's entries (mc_walk.h,
+// FourierCells). Chunk c of a job belongs to batch c mod batches; with
+// explicit flakes batch k traces its own tile realisation.
+
+#include "flake_tile.h"
+#include "mc_stack.h"
+#include "mc_walk.h"
+
+#include "paintlab/engine/montecarlo/monte_carlo.h"
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace paintlab::mc {
+
+struct JobSpec {
+    Direction wi;
+    std::vector<Direction> wo;
+    // Projection on the fast model's basis: upper edges of the cells in the
+    // ambient cosine (empty: none) and the Fourier orders.
+    std::vector<double> cell_upper_mu;
+    std::vector<double> cell_lower_mu;
+    int orders = 0;
+};
+
+struct JobResult {
+    IncidenceResult incidence;
+    std::vector<Estimate> projection;  // [cell * orders + m]: cell average of f^m / (T_i T_o), 1/sr
+    // Per batch that has paths: its path count and mean sample vector (albedo without the mirror term).
+    std::vector<std::int64_t> batch_paths;
+    std::vector<std::vector<double>> batch_means;
+};
+
+class McEngine {
+public:
+    // Builds the tiles (explicit flakes): one per layer with flakes and batch.
+    // Throws InputError as runMonteCarlo.
+    McEngine(const Recipe& recipe, const McSettings& settings);
+    ~McEngine();
+    McEngine(const McEngine&) = delete;
+    McEngine& operator=(const McEngine&) = delete;
+
+    struct Band {
+        PaintStack stack;
+        std::vector<std::vector<LayerFlakes>> explicit_flakes;  // [batch][layer]; empty: continuum
+    };
+    Band band(double wavelength_nm) const;
+
+    // Runs one job; keys name its paths' random streams. `progress` gets the
+    // job's fraction done and returns false to cancel (Error "cancelled").
+    JobResult run(const Band& band, std::uint64_t band_key, std::uint64_t incidence_key, const JobSpec& job,
+                  double budget_seconds, const std::function<bool(double)>& progress) const;
+
+    int batches() const { return m_batches; }
+    double tileSideUm() const { return m_tile_side_um; }
+
+private:
+    const Recipe& m_recipe;
+    McSettings m_settings;
+    int m_batches = 1;
+    std::vector<std::vector<std::unique_ptr<FlakeTile>>> m_tiles;  // [batch][layer]
+    double m_tile_side_um = 1.0;
+};
+
+// Mean and standard error over paths from the mean and the sum of squared deviations M2.
+Estimate pooledEstimate(double mean, double m2, std::int64_t paths);
+// Over batches: the pooled mean m and the spread of the batches' means m_k
+// weighted by their path counts n_k (N in all, K batches with paths):
+// se^2 = K / (K - 1) sum_k (n_k / N)^2 (m_k - m)^2.
+Estimate batchMeansEstimate(std::span<const double> batch_means, std::span<const std::int64_t> batch_paths);
+
+}  // namespace paintlab::mc

@@ -1,0 +1,136 @@
+#include "paintlab/engine/montecarlo/mc_table.h"
+
+#include "mc_engine.h"
+
+#include <tbb/global_control.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+namespace paintlab::mc {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The projection's cells around the ascending node cosines: edges at the
+// midpoints between neighbours, 0 and 1 at the ends.
+void cellEdges(const std::vector<double>& mu, std::vector<double>& lower, std::vector<double>& upper) {
+    lower.clear();
+    upper.clear();
+    for (std::size_t i = 0; i < mu.size(); ++i) {
+        lower.push_back(i == 0 ? 0.0 : 0.5 * (mu[i - 1] + mu[i]));
+        upper.push_back(i + 1 == mu.size() ? 1.0 : 0.5 * (mu[i] + mu[i + 1]));
+    }
+}
+
+// A band table of the grid's shape with zero entries.
+LayeredBrdf::BandTable emptyTable(const LayeredBrdf::BandTable& g) {
+    LayeredBrdf::BandTable t;
+    const auto n = static_cast<Eigen::Index>(g.mu.size());
+    t.f.assign(g.f.size(), Eigen::MatrixXd::Zero(n, n));
+    t.albedo = Eigen::VectorXd::Zero(n);
+    return t;
+}
+
+}  // namespace
+
+Estimate batchEstimate(std::span<const double> per_batch) {
+    if (per_batch.empty()) return {};
+    const auto k = static_cast<double>(per_batch.size());
+    double mean = 0.0;
+    for (double v : per_batch) mean += v;
+    mean /= k;
+    if (per_batch.size() < 2) return {mean, 0.0};
+    double var = 0.0;
+    for (double v : per_batch) var += (v - mean) * (v - mean);
+    return {mean, std::sqrt(var / (k - 1.0) / k)};
+}
+
+McTable tabulateMonteCarlo(const Recipe& recipe, const FastModelSettings& grid_settings,
+                           const McSettings& settings, const ProgressCallback& progress) {
+    std::unique_ptr<tbb::global_control> threads;
+    if (settings.threads > 0)
+        threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                        static_cast<std::size_t>(settings.threads));
+    // The basis: the fast model's grid (its share of the progress is small).
+    constexpr double kGridShare = 0.02;
+    ProgressCallback grid_progress;
+    if (progress) grid_progress = [&progress](double fraction) { return progress(kGridShare * fraction); };
+    const LayeredBrdf grid = computeLayeredBrdf(recipe, grid_settings, grid_progress);
+    const auto start = Clock::now();
+    const McEngine engine(recipe, settings);
+    const auto wavelengths = grid.wavelengthsNm();
+    const auto& grid_bands = grid.bands();
+    std::size_t jobs = 0;
+    for (const auto& g : grid_bands) jobs += g.mu.size();
+    const double job_budget =
+        settings.max_seconds > 0.0 ? settings.max_seconds / static_cast<double>(jobs) : 0.0;
+    const auto batches = static_cast<std::size_t>(engine.batches());
+
+    McTable table;
+    std::vector<LayeredBrdf::BandTable> tables;
+    std::vector<std::vector<LayeredBrdf::BandTable>> batch_tables(batches);
+    bool every_batch = true;
+    std::size_t jobs_done = 0;
+    for (std::size_t b = 0; b < grid_bands.size(); ++b) {
+        const LayeredBrdf::BandTable& g = grid_bands[b];
+        const McEngine::Band band = engine.band(wavelengths[b]);
+        JobSpec job;
+        cellEdges(g.mu, job.cell_lower_mu, job.cell_upper_mu);
+        job.orders = static_cast<int>(g.f.size());
+        const auto orders = g.f.size();
+        LayeredBrdf::BandTable t = emptyTable(g);
+        for (auto& bt : batch_tables) bt.push_back(emptyTable(g));
+        std::vector<Eigen::MatrixXd> se(orders, Eigen::MatrixXd::Zero(t.albedo.size(), t.albedo.size()));
+        Eigen::VectorXd albedo_se = Eigen::VectorXd::Zero(t.albedo.size());
+        std::vector<Estimate> transmittance;
+        for (std::size_t j = 0; j < g.mu.size(); ++j) {
+            const double mu = g.mu[j];
+            job.wi = {std::sqrt(std::max(0.0, 1.0 - mu * mu)), 0.0, mu};
+            std::function<bool(double)> job_progress;
+            if (progress)
+                job_progress = [&](double fraction) {
+                    return progress(kGridShare + (1.0 - kGridShare) *
+                                                     (static_cast<double>(jobs_done) + fraction) /
+                                                     static_cast<double>(jobs));
+                };
+            const JobResult r = engine.run(band, b, j, job, job_budget, job_progress);
+            const auto jj = static_cast<Eigen::Index>(j);
+            t.albedo(jj) = r.incidence.albedo.mean;
+            albedo_se(jj) = r.incidence.albedo.std_error;
+            transmittance.push_back(r.incidence.transmittance);
+            for (std::size_t i = 0; i < g.mu.size(); ++i)
+                for (std::size_t m = 0; m < orders; ++m) {
+                    const Estimate& e = r.projection[i * orders + m];
+                    t.f[m](static_cast<Eigen::Index>(i), jj) = e.mean;
+                    se[m](static_cast<Eigen::Index>(i), jj) = e.std_error;
+                }
+            every_batch = every_batch && r.batch_means.size() == batches;
+            for (std::size_t k = 0; k < batches && k < r.batch_means.size(); ++k) {
+                // Sample vector: escaped, transmitted, then the projection (no exit directions).
+                const auto& mean = r.batch_means[k];
+                LayeredBrdf::BandTable& bt = batch_tables[k].back();
+                bt.albedo(jj) = mean[0] + r.incidence.specular;
+                for (std::size_t i = 0; i < g.mu.size(); ++i)
+                    for (std::size_t m = 0; m < orders; ++m)
+                        bt.f[m](static_cast<Eigen::Index>(i), jj) = mean[2 + i * orders + m];
+            }
+            table.total_paths += r.incidence.paths;
+            ++jobs_done;
+        }
+        tables.push_back(std::move(t));
+        table.f_std_error.push_back(std::move(se));
+        table.albedo_std_error.push_back(std::move(albedo_se));
+        table.transmittance.push_back(std::move(transmittance));
+    }
+    table.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    table.brdf = LayeredBrdf::withTables(grid, std::move(tables), table.seconds);
+    if (every_batch)
+        for (auto& bt : batch_tables)
+            table.batch_brdfs.push_back(LayeredBrdf::withTables(grid, std::move(bt), 0.0));
+    return table;
+}
+
+}  // namespace paintlab::mc

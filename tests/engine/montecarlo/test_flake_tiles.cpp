@@ -1,0 +1,212 @@
+// Explicit-flake tiles: overlap rejection (checked by an independent
+// intersection test) and error bars that include the randomness of the flake
+// arrangement (batches over tile realisations).
+
+#include "flake_tile.h"
+#include "mc_random.h"
+
+#include "paintlab/engine/error.h"
+#include "paintlab/engine/montecarlo/monte_carlo.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <numbers>
+#include <string>
+
+namespace paintlab {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+mc::Vec3 sub(const mc::Vec3& a, const mc::Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+
+// Independent of disksIntersect: two non-coplanar disks meet iff the boundary
+// circle of one crosses the other disk (the ends of their common chord lie on
+// a boundary). The circle is walked as a 4096-gon: each edge that crosses the
+// other disk's plane is tested at its crossing point.
+bool boundaryCrosses(const mc::PlacedFlake& a, const mc::PlacedFlake& b) {
+    const mc::Vec3& n = a.normal;
+    const double sign = std::copysign(1.0, n.z);
+    const double k = -1.0 / (sign + n.z);
+    const double h = n.x * n.y * k;
+    const mc::Vec3 b1{1.0 + sign * n.x * n.x * k, sign * h, -sign * n.x};
+    const mc::Vec3 b2{h, sign + n.y * n.y * k, -n.y};
+    constexpr int kEdges = 4096;
+    auto point = [&](int i) {
+        const double phi = 2.0 * kPi * i / kEdges;
+        const double u = a.radius_um * std::cos(phi);
+        const double v = a.radius_um * std::sin(phi);
+        return mc::Vec3{a.centre.x + u * b1.x + v * b2.x, a.centre.y + u * b1.y + v * b2.y,
+                        a.centre.z + u * b1.z + v * b2.z};
+    };
+    mc::Vec3 p = point(0);
+    double s = mc::dot(sub(p, b.centre), b.normal);
+    for (int i = 1; i <= kEdges; ++i) {
+        const mc::Vec3 q = point(i);
+        const double t = mc::dot(sub(q, b.centre), b.normal);
+        if ((s < 0.0) != (t < 0.0)) {
+            const double f = s / (s - t);
+            const mc::Vec3 x{p.x + f * (q.x - p.x), p.y + f * (q.y - p.y), p.z + f * (q.z - p.z)};
+            const mc::Vec3 d = sub(x, b.centre);
+            if (mc::dot(d, d) < b.radius_um * b.radius_um) return true;
+        }
+        p = q;
+        s = t;
+    }
+    return false;
+}
+
+bool intersectsIndependently(const mc::PlacedFlake& a, const mc::PlacedFlake& b) {
+    return boundaryCrosses(a, b) || boundaryCrosses(b, a);
+}
+
+// Intersecting pairs of a tile, each pair at its nearest periodic image, by the independent test.
+int overlappingPairs(const mc::FlakeTile& tile) {
+    const auto& flakes = tile.flakes();
+    const double L = tile.sideUm();
+    int pairs = 0;
+    for (std::size_t i = 0; i < flakes.size(); ++i)
+        for (std::size_t j = i + 1; j < flakes.size(); ++j) {
+            mc::PlacedFlake b = flakes[j];
+            b.centre.x -= L * std::round((b.centre.x - flakes[i].centre.x) / L);
+            b.centre.y -= L * std::round((b.centre.y - flakes[i].centre.y) / L);
+            const double dx = b.centre.x - flakes[i].centre.x;
+            const double dy = b.centre.y - flakes[i].centre.y;
+            const double reach = flakes[i].radius_um + b.radius_um;
+            if (dx * dx + dy * dy < reach * reach && intersectsIndependently(flakes[i], b)) ++pairs;
+        }
+    return pairs;
+}
+
+TEST(FlakeOverlap, DiskTestAgreesWithBoundaryWalk) {
+    // Random disks around one another (random normals, radii 1-3, centres within 5):
+    // the chord test and the boundary walk agree on every pair.
+    std::uint64_t state = 12345;
+    auto uniform = [&state] { return double(mc::splitMix64(state) >> 11U) * 0x1.0p-53; };
+    auto randomNormal = [&] {
+        const double z = 2.0 * uniform() - 1.0;
+        const double phi = 2.0 * kPi * uniform();
+        const double r = std::sqrt(1.0 - z * z);
+        return mc::Vec3{r * std::cos(phi), r * std::sin(phi), z};
+    };
+    int intersecting = 0;
+    for (int i = 0; i < 3000; ++i) {
+        const mc::PlacedFlake a{{0.0, 0.0, 0.0}, randomNormal(), 1.0 + 2.0 * uniform(), 0};
+        const mc::PlacedFlake b{{5.0 * (uniform() - 0.5), 5.0 * (uniform() - 0.5), 5.0 * (uniform() - 0.5)},
+                                randomNormal(),
+                                1.0 + 2.0 * uniform(),
+                                0};
+        const bool chord = mc::disksIntersect(a, b);
+        EXPECT_EQ(chord, intersectsIndependently(a, b)) << "pair " << i;
+        EXPECT_EQ(chord, mc::disksIntersect(b, a)) << "pair " << i;
+        intersecting += chord ? 1 : 0;
+    }
+    // Both outcomes are exercised.
+    EXPECT_GT(intersecting, 300);
+    EXPECT_LT(intersecting, 2700);
+    // Coplanar and parallel cases, which the boundary walk cannot see.
+    const mc::Vec3 up{0.0, 0.0, 1.0};
+    EXPECT_TRUE(mc::disksIntersect({{0, 0, 0}, up, 1.0, 0}, {{1.5, 0, 0}, up, 1.0, 0}));
+    EXPECT_FALSE(mc::disksIntersect({{0, 0, 0}, up, 1.0, 0}, {{2.5, 0, 0}, up, 1.0, 0}));
+    EXPECT_FALSE(mc::disksIntersect({{0, 0, 0}, up, 1.0, 0}, {{0.5, 0, 0.1}, up, 1.0, 0}));
+}
+
+std::vector<mc::FlakeGeometry> denseFlakes() {
+    // 10 µm flakes with a 25 degree spread, 1.5 flake layers of coverage in a 10 µm film
+    // (area density x thickness / flake area): crowded enough that random placement overlaps.
+    return {{0.15, 10.0, 25.0, nullptr}};
+}
+
+TEST(FlakeOverlap, RejectionLeavesNoIntersectingPair) {
+    const mc::FlakeTile free(denseFlakes(), 0.0, 10.0, 9, 400, 100000, false);
+    const mc::FlakeTile rejected(denseFlakes(), 0.0, 10.0, 9, 400, 100000, true);
+    ASSERT_EQ(free.flakes().size(), rejected.flakes().size());
+    const int overlaps_free = overlappingPairs(free);
+    const int overlaps_rejected = overlappingPairs(rejected);
+    if (std::getenv("PAINTLAB_MC_VERBOSE") != nullptr)
+        std::printf("  %zu flakes: %d intersecting pairs placed freely, %d with rejection\n",
+                    free.flakes().size(), overlaps_free, overlaps_rejected);
+    EXPECT_GT(overlaps_free, 0);
+    EXPECT_EQ(overlaps_rejected, 0);
+}
+
+TEST(FlakeOverlap, ImpossibleConcentrationIsAnInputError) {
+    // 20 flake layers of coverage in a film thinner than a flake: no room for flat disks.
+    const std::vector<mc::FlakeGeometry> packed{{2.0, 10.0, 5.0, nullptr}};
+    EXPECT_THROW(mc::FlakeTile(packed, 0.0, 5.0, 1, 200, 100000, true), InputError);
+}
+
+// The spread of independent runs (different seeds: different tiles and paths)
+// against their error bars: chi^2 = sum (x_s - mean)^2 / se_s^2 over S runs
+// follows chi^2 with S - 1 degrees of freedom if the error bars are right.
+double chiSquare(const std::vector<mc::Estimate>& runs) {
+    double w = 0.0;
+    double mean = 0.0;
+    for (const auto& e : runs) {
+        w += 1.0 / (e.std_error * e.std_error);
+        mean += e.mean / (e.std_error * e.std_error);
+    }
+    mean /= w;
+    double chi2 = 0.0;
+    for (const auto& e : runs) chi2 += (e.mean - mean) * (e.mean - mean) / (e.std_error * e.std_error);
+    return chi2;
+}
+
+TEST(TileVariance, ErrorBarsCoverTheSpreadBetweenTileSeeds) {
+    // A small tile (300 flakes of 15 µm, 10 degrees spread) whose arrangement
+    // moves f near the specular direction by far more than the path error.
+    Recipe r;
+    Layer layer;
+    layer.name = "basecoat";
+    layer.thickness_um = 15.0;
+    layer.binder.refractive_index = Spectrum(1.0);
+    MirrorFlake flake;
+    flake.name = "mirror";
+    flake.volume_fraction = 0.02;
+    flake.thickness_um = 0.5;
+    flake.diameter_um = 15.0;
+    flake.orientation_spread_deg = 10.0;
+    flake.reflectance = Spectrum(0.9);
+    layer.components = {flake};
+    r.layers = {layer};
+    r.substrate = BlackSubstrate{};
+    const std::vector<mc::IncidenceRequest> req{
+        {directionFromAnglesDeg(45.0, 0.0), {directionFromAnglesDeg(35.0, 180.0)}}};
+    constexpr int kSeeds = 8;
+    // chi^2 with 7 degrees of freedom: 0.999 quantile (tables, e.g. NIST/SEMATECH e-Handbook 1.3.6.7.4).
+    constexpr double kChi2_7_999 = 24.32;
+    std::vector<mc::Estimate> batched;
+    std::vector<mc::Estimate> one_tile;
+    for (int s = 1; s <= kSeeds; ++s) {
+        mc::McSettings ms;
+        ms.seed = std::uint64_t(s);
+        ms.max_paths = 16000;
+        ms.explicit_flakes = true;
+        ms.histogram_cone_deg = 10.0;
+        ms.tile_flakes = 300;
+        ms.batches = 16;  // 16 tiles; the error bar has 15 degrees of freedom
+        batched.push_back(
+            mc::runMonteCarlo(r, std::vector<double>{550.0}, req, ms).bands[0][0].brdf_per_sr[0]);
+        ms.batches = 1;  // one tile; the error bar is over paths only
+        one_tile.push_back(
+            mc::runMonteCarlo(r, std::vector<double>{550.0}, req, ms).bands[0][0].brdf_per_sr[0]);
+    }
+    const double chi2_batched = chiSquare(batched);
+    const double chi2_one_tile = chiSquare(one_tile);
+    if (std::getenv("PAINTLAB_MC_VERBOSE") != nullptr) {
+        for (std::size_t s = 0; s < batched.size(); ++s)
+            std::printf("  seed %zu: 16 tiles %.5g +- %.2g, one tile %.5g +- %.2g\n", s + 1, batched[s].mean,
+                        batched[s].std_error, one_tile[s].mean, one_tile[s].std_error);
+        std::printf("  chi2 (7 dof): 16 tiles %.2f, one tile %.2f\n", chi2_batched, chi2_one_tile);
+    }
+    // The error bars over tiles cover the spread between seeds at the 0.1 % level...
+    EXPECT_LT(chi2_batched, kChi2_7_999);
+    // ...and the path-only error bars of one tile do not (the test can fail).
+    EXPECT_GT(chi2_one_tile, kChi2_7_999);
+}
+
+}  // namespace
+}  // namespace paintlab
