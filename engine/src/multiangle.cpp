@@ -1,5 +1,7 @@
 #include "paintlab/engine/multiangle.h"
 
+#include "paintlab/engine/brdf_colour.h"
+
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -38,17 +40,15 @@ MultiAngleReport multiAngleColours(const SpectralBrdf& brdf, Illuminant illumina
     MultiAngleReport report;
     report.illuminant = illuminant;
     report.observer = observer;
-    const auto wavelengths = brdf.wavelengthsNm();
-    const std::vector<double> grid(wavelengths.begin(), wavelengths.end());
-    const Xyz white = whitePoint(illuminant, observer);
+    const ColourConditions conditions{.illuminant = illuminant, .observer = observer};
     for (double aspecular : kAspecularAnglesDeg) {
         const MultiAngleGeometry g = multiAngleGeometry(aspecular);
+        SpectralColour colour = reflectanceFactorColour(brdf, g.wi, g.wo, conditions);
         MultiAngleColour c;
         c.aspecular_deg = aspecular;
-        c.reflectance_factor = brdf.eval(g.wi, g.wo);
-        for (double& r : c.reflectance_factor) r *= std::numbers::pi;
-        c.xyz = reflectanceToXyz(Spectrum(grid, c.reflectance_factor), illuminant, observer);
-        c.lab = xyzToLab(c.xyz, white);
+        c.reflectance_factor = std::move(colour.reflectance);
+        c.xyz = colour.xyz;
+        c.lab = colour.lab;
         report.colours.push_back(std::move(c));
     }
     const auto L = [&report](double aspecular) {
