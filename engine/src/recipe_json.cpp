@@ -1,7 +1,7 @@
 #include "paintlab/engine/recipe_json.h"
 
-#include "json_guard.h"
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/json_reader.h"
 #include "paintlab/engine/recipe_validation.h"
 
 #include <nlohmann/json.hpp>
@@ -19,74 +19,21 @@ namespace {
 using nlohmann::json;
 using nlohmann::ordered_json;
 
-// Tabulated spectra longer than this are not optical data but garbage.
-constexpr std::size_t kMaxSpectrumSamples = 100000;
+using jsonio::typeName;
 
-std::string typeName(const json& j) {
-    if (j.is_number()) return "a number";
-    return std::string("a") + (j.is_object() ? "n " : " ") + j.type_name();
-}
-
-// Reads the fields of one JSON object, remembering which keys were used so
-// that a misspelt key is reported instead of silently ignored.
-class ObjectReader {
+// The generic field reader plus what the recipe's traversal hooks (recipe.h)
+// call: scalars, spectra (a number or a table) and optional spectra.
+class ObjectReader : public jsonio::ObjectReader {
 public:
-    ObjectReader(const json& object, std::string path, const std::string& source)
-        : m_object(object), m_path(std::move(path)), m_source(source) {
-        if (!m_object.is_object()) fail("", "expected a JSON object, found " + typeName(m_object));
-    }
-
-    [[noreturn]] void fail(std::string_view key, const std::string& message) const {
-        std::string field = m_path;
-        if (!key.empty()) field += (field.empty() ? "" : " > ") + std::string(key);
-        throw InputError(m_source, field, message);
-    }
-
-    const json* find(std::string_view key) {
-        m_known.emplace_back(key);
-        const auto it = m_object.find(key);
-        return it == m_object.end() ? nullptr : &*it;
-    }
-
-    const json& require(std::string_view key, std::string_view what) {
-        const json* value = find(key);
-        if (value == nullptr)
-            fail(key, "missing required field '" + std::string(key) + "' (" + std::string(what) + ")");
-        return *value;
-    }
-
-    std::string string(std::string_view key, bool required) {
-        const json* value = required ? &require(key, "text") : find(key);
-        if (value == nullptr) return {};
-        if (!value->is_string()) fail(key, "expected text, found " + typeName(*value));
-        return value->get<std::string>();
-    }
-
-    double number(std::string_view key, const json& value) const {
-        if (!value.is_number()) fail(key, "expected a number, found " + typeName(value));
-        const double x = value.get<double>();
-        if (!std::isfinite(x)) fail(key, "value is not a finite number");
-        return x;
-    }
-
-    std::vector<double> numberArray(std::string_view key, const json& value) const {
-        if (!value.is_array()) fail(key, "expected an array of numbers, found " + typeName(value));
-        if (value.size() > kMaxSpectrumSamples)
-            fail(key, "array has " + std::to_string(value.size()) + " entries; at most " +
-                          std::to_string(kMaxSpectrumSamples) + " are allowed");
-        std::vector<double> out;
-        out.reserve(value.size());
-        for (std::size_t i = 0; i < value.size(); ++i)
-            out.push_back(number(std::string(key) + "[" + std::to_string(i) + "]", value[i]));
-        return out;
-    }
+    using jsonio::ObjectReader::number;
+    using jsonio::ObjectReader::ObjectReader;
 
     Spectrum spectrumValue(std::string_view key, const json& value) const {
         if (value.is_number()) return Spectrum(number(key, value));
         if (!value.is_object())
             fail(key, R"(expected a number or {"wavelengths_nm": [...], "values": [...]}, found )" +
                           typeName(value));
-        ObjectReader table(value, fieldPath(key), m_source);
+        jsonio::ObjectReader table(value, fieldPath(key), source());
         auto wavelengths =
             table.numberArray("wavelengths_nm", table.require("wavelengths_nm", "wavelengths in nm"));
         auto values = table.numberArray("values", table.require("values", "one value per wavelength"));
@@ -114,26 +61,6 @@ public:
         else
             out = spectrumValue(decl.key, *value);
     }
-
-    // Every key of the object must have been asked for.
-    void finish() const {
-        for (const auto& item : m_object.items()) {
-            if (std::find(m_known.begin(), m_known.end(), item.key()) != m_known.end()) continue;
-            std::string allowed;
-            for (const auto& k : m_known) allowed += (allowed.empty() ? "" : ", ") + k;
-            fail(item.key(), "unknown field '" + item.key() + "' (expected one of: " + allowed + ")");
-        }
-    }
-
-    std::string fieldPath(std::string_view key) const {
-        return m_path.empty() ? std::string(key) : m_path + " > " + std::string(key);
-    }
-
-private:
-    const json& m_object;
-    std::string m_path;
-    const std::string& m_source;
-    std::vector<std::string> m_known;
 };
 
 std::optional<DepthProfile> readDepthProfile(ObjectReader& owner, const std::string& source) {
@@ -311,7 +238,7 @@ ordered_json substrateJson(const Substrate& substrate) {
 }  // namespace
 
 Recipe parseRecipeJson(std::string_view text, const std::string& source) {
-    const json document = detail::parseUntrustedJson(text, source);
+    const json document = jsonio::parseUntrustedJson(text, source);
     ObjectReader reader(document, "", source);
 
     const json& version = reader.require("schema_version", "recipe format version");
@@ -344,7 +271,7 @@ Recipe parseRecipeJson(std::string_view text, const std::string& source) {
 }
 
 Recipe parseRecipeFile(const std::filesystem::path& path) {
-    return parseRecipeJson(detail::readBoundedTextFile(path, kMaxRecipeFileBytes), path.string());
+    return parseRecipeJson(jsonio::readBoundedTextFile(path, kMaxRecipeFileBytes), path.string());
 }
 
 Recipe loadRecipeFile(const std::filesystem::path& path) {

@@ -1,13 +1,14 @@
-#include "json_guard.h"
+#include "paintlab/engine/json_reader.h"
 
 #include "paintlab/engine/error.h"
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <system_error>
 
-namespace paintlab::detail {
+namespace paintlab::jsonio {
 
 namespace {
 
@@ -128,4 +129,94 @@ nlohmann::json parseUntrustedJson(std::string_view text, const std::string& sour
     }
 }
 
-}  // namespace paintlab::detail
+std::string typeName(const nlohmann::json& value) {
+    if (value.is_number()) return "a number";
+    return std::string("a") + (value.is_object() ? "n " : " ") + value.type_name();
+}
+
+ObjectReader::ObjectReader(const nlohmann::json& object, std::string path, const std::string& source)
+    : m_object(object), m_path(std::move(path)), m_source(source) {
+    if (!m_object.is_object()) fail("", "expected a JSON object, found " + typeName(m_object));
+}
+
+void ObjectReader::fail(std::string_view key, const std::string& message) const {
+    throw InputError(m_source, key.empty() ? m_path : fieldPath(key), message);
+}
+
+const nlohmann::json* ObjectReader::find(std::string_view key) {
+    m_known.emplace_back(key);
+    const auto it = m_object.find(key);
+    return it == m_object.end() ? nullptr : &*it;
+}
+
+const nlohmann::json& ObjectReader::require(std::string_view key, std::string_view what) {
+    const nlohmann::json* value = find(key);
+    if (value == nullptr)
+        fail(key, "missing required field '" + std::string(key) + "' (" + std::string(what) + ")");
+    return *value;
+}
+
+std::string ObjectReader::string(std::string_view key, bool required) {
+    const nlohmann::json* value = required ? &require(key, "text") : find(key);
+    if (value == nullptr) return {};
+    if (!value->is_string()) fail(key, "expected text, found " + typeName(*value));
+    return value->get<std::string>();
+}
+
+double ObjectReader::number(std::string_view key, const nlohmann::json& value) const {
+    if (!value.is_number()) fail(key, "expected a number, found " + typeName(value));
+    const double x = value.get<double>();
+    if (!std::isfinite(x)) fail(key, "value is not a finite number");
+    return x;
+}
+
+double ObjectReader::numberOr(std::string_view key, double fallback) {
+    const nlohmann::json* value = find(key);
+    return value == nullptr ? fallback : number(key, *value);
+}
+
+bool ObjectReader::booleanOr(std::string_view key, bool fallback) {
+    const nlohmann::json* value = find(key);
+    if (value == nullptr) return fallback;
+    if (!value->is_boolean()) fail(key, "expected true or false, found " + typeName(*value));
+    return value->get<bool>();
+}
+
+std::vector<double> ObjectReader::numberArray(std::string_view key, const nlohmann::json& value,
+                                              std::size_t max_entries) const {
+    if (!value.is_array()) fail(key, "expected an array of numbers, found " + typeName(value));
+    if (value.size() > max_entries)
+        fail(key, "array has " + std::to_string(value.size()) + " entries; at most " +
+                      std::to_string(max_entries) + " are allowed");
+    std::vector<double> out;
+    out.reserve(value.size());
+    for (std::size_t i = 0; i < value.size(); ++i)
+        out.push_back(number(std::string(key) + "[" + std::to_string(i) + "]", value[i]));
+    return out;
+}
+
+std::vector<double> ObjectReader::fixedNumberArray(std::string_view key, const nlohmann::json& value,
+                                                   std::size_t count) const {
+    std::vector<double> out = numberArray(key, value, count);
+    if (out.size() != count)
+        fail(key, "expected " + std::to_string(count) + " numbers, found " + std::to_string(out.size()));
+    return out;
+}
+
+void ObjectReader::finish() const {
+    for (const auto& item : m_object.items()) {
+        if (std::find(m_known.begin(), m_known.end(), item.key()) != m_known.end()) continue;
+        std::string allowed;
+        for (const auto& k : m_known) {
+            if (!allowed.empty()) allowed += ", ";
+            allowed += k;
+        }
+        fail(item.key(), "unknown field '" + item.key() + "' (expected one of: " + allowed + ")");
+    }
+}
+
+std::string ObjectReader::fieldPath(std::string_view key) const {
+    return m_path.empty() ? std::string(key) : m_path + " > " + std::string(key);
+}
+
+}  // namespace paintlab::jsonio
