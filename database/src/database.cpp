@@ -82,16 +82,23 @@ int Database::latestSchemaVersion() { return static_cast<int>(detail::builtInMig
 bool Database::isReadOnly() const { return m_impl->connection.isReadOnly(); }
 
 std::vector<std::string> Database::integrityCheck() const {
-    detail::Statement check(m_impl->connection, "PRAGMA integrity_check");
     std::vector<std::string> problems;
-    while (check.step()) {
-        std::string line = check.text(0);
-        if (line != "ok") problems.push_back(std::move(line));
+    try {
+        detail::Statement check(m_impl->connection, "PRAGMA integrity_check");
+        while (check.step()) {
+            std::string line = check.text(0);
+            if (line != "ok") problems.push_back(std::move(line));
+        }
+        detail::Statement keys(m_impl->connection, "PRAGMA foreign_key_check");
+        while (keys.step())
+            problems.push_back("foreign key violation in table " + keys.text(0) + ", row " +
+                               std::to_string(keys.integer(1)));
+    } catch (const DatabaseError& e) {
+        // A file too damaged for the check to finish is its own finding.
+        if (e.reason() != DatabaseError::Reason::Corrupt && e.reason() != DatabaseError::Reason::NotADatabase)
+            throw;
+        problems.emplace_back(e.what());
     }
-    detail::Statement keys(m_impl->connection, "PRAGMA foreign_key_check");
-    while (keys.step())
-        problems.push_back("foreign key violation in table " + keys.text(0) + ", row " +
-                           std::to_string(keys.integer(1)));
     return problems;
 }
 

@@ -220,7 +220,81 @@ Ingredient readIngredient(const Json& json, const std::string& field, const std:
     return ing;
 }
 
+using OrderedJson = nlohmann::ordered_json;
+
+class JsonWriter {
+public:
+    explicit JsonWriter(const Ingredient& ingredient) : m_ingredient(ingredient) {}
+
+    OrderedJson write() {
+        const Ingredient& ing = m_ingredient;
+        m_out["kind"] = ingredientKindName(ing.kind());
+        m_out["name"] = ing.name;
+        m_out["description"] = ing.description;
+        m_out["source"] = ing.source;
+        m_out["tags"] = ing.tags;
+        if (ing.density_g_cm3) m_out["density_g_cm3"] = *ing.density_g_cm3;
+        m_out["density_source"] = ing.density_source;
+        OrderedJson limits = OrderedJson::object();
+        if (ing.limits.max_volume_fraction) limits["max_volume_fraction"] = *ing.limits.max_volume_fraction;
+        if (ing.limits.min_thickness_um) limits["min_thickness_um"] = *ing.limits.min_thickness_um;
+        if (ing.limits.max_thickness_um) limits["max_thickness_um"] = *ing.limits.max_thickness_um;
+        m_out["limits"] = limits;
+        m_spectra = OrderedJson::object();
+        std::visit([this](const auto& data) { kindFields(data); }, ing.data);
+        m_out["spectra"] = m_spectra;
+        return std::move(m_out);
+    }
+
+    // The traversal hook's visitor: scalars become fields, spectra go under "spectra".
+    void scalar(const ParameterDecl& decl, const double& value) {
+        if (decl.key != "volume_fraction") m_out[std::string(decl.key)] = value;
+    }
+    void spectrum(const ParameterDecl& decl, const Spectrum& spectrum) {
+        const std::string key(decl.key);
+        const auto found = m_ingredient.spectrum_info.find(key);
+        const SpectrumInfo info = found != m_ingredient.spectrum_info.end()
+                                      ? found->second
+                                      : SpectrumInfo{std::string(decl.unit), m_ingredient.source, {}};
+        OrderedJson item;
+        item["unit"] = info.unit;
+        item["source"] = info.source;
+        if (!info.date.empty()) item["date"] = info.date;
+        item["wavelengths_nm"] = spectrum.wavelengthsNm();
+        item["values"] = spectrum.values();
+        m_spectra[key] = item;
+    }
+    void optionalSpectrum(const ParameterDecl& decl, const std::optional<Spectrum>& spectrum) {
+        if (spectrum) this->spectrum(decl, *spectrum);
+    }
+
+private:
+    template <class T> void kindFields(const T& data) {
+        T::traverse(data, *this);
+        if constexpr (std::is_same_v<T, MirrorFlake> || std::is_same_v<T, InterferenceFlake>)
+            m_out["diameter_sd_um"] = m_ingredient.diameter_sd_um;
+    }
+    void kindFields(const Substrate& substrate) {
+        m_out["substrate_kind"] = substrateKind(substrate);
+        std::visit([this](const auto& s) { std::decay_t<decltype(s)>::traverse(s, *this); }, substrate);
+    }
+
+    const Ingredient& m_ingredient;
+    OrderedJson m_out;
+    OrderedJson m_spectra;
+};
+
 }  // namespace
+
+std::string ingredientsToJson(const std::vector<Ingredient>& ingredients) {
+    OrderedJson document;
+    document["format"] = "paintlab-ingredients";
+    document["format_version"] = 1;
+    document["ingredients"] = OrderedJson::array();
+    for (const auto& ingredient : ingredients)
+        document["ingredients"].push_back(JsonWriter(ingredient).write());
+    return document.dump(2) + "\n";
+}
 
 std::vector<Ingredient> parseIngredientsJson(std::string_view text, const std::string& source) {
     Json document;

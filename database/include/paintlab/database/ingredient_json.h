@@ -29,4 +29,8 @@ namespace paintlab::db {
 // flake'.spectra.n.values") for every structural problem.
 std::vector<Ingredient> parseIngredientsJson(std::string_view text, const std::string& source);
 
+// The ingredient file of these ingredients (ids are not written): reading it
+// back gives equal ingredients, ids aside.
+std::string ingredientsToJson(const std::vector<Ingredient>& ingredients);
+
 }  // namespace paintlab::db
