@@ -28,4 +28,7 @@ void addAccuracyCommand(CLI::App& app, CommandAction& action);
 // Registers `mc` and `compare`: the Monte Carlo full model and its comparison with the fast model.
 void addMcCommands(CLI::App& app, CommandAction& action);
 
+// Registers `db` and its subcommands: init, list, show, recipe-save, recipe-history, backup.
+void addDbCommands(CLI::App& app, CommandAction& action);
+
 }  // namespace paintlab::cli

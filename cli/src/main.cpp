@@ -1,7 +1,9 @@
 // paintlab-cli: the scriptable face of PaintLab.
-// Exit codes are a public contract: 0 ok, 2 bad input, 1 internal error.
+// Exit codes are a public contract: 0 ok, 2 bad input, 1 internal error (or a
+// database that is locked, read-only or on a full disk).
 
 #include "commands.h"
+#include "paintlab/database/database.h"
 #include "paintlab/engine/error.h"
 
 #include <CLI/CLI.hpp>
@@ -27,6 +29,7 @@ int run(int argc, char** argv) {
     paintlab::cli::addBrdfCommands(app, action);
     paintlab::cli::addAccuracyCommand(app, action);
     paintlab::cli::addMcCommands(app, action);
+    paintlab::cli::addDbCommands(app, action);
 
     try {
         app.parse(argc, argv);
@@ -42,6 +45,10 @@ int run(int argc, char** argv) {
     } catch (const paintlab::InputError& e) {
         std::cerr << "error: " << e.what() << '\n';
         return kExitBadInput;
+    } catch (const paintlab::db::DatabaseError& e) {
+        // A bad database file is bad input; a locked, read-only or full one is not.
+        std::cerr << "error: " << e.what() << '\n';
+        return e.isBadFile() ? kExitBadInput : kExitInternal;
     }
 }
 
