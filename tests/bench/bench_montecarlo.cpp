@@ -1,0 +1,188 @@
+// The full model's cost (issue 4, "Speed"): the two-layer pearlescent demo to
+// 1 % relative standard error at the six multi-angle geometries; Embree ray
+// throughput in a flake tile; how the time grows with the tile's flake count
+// and with the number of layers; the tabulated BRDF on the preview grid.
+// Figures for docs/PERFORMANCE.md come from running bench_montecarlo
+// directly; the smoke test runs only the cheap cases.
+#include "flake_tile.h"
+#include "mc_random.h"
+
+#include "paintlab/engine/montecarlo/mc_table.h"
+#include "paintlab/engine/montecarlo/monte_carlo.h"
+#include "paintlab/engine/multiangle.h"
+#include "paintlab/engine/recipe_json.h"
+#include "paintlab/engine/spectrum.h"
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <string>
+
+namespace {
+
+using namespace paintlab;
+
+const std::filesystem::path kDemo = std::filesystem::path(PAINTLAB_DEMO_DIR) / "recipes";
+
+Recipe pearlescent() { return loadRecipeFile(kDemo / "pearlescent-two-layer.json"); }
+
+// Incidence 45 degrees with the six multi-angle detectors (the `mc` command's oblique request).
+std::vector<mc::IncidenceRequest> multiAngleRequest() {
+    mc::IncidenceRequest oblique{multiAngleGeometry(kAspecularAnglesDeg[0]).wi, {}};
+    for (double as : kAspecularAnglesDeg) oblique.wo.push_back(multiAngleGeometry(as).wo);
+    return {oblique};
+}
+
+void reportPaths(benchmark::State& state, std::int64_t paths) {
+    state.counters["paths"] =
+        benchmark::Counter(static_cast<double>(paths), benchmark::Counter::kAvgIterations);
+    state.counters["paths_per_s"] =
+        benchmark::Counter(static_cast<double>(paths), benchmark::Counter::kIsRate);
+}
+
+// Arguments: bands, explicit flakes (0 continuum + next-event, 1 explicit + 5 degree cone).
+// Stops every band at 1 % relative standard error of the albedo and all six f; 2 threads.
+// Explicit flakes (the histogram needs ~1e7 paths per band for 1 % in a 5
+// degree cone where f is small) run for a fixed 60 s instead, and report the
+// time 1 % would take from the worst error reached (error ~ 1 / sqrt(time)).
+void BM_McPearlescentOnePercent(benchmark::State& state) {
+    const Recipe recipe = pearlescent();
+    const auto wavelengths = visibleBands(static_cast<std::size_t>(state.range(0)));
+    mc::McSettings s;
+    s.threads = 2;
+    s.max_paths = 100000000;
+    s.target_rel_error = 0.01;
+    s.explicit_flakes = state.range(1) != 0;
+    s.histogram_cone_deg = s.explicit_flakes ? 5.0 : 0.0;
+    if (s.explicit_flakes) s.max_seconds = 60.0;
+    std::int64_t paths = 0;
+    double worst = 0.0;
+    double seconds = 0.0;
+    for (auto _ : state) {
+        const mc::McResult r = mc::runMonteCarlo(recipe, wavelengths, multiAngleRequest(), s);
+        paths += r.total_paths;
+        seconds += r.seconds;
+        for (const auto& band : r.bands)
+            for (const auto& e : band[0].brdf_per_sr) worst = std::max(worst, e.relError());
+    }
+    reportPaths(state, paths);
+    state.counters["worst_rel_error"] = worst;
+    state.counters["seconds_to_1pct"] = seconds * std::pow(std::max(worst, 0.01) / 0.01, 2.0);
+    state.SetLabel(s.explicit_flakes ? "explicit flakes, 5 deg cone" : "continuum flakes, next-event");
+}
+BENCHMARK(BM_McPearlescentOnePercent)
+    ->Args({8, 0})
+    ->Args({16, 0})
+    ->Args({8, 1})
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->Iterations(1);
+
+// Embree: random rays through the pearlescent basecoat's tile (all of its
+// depth, random directions, nearest hit), one thread. Argument: flakes per tile.
+void BM_FlakeTileRays(benchmark::State& state) {
+    const Recipe recipe = pearlescent();
+    const Layer& basecoat = recipe.layers[1];
+    const mc::FlakeTile tile(mc::layerFlakeGeometries(basecoat), 0.0, basecoat.thickness_um, 1,
+                             static_cast<int>(state.range(0)), 1000000);
+    mc::PathRng rng(1, 2, 3, 4);
+    const double L = tile.sideUm();
+    std::int64_t rays = 0;
+    std::int64_t hits = 0;
+    for (auto _ : state) {
+        for (int i = 0; i < 1024; ++i) {
+            const double z = 2.0 * rng.uniform() - 1.0;
+            const double phi = 2.0 * std::numbers::pi * rng.uniform();
+            const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+            const mc::Vec3 origin{rng.uniform() * L, rng.uniform() * L,
+                                  -rng.uniform() * basecoat.thickness_um};
+            const mc::FlakeHit hit = tile.intersect(origin, {r * std::cos(phi), r * std::sin(phi), z}, 1e-3,
+                                                    4.0 * basecoat.thickness_um);
+            hits += hit.kind >= 0 ? 1 : 0;
+        }
+        rays += 1024;
+    }
+    state.counters["rays_per_s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
+    state.counters["hit_fraction"] =
+        static_cast<double>(hits) / static_cast<double>(std::max<std::int64_t>(1, rays));
+    state.counters["flakes"] = static_cast<double>(tile.flakeCount());
+}
+BENCHMARK(BM_FlakeTileRays)->Arg(2000)->Arg(20000)->Arg(200000)->Unit(benchmark::kMicrosecond);
+
+// Building one tile of the basecoat against the flake count.
+void BM_FlakeTileBuild(benchmark::State& state) {
+    const Recipe recipe = pearlescent();
+    const Layer& basecoat = recipe.layers[1];
+    for (auto _ : state)
+        benchmark::DoNotOptimize(mc::FlakeTile(mc::layerFlakeGeometries(basecoat), 0.0, basecoat.thickness_um,
+                                               1, static_cast<int>(state.range(0)), 1000000));
+}
+BENCHMARK(BM_FlakeTileBuild)
+    ->Arg(2000)
+    ->Arg(20000)
+    ->Arg(200000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// Explicit flakes: 16384 paths at 550 nm and the six geometries against the
+// flakes per tile (tile build for 8 batches included), 2 threads.
+void BM_McTileFlakes(benchmark::State& state) {
+    const Recipe recipe = pearlescent();
+    mc::McSettings s;
+    s.threads = 2;
+    s.max_paths = 16384;
+    s.explicit_flakes = true;
+    s.histogram_cone_deg = 5.0;
+    s.tile_flakes = static_cast<int>(state.range(0));
+    std::int64_t paths = 0;
+    for (auto _ : state)
+        paths += mc::runMonteCarlo(recipe, std::vector<double>{550.0}, multiAngleRequest(), s).total_paths;
+    reportPaths(state, paths);
+}
+BENCHMARK(BM_McTileFlakes)
+    ->Arg(500)
+    ->Arg(2000)
+    ->Arg(20000)
+    ->Arg(100000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The pearlescent basecoat repeated `layers` times under the clear coat
+// (each 15 µm with its flakes and carbon black), 16384 paths at 550 nm,
+// continuum (0) or explicit (1) flakes, 2 threads.
+void BM_McLayers(benchmark::State& state) {
+    Recipe recipe = pearlescent();
+    const Layer basecoat = recipe.layers[1];
+    recipe.layers.resize(1);
+    for (int l = 0; l < state.range(0); ++l) {
+        recipe.layers.push_back(basecoat);
+        recipe.layers.back().name = "basecoat " + std::to_string(l + 1);
+    }
+    mc::McSettings s;
+    s.threads = 2;
+    s.max_paths = 16384;
+    s.explicit_flakes = state.range(1) != 0;
+    s.histogram_cone_deg = s.explicit_flakes ? 5.0 : 0.0;
+    std::int64_t paths = 0;
+    for (auto _ : state)
+        paths += mc::runMonteCarlo(recipe, std::vector<double>{550.0}, multiAngleRequest(), s).total_paths;
+    reportPaths(state, paths);
+}
+BENCHMARK(BM_McLayers)->ArgsProduct({{1, 2, 4, 8}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The tabulated BRDF (mc_table.h) on the preview grid, 4096 paths per node, 2 threads.
+void BM_McTablePreview(benchmark::State& state) {
+    const Recipe recipe = pearlescent();
+    mc::McSettings s;
+    s.threads = 2;
+    s.max_paths = 4096;
+    std::int64_t paths = 0;
+    for (auto _ : state)
+        paths += mc::tabulateMonteCarlo(recipe, presetSettings(Preset::Preview), s).total_paths;
+    reportPaths(state, paths);
+}
+BENCHMARK(BM_McTablePreview)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+
+}  // namespace
