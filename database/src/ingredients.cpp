@@ -213,8 +213,8 @@ std::vector<std::int64_t> kindSpectrumIds(const Connection& c, std::int64_t id) 
     static constexpr const char* kQueries[] = {
         "SELECT refractive_index_spectrum, absorption_per_um_spectrum FROM binder WHERE ingredient_id = ?1",
         "SELECT sigma_a_per_um_spectrum, sigma_s_per_um_spectrum FROM pigment WHERE ingredient_id = ?1",
-        "SELECT reflectance_spectrum, metal_n_spectrum, metal_k_spectrum FROM mirror_flake WHERE "
-        "ingredient_id = ?1",
+        ("SELECT reflectance_spectrum, metal_n_spectrum, metal_k_spectrum FROM mirror_flake "
+         "WHERE ingredient_id = ?1"),
         "SELECT mica_index_spectrum, tio2_index_spectrum FROM interference_flake WHERE ingredient_id = ?1",
         "SELECT albedo_spectrum, metal_n_spectrum, metal_k_spectrum FROM substrate WHERE ingredient_id = ?1"};
     std::vector<std::int64_t> ids;
@@ -222,9 +222,8 @@ std::vector<std::int64_t> kindSpectrumIds(const Connection& c, std::int64_t id) 
         Statement s(c, sql);
         s.bind(1, id);
         while (s.step())
-            for (int column = 0; column < 3; ++column)
-                if (column < 2 || !s.isNull(column))
-                    if (auto value = s.optionalInteger(column)) ids.push_back(*value);
+            for (int column = 0; column < s.columnCount(); ++column)
+                if (auto value = s.optionalInteger(column)) ids.push_back(*value);
     }
     return ids;
 }

@@ -66,6 +66,7 @@ public:
     void reset();
 
     // Columns are 0-based, as in SQLite.
+    int columnCount() const;
     bool isNull(int column) const;
     std::string text(int column) const;
     double real(int column) const;
