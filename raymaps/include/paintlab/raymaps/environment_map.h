@@ -1,0 +1,78 @@
+#pragma once
+// The HDR environment that lights a scene: a lat-long (equirectangular)
+// radiance image, from a file (OpenEXR, Radiance .hdr, ... through
+// OpenImageIO) or the built-in analytic sky, with importance sampling
+// proportional to luminance x sin(theta) (Pharr, Jakob, Humphreys, PBR 3rd ed.
+// 14.2.4), so the path tracer's noise does not depend on where the bright
+// parts of the environment are.
+//
+// Directions are world space, +y up. Column u of the image is the azimuth
+// phi = 2 pi (u + 0.5) / width measured from -z towards +x (after the
+// environment's rotation about +y), row v the polar angle
+// theta = pi (v + 0.5) / height from +y.
+//
+// Bad files: missing, unreadable, not an image, fewer than 3 channels (1 is
+// read as grey), larger than 16384 x 8192, or any NaN, infinite or negative
+// value give an InputError naming the file (and the first bad pixel).
+
+#include "paintlab/raymaps/scene.h"
+
+#include <Eigen/Core>
+
+#include <filesystem>
+#include <vector>
+
+namespace paintlab::raymaps {
+
+class EnvironmentMap {
+public:
+    // The file of `spec`, or the built-in sky if it names none; intensity
+    // and rotation applied.
+    static EnvironmentMap load(const Environment& spec);
+    // A clear-sky dome: zenith blue to a bright horizon, a grey ground below
+    // (no sun: scenes add one as a SunLight). Radiance ~1 W/(m^2 sr) at the horizon.
+    static EnvironmentMap builtinSky(int width = 256);
+    // From linear RGB pixels (row-major, top row = zenith); checks values.
+    static EnvironmentMap fromPixels(int width, int height, std::vector<float> rgb, const std::string& source,
+                                     double rotation_deg = 0.0, double intensity = 1.0);
+
+    int width() const { return m_width; }
+    int height() const { return m_height; }
+
+    // Radiance arriving from direction (towards the light), bilinear.
+    Rgb3 radiance(const Eigen::Vector3d& direction) const;
+
+    struct Sample {
+        Eigen::Vector3d direction;  // towards the environment
+        Rgb3 radiance;
+        double pdf_sr = 0.0;  // per unit solid angle
+    };
+    // u1, u2 uniform in [0, 1).
+    Sample sample(double u1, double u2) const;
+    double pdf(const Eigen::Vector3d& direction) const;
+
+    // Total power-like measure: the integral of luminance over the sphere (for tests).
+    double luminanceIntegral() const { return m_luminance_integral; }
+
+private:
+    void buildDistribution();
+    Eigen::Vector2d directionToUv(const Eigen::Vector3d& d) const;  // continuous pixel coordinates
+    Eigen::Vector3d uvToDirection(double u, double v) const;
+
+    int m_width = 0;
+    int m_height = 0;
+    std::vector<float> m_rgb;
+    double m_rotation_rad = 0.0;
+    // Piecewise-constant 2-D distribution over pixels: marginal CDF over rows
+    // and conditional CDFs over columns (each m_width + 1 long).
+    std::vector<double> m_row_cdf;
+    std::vector<double> m_column_cdf;
+    std::vector<double> m_pixel_weight;  // luminance x sin(theta), unnormalised
+    double m_weight_sum = 0.0;
+    double m_luminance_integral = 0.0;
+};
+
+// Rec.709 luminance of linear RGB.
+inline double luminance(const Rgb3& c) { return 0.2126 * c.x() + 0.7152 * c.y() + 0.0722 * c.z(); }
+
+}  // namespace paintlab::raymaps

@@ -1,0 +1,204 @@
+#include "paintlab/raymaps/environment_map.h"
+
+#include "paintlab/engine/error.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace paintlab::raymaps {
+
+namespace {
+
+Rgb3 pixelAt(const std::vector<float>& rgb, std::size_t pixel) {
+    return Eigen::Vector3f(rgb[3 * pixel], rgb[3 * pixel + 1], rgb[3 * pixel + 2]).cast<double>();
+}
+
+constexpr double kPi = std::numbers::pi;
+constexpr int kMaxWidth = 16384;
+constexpr int kMaxHeight = 8192;
+
+std::size_t upperIndex(const std::vector<double>& cdf, std::size_t begin, std::size_t count, double x) {
+    // First entry of cdf[begin + 1 .. begin + count] above x: the bin is one less.
+    const auto first = cdf.begin() + static_cast<std::ptrdiff_t>(begin + 1);
+    const auto last = first + static_cast<std::ptrdiff_t>(count);
+    const auto it = std::upper_bound(first, last, x);
+    return std::min(static_cast<std::size_t>(it - first), count - 1);
+}
+
+}  // namespace
+
+EnvironmentMap EnvironmentMap::load(const Environment& spec) {
+    if (spec.file.empty()) {
+        EnvironmentMap sky = builtinSky();
+        return fromPixels(sky.m_width, sky.m_height, std::move(sky.m_rgb), "built-in sky", spec.rotation_deg,
+                          spec.intensity);
+    }
+    const std::string name = spec.file.string();
+    auto input = OIIO::ImageInput::open(name);
+    if (!input) throw InputError(name, "environment", "cannot read image: " + OIIO::geterror());
+    const OIIO::ImageSpec& image = input->spec();
+    if (image.width <= 0 || image.height <= 0 || image.width > kMaxWidth || image.height > kMaxHeight)
+        throw InputError(name, "environment",
+                         "image is " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+                             "; a lat-long environment must be at most " + std::to_string(kMaxWidth) + " x " +
+                             std::to_string(kMaxHeight));
+    if (image.nchannels != 1 && image.nchannels < 3)
+        throw InputError(name, "environment",
+                         "image has " + std::to_string(image.nchannels) +
+                             " channels; expected RGB (or one grey channel)");
+    const auto pixels = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+    const int channels = image.nchannels == 1 ? 1 : 3;
+    std::vector<float> data(pixels * static_cast<std::size_t>(channels));
+    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
+        throw InputError(name, "environment", "cannot read pixels: " + input->geterror());
+    input->close();
+    std::vector<float> rgb(pixels * 3);
+    for (std::size_t i = 0; i < pixels; ++i)
+        for (std::size_t c = 0; c < 3; ++c) rgb[3 * i + c] = channels == 1 ? data[i] : data[3 * i + c];
+    return fromPixels(image.width, image.height, std::move(rgb), name, spec.rotation_deg, spec.intensity);
+}
+
+EnvironmentMap EnvironmentMap::fromPixels(int width, int height, std::vector<float> rgb,
+                                          const std::string& source, double rotation_deg, double intensity) {
+    if (width <= 0 || height <= 0 ||
+        rgb.size() != 3 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
+        throw InputError(source, "environment", "pixel data does not match the image size");
+    for (std::size_t i = 0; i < rgb.size(); ++i) {
+        if (std::isfinite(rgb[i]) && rgb[i] >= 0.0F) continue;
+        const std::size_t pixel = i / 3;
+        const std::size_t w = static_cast<std::size_t>(width);
+        throw InputError(source, "environment",
+                         "pixel (" + std::to_string(pixel % w) + ", " + std::to_string(pixel / w) +
+                             ") channel " + std::to_string(i % 3) + " is " +
+                             (std::isnan(rgb[i])   ? "NaN"
+                              : std::isinf(rgb[i]) ? "infinite"
+                                                   : "negative") +
+                             "; radiance must be finite and non-negative");
+    }
+    EnvironmentMap map;
+    map.m_width = width;
+    map.m_height = height;
+    map.m_rgb = std::move(rgb);
+    if (intensity != 1.0)
+        for (float& x : map.m_rgb) x *= static_cast<float>(intensity);
+    map.m_rotation_rad = rotation_deg * kPi / 180.0;
+    map.buildDistribution();
+    return map;
+}
+
+EnvironmentMap EnvironmentMap::builtinSky(int width) {
+    const int height = width / 2;
+    std::vector<float> rgb(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
+    const Rgb3 zenith(0.25, 0.45, 0.95);
+    const Rgb3 horizon(1.0, 1.0, 1.05);
+    const Rgb3 ground(0.3, 0.28, 0.25);
+    for (int v = 0; v < height; ++v) {
+        const double theta = kPi * (v + 0.5) / height;
+        const double cos_theta = std::cos(theta);
+        // Above the horizon: horizon-to-zenith blend in sqrt(cos) (a sky is
+        // bright over a thin band near the horizon); below: uniform ground.
+        const Rgb3 c = cos_theta > 0.0 ? Rgb3(horizon + (zenith - horizon) * std::sqrt(cos_theta)) : ground;
+        for (int u = 0; u < width; ++u)
+            for (int k = 0; k < 3; ++k)
+                rgb[3 * (static_cast<std::size_t>(v) * static_cast<std::size_t>(width) +
+                         static_cast<std::size_t>(u)) +
+                    static_cast<std::size_t>(k)] = static_cast<float>(c[k]);
+    }
+    return fromPixels(width, height, std::move(rgb), "built-in sky");
+}
+
+void EnvironmentMap::buildDistribution() {
+    const auto w = static_cast<std::size_t>(m_width);
+    const auto h = static_cast<std::size_t>(m_height);
+    m_pixel_weight.assign(w * h, 0.0);
+    m_column_cdf.assign(h * (w + 1), 0.0);
+    m_row_cdf.assign(h + 1, 0.0);
+    m_luminance_integral = 0.0;
+    const double pixel_solid_angle_per_sin =
+        (2.0 * kPi / static_cast<double>(w)) * (kPi / static_cast<double>(h));
+    for (std::size_t v = 0; v < h; ++v) {
+        const double sin_theta = std::sin(kPi * (static_cast<double>(v) + 0.5) / static_cast<double>(h));
+        double row = 0.0;
+        for (std::size_t u = 0; u < w; ++u) {
+            const std::size_t i = v * w + u;
+            const double lum = luminance(pixelAt(m_rgb, i));
+            m_luminance_integral += lum * sin_theta * pixel_solid_angle_per_sin;
+            // A black pixel still gets a little weight so that pdf() > 0
+            // wherever radiance could be evaluated by bilinear filtering.
+            const double weight = (lum + 1e-6) * sin_theta;
+            m_pixel_weight[i] = weight;
+            row += weight;
+            m_column_cdf[v * (w + 1) + u + 1] = row;
+        }
+        m_row_cdf[v + 1] = m_row_cdf[v] + row;
+    }
+    m_weight_sum = m_row_cdf[h];
+}
+
+Eigen::Vector2d EnvironmentMap::directionToUv(const Eigen::Vector3d& d) const {
+    const double theta = std::acos(std::clamp(d.y(), -1.0, 1.0));
+    double phi = std::atan2(d.x(), -d.z()) - m_rotation_rad;
+    phi -= 2.0 * kPi * std::floor(phi / (2.0 * kPi));
+    return {phi / (2.0 * kPi) * m_width, theta / kPi * m_height};
+}
+
+Eigen::Vector3d EnvironmentMap::uvToDirection(double u, double v) const {
+    const double phi = 2.0 * kPi * u / m_width + m_rotation_rad;
+    const double theta = kPi * v / m_height;
+    const double s = std::sin(theta);
+    return {s * std::sin(phi), std::cos(theta), -s * std::cos(phi)};
+}
+
+Rgb3 EnvironmentMap::radiance(const Eigen::Vector3d& direction) const {
+    const Eigen::Vector2d uv = directionToUv(direction.normalized());
+    // Bilinear between pixel centres, wrapping in u, clamped in v.
+    const double x = uv.x() - 0.5;
+    const double y = std::clamp(uv.y() - 0.5, 0.0, m_height - 1.0);
+    const double fx = x - std::floor(x);
+    const double fy = y - std::floor(y);
+    const int x0 = (static_cast<int>(std::floor(x)) % m_width + m_width) % m_width;
+    const int x1 = (x0 + 1) % m_width;
+    const int y0 = static_cast<int>(std::floor(y));
+    const int y1 = std::min(y0 + 1, m_height - 1);
+    const auto pixel = [&](int px, int py) {
+        return pixelAt(m_rgb, static_cast<std::size_t>(py) * static_cast<std::size_t>(m_width) +
+                                  static_cast<std::size_t>(px));
+    };
+    return (1 - fy) * ((1 - fx) * pixel(x0, y0) + fx * pixel(x1, y0)) +
+           fy * ((1 - fx) * pixel(x0, y1) + fx * pixel(x1, y1));
+}
+
+EnvironmentMap::Sample EnvironmentMap::sample(double u1, double u2) const {
+    const auto w = static_cast<std::size_t>(m_width);
+    const auto h = static_cast<std::size_t>(m_height);
+    const std::size_t v = upperIndex(m_row_cdf, 0, h, u1 * m_weight_sum);
+    const double row_total = m_row_cdf[v + 1] - m_row_cdf[v];
+    const std::size_t u = upperIndex(m_column_cdf, v * (w + 1), w, u2 * row_total);
+    // Uniform within the pixel (in u, and in v: the pdf below accounts for sin theta).
+    const double ru = (u1 * m_weight_sum - m_row_cdf[v]) / row_total;
+    const double cu = m_column_cdf[v * (w + 1) + u];
+    const double pixel_weight = m_pixel_weight[v * w + u];
+    const double fu = std::clamp((u2 * row_total - cu) / pixel_weight, 0.0, 1.0);
+    const double fv = std::clamp(ru, 0.0, 1.0);
+    Sample s;
+    s.direction = uvToDirection(static_cast<double>(u) + fu, static_cast<double>(v) + fv);
+    s.radiance = radiance(s.direction);
+    s.pdf_sr = pdf(s.direction);
+    return s;
+}
+
+double EnvironmentMap::pdf(const Eigen::Vector3d& direction) const {
+    const Eigen::Vector2d uv = directionToUv(direction.normalized());
+    const auto u = static_cast<std::size_t>(std::clamp(uv.x(), 0.0, m_width - 1.0));
+    const auto v = static_cast<std::size_t>(std::clamp(uv.y(), 0.0, m_height - 1.0));
+    // Samples are uniform in (phi, theta) within a pixel, so the density per
+    // solid angle divides by the sine at the direction itself.
+    const double sin_theta = std::max(std::sin(kPi * uv.y() / m_height), 1e-12);
+    const double p_pixel = m_pixel_weight[v * static_cast<std::size_t>(m_width) + u] / m_weight_sum;
+    return p_pixel / ((2.0 * kPi / m_width) * (kPi / m_height) * sin_theta);
+}
+
+}  // namespace paintlab::raymaps
