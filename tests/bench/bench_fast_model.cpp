@@ -1,5 +1,5 @@
 // The fast model's cost: every preset on every demo recipe, and how the time
-// grows with nodes, Fourier orders and bands, and the cost of one doubling
+// grows with nodes, Fourier orders, bands and layers, and the cost of one doubling
 // step per node count (issue 3, "Speed"). Figures for docs/PERFORMANCE.md come
 // from running bench_engine directly; the smoke test only checks they run.
 #include "paintlab/engine/layered/layer_operator.h"
@@ -69,6 +69,33 @@ BENCHMARK(BM_FastModelScaling)
     ->ArgsProduct({{kNodes}, {12, 16, 24, 32, 48}})
     ->ArgsProduct({{kOrders}, {4, 8, 16, 32}})
     ->ArgsProduct({{kBands}, {4, 8, 16, 32}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// Scaling with the number of layers at the standard preset: the pearlescent
+// demo's basecoat (15 µm, pearl flakes + carbon black) alone for 1 layer, and
+// under the demo's 40 µm clear coat repeated, as L - 1 basecoats, for L >= 2.
+void BM_FastModelLayers(benchmark::State& state) {
+    const auto demo_recipe = demo(0);
+    const auto layers = static_cast<std::size_t>(state.range(0));
+    auto recipe = demo_recipe;
+    recipe.layers.clear();
+    if (layers == 1) {
+        recipe.layers.push_back(demo_recipe.layers[1]);
+    } else {
+        recipe.layers.push_back(demo_recipe.layers[0]);
+        for (std::size_t i = 1; i < layers; ++i) recipe.layers.push_back(demo_recipe.layers[1]);
+    }
+    const auto settings = paintlab::presetSettings(paintlab::Preset::Standard);
+    state.SetLabel("layers " + std::to_string(layers));
+    for (auto _ : state) benchmark::DoNotOptimize(paintlab::computeLayeredBrdf(recipe, settings));
+}
+BENCHMARK(BM_FastModelLayers)
+    ->Arg(1)
+    ->Arg(2)
+    ->Arg(4)
+    ->Arg(8)
+    ->Arg(20)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

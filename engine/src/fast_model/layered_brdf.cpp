@@ -41,19 +41,20 @@ std::string_view presetName(Preset preset) {
 }
 
 FastModelSettings presetSettings(Preset preset) {
-    // Points on the measured accuracy-vs-time curves (tests/bench/bench_fast_model.cpp
-    // and the report of issue 3): worst CIEDE2000 over the six multi-angle
-    // geometries of the three demo paints against the reference preset, on the
-    // 2-core EPYC (milliseconds with both cores free / with one busy elsewhere):
-    //   preview   pearlescent 5 / 9.4 ms, dE 0.58; silver 3 / 5 ms, 0.04; solid red 2 / 4 ms, 0.08
-    //   standard  pearlescent 27 / 54 ms, dE 0.051; silver 15 / 27 ms, 0.010; solid red 11 / 21 ms, 0.037
+    // Points on the measured accuracy-vs-time curves (tests/bench/bench_fast_model.cpp,
+    // docs/PERFORMANCE.md): worst CIEDE2000 over the six multi-angle geometries
+    // of the demo paints against the reference preset. Bands are computed over
+    // the whole 380-780 nm; preview needs 12 of them there (8 gave dE 2.9 on the
+    // pearlescent demo, 10 gave 1.6, 12 give 0.73, 14 give 0.53):
+    //   preview   pearlescent dE 0.73; silver 0.028; solid red 0.23; three-layer 0.49
+    //   standard  pearlescent dE 0.069; silver 0.010; solid red 0.040; three-layer 0.047
     // The colour error of the cheap presets is mostly spectral (few bands),
     // hence output_bands; the angular grid converges fast.
     switch (preset) {
     case Preset::Preview:
         return {.nodes = 12,
                 .orders = 8,
-                .bands = 8,
+                .bands = 12,
                 .max_start_tau = 1.0 / 32.0,
                 .slices = 2,
                 .flake_polar = 4,
@@ -91,9 +92,6 @@ FastModelSettings presetSettings(Preset preset) {
 }
 
 namespace {
-
-constexpr double kColourMinNm = 400.0;
-constexpr double kColourMaxNm = 700.0;
 
 // The interpolation abscissae and pieces of the ambient's nodes (BandTable).
 void setInterpolation(const fast::StackQuadrature& grid, const fast::MediumNodes& air,
@@ -322,20 +320,12 @@ LayeredBrdf::BandTable spectralInterpolation(const std::vector<double>& band_nm,
     return t;
 }
 
-// The wavelengths the model runs at. Without spectral refinement: the
-// visible bands themselves. With it (output_bands > bands): spread evenly over
-// the range where the colour-matching functions weigh (kColourMinNm..kColourMaxNm);
-// beyond it the tables are held constant, where the CIE 1964 weights under D65
-// are below ~1 % of their peak.
+// The wavelengths the model runs at: spread evenly over the whole visible
+// range 380-780 nm (spectrum.h), with or without spectral refinement, so the
+// refined tables interpolate between computed bands everywhere and never hold
+// an end value (measured cost and colour error: docs/PERFORMANCE.md).
 std::vector<double> computedBands(const FastModelSettings& settings) {
-    const auto count = static_cast<std::size_t>(std::max(2, settings.bands));
-    if (settings.output_bands <= settings.bands) return visibleBands(count);
-    const double lo = kColourMinNm;
-    const double hi = kColourMaxNm;
-    std::vector<double> nm(count);
-    for (std::size_t i = 0; i < count; ++i)
-        nm[i] = lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(count - 1);
-    return nm;
+    return visibleBands(static_cast<std::size_t>(std::max(2, settings.bands)));
 }
 
 }  // namespace

@@ -24,7 +24,7 @@ namespace paintlab {
 struct FastModelSettings {
     int nodes = 24;                       // quadrature nodes per hemisphere
     int orders = 16;                      // Fourier orders 0 .. orders-1
-    int bands = 16;                       // wavelengths computed, over 380-780 nm (400-700 with output_bands)
+    int bands = 16;                       // wavelengths computed, evenly over 380-780 nm
     double max_start_tau = 1.0 / 1024.0;  // largest optical thickness of the starting sublayer
     int slices = 4;                       // slices per layer with a depth-varying concentration
     int flake_polar = 12;  // Gauss nodes (tilt x azimuth, per smooth piece) for the flake totals
