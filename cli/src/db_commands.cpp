@@ -20,6 +20,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <iostream>
 #include <memory>
@@ -49,23 +51,33 @@ struct DbOptions {
     std::string target;
 };
 
-// Opens the chosen database. The default one is created from the demo on first use.
+// Opens the chosen database. The default one is filled from the demo while it
+// holds nothing (on first use, or after a first use that was interrupted).
 db::Database openDatabase(const DbOptions& options, bool create) {
     if (!options.db_file.empty()) {
         db::OpenOptions open;
         open.create = create;
         return db::Database::open(options.db_file, open);
     }
-    const auto path = db::defaultDatabasePath();
-    std::error_code ec;
-    const bool first_use = !std::filesystem::exists(path, ec);
-    db::Database database = db::Database::open(path);
-    if (first_use) {
+    db::Database database = db::Database::open(db::defaultDatabasePath());
+    if (!database.isReadOnly()) {
         const auto summary = db::initDemoDatabase(database);
-        std::cerr << "created " << path.string() << " from the demo data (" << summary.ingredients_added
-                  << " ingredients, " << summary.recipes_added << " recipes)\n";
+        if (!summary.already_initialised)
+            std::cerr << "created " << database.file().string() << " from the demo data ("
+                      << summary.ingredients_added << " ingredients, " << summary.recipes_added
+                      << " recipes)\n";
     }
     return database;
+}
+
+// Case-insensitive substring test (ASCII), as the ingredient search does.
+bool containsIgnoringCase(std::string_view text, std::string_view part) {
+    const auto lower = [](std::string_view in) {
+        std::string out(in);
+        for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        return out;
+    };
+    return lower(text).find(lower(part)) != std::string::npos;
 }
 
 std::optional<db::IngredientKind> kindOption(const std::string& kind) {
@@ -118,7 +130,7 @@ int runList(const DbOptions& options) {
     std::vector<db::RecipeSummary> recipes;
     if (with_recipes)
         for (auto& recipe : db::listRecipes(database))
-            if (options.name_contains.empty() || recipe.name.find(options.name_contains) != std::string::npos)
+            if (containsIgnoringCase(recipe.name, options.name_contains))
                 recipes.push_back(std::move(recipe));
 
     if (options.json) {
