@@ -2,10 +2,12 @@
 // its comparison with the fast model at the multi-angle geometries.
 // Options and JSON fields are a public contract (issue 4): extend, never rename.
 
+#include "brdf_table_io.h"
 #include "commands.h"
 
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/montecarlo/mc_table.h"
 #include "paintlab/engine/montecarlo/monte_carlo.h"
 #include "paintlab/engine/multiangle.h"
 #include "paintlab/engine/recipe_json.h"
@@ -45,6 +47,10 @@ struct McOptions {
     bool json = false;
     bool explicit_flakes = false;
     double cone_deg = 0.0;  // 0: next-event estimator (explicit flakes default to 5)
+    bool reject_overlaps = false;
+    int batches = 8;
+    bool table = false;     // mc: tabulate on the fast model's basis (mc_table.h)
+    double step_deg = 5.0;  // mc --table: angular step of the written table
 };
 
 constexpr std::int64_t kDefaultSamples = 20000;
@@ -67,9 +73,15 @@ mc::McSettings mcSettings(const McOptions& o) {
         throw InputError("<argument>", "--seconds", std::to_string(o.seconds) + " must be in (0, 86400]");
     if (!(o.cone_deg >= 0.0 && o.cone_deg <= 30.0))
         throw InputError("<argument>", "--cone", std::to_string(o.cone_deg) + " must be in [0, 30] degrees");
+    if (o.reject_overlaps && !o.explicit_flakes)
+        throw InputError("<argument>", "--reject-overlaps", "needs --explicit-flakes");
+    if (!(o.batches >= 1 && o.batches <= 256))
+        throw InputError("<argument>", "--batches", std::to_string(o.batches) + " must be in [1, 256]");
     mc::McSettings s;
     s.seed = o.seed;
     s.explicit_flakes = o.explicit_flakes;
+    s.reject_overlaps = o.reject_overlaps;
+    s.batches = o.batches;
     s.histogram_cone_deg = o.cone_deg > 0.0 ? o.cone_deg : (o.explicit_flakes ? 5.0 : 0.0);
     s.max_paths = has_samples ? o.samples : kDefaultSamples;
     if (has_rel_error) {
@@ -101,12 +113,18 @@ std::vector<mc::IncidenceRequest> multiAngleRequests() {
     return {normal, oblique};
 }
 
-ordered_json estimatesJson(const mc::McResult& r, std::size_t incidence, int exit /* -1: albedo */) {
+// exit: index into brdf_per_sr, or kAlbedo / kTransmittance.
+constexpr int kAlbedo = -1;
+constexpr int kTransmittance = -2;
+
+ordered_json estimatesJson(const mc::McResult& r, std::size_t incidence, int exit) {
     std::vector<double> mean;
     std::vector<double> se;
     for (const auto& band : r.bands) {
-        const auto& e =
-            exit < 0 ? band[incidence].albedo : band[incidence].brdf_per_sr[static_cast<std::size_t>(exit)];
+        const auto& inc = band[incidence];
+        const auto& e = exit == kAlbedo          ? inc.albedo
+                        : exit == kTransmittance ? inc.transmittance
+                                                 : inc.brdf_per_sr[static_cast<std::size_t>(exit)];
         mean.push_back(e.mean);
         se.push_back(e.std_error);
     }
@@ -117,6 +135,8 @@ ordered_json settingsJson(const mc::McSettings& s, const mc::McResult& r) {
     return {{"seed", s.seed},
             {"explicit_flakes", s.explicit_flakes},
             {"histogram_cone_deg", s.histogram_cone_deg},
+            {"reject_overlaps", s.reject_overlaps},
+            {"batches", s.batches},
             {"max_paths", s.max_paths},
             {"target_rel_error", s.target_rel_error},
             {"max_seconds", s.max_seconds},
@@ -141,7 +161,74 @@ void checkBands(int bands) {
         throw InputError("<argument>", "--bands", std::to_string(bands) + " must be in [2, 81]");
 }
 
+Preset parsePreset(const std::string& name) {
+    try {
+        return presetFromName(name);
+    } catch (const InputError& e) {
+        throw InputError("<argument>", "--preset", e.detail());
+    }
+}
+
+// mc --table: the full model on the fast model's basis of --preset, written
+// like `brdf --out` (with standard errors), or summarised at the multi-angle geometries.
+int runMcTable(const McOptions& o) {
+    const mc::McSettings settings = mcSettings(o);
+    const Preset preset = parsePreset(o.preset);
+    if (!(o.step_deg >= 0.5 && o.step_deg <= 45.0))
+        throw InputError("<argument>", "--step", "must be between 0.5 and 45 degrees");
+    const Recipe recipe = loadRecipeFile(o.recipe);
+    const FastModelSettings grid = presetSettings(preset);
+    const mc::McTable table = mc::tabulateMonteCarlo(recipe, grid, settings, terminalProgress("mc table"));
+    const std::vector<LayeredBrdf>* batches = table.batch_brdfs.empty() ? nullptr : &table.batch_brdfs;
+    if (o.json || !o.out.empty()) {
+        ordered_json s;
+        s["model"] = "monte_carlo";
+        s["preset"] = o.preset;
+        s["nodes"] = grid.nodes;
+        s["orders"] = grid.orders;
+        s["bands"] = grid.bands;
+        s["slices"] = grid.slices;
+        s["compute_seconds"] = table.seconds;
+        mc::McResult summary;
+        summary.total_paths = table.total_paths;
+        summary.seconds = table.seconds;
+        s["monte_carlo"] = settingsJson(settings, summary);
+        const bool csv = isCsvPath(o.out);
+        const std::string text = brdfTableText(table.brdf, o.recipe, s, o.step_deg, csv, batches);
+        if (o.out.empty()) {
+            std::cout << text;
+        } else {
+            writeTextFile(o.out, text, "--out");
+            std::cerr << "wrote " << o.out << " (" << (csv ? "CSV" : "JSON") << ", "
+                      << table.brdf.wavelengthsNm().size() << " bands, " << table.seconds << " s)\n";
+        }
+        return 0;
+    }
+    std::printf("Monte Carlo table on the %s grid: %lld paths in %.2f s (seed %llu)\n", o.preset.c_str(),
+                static_cast<long long>(table.total_paths), table.seconds,
+                static_cast<unsigned long long>(settings.seed));
+    std::printf("%10s", "lambda_nm");
+    for (double as : kAspecularAnglesDeg) std::printf("   f 45as%-4g (1/sr)", as);
+    std::printf("\n");
+    const auto wavelengths = table.brdf.wavelengthsNm();
+    for (std::size_t b = 0; b < wavelengths.size(); ++b) {
+        std::printf("%10.1f", wavelengths[b]);
+        for (double as : kAspecularAnglesDeg) {
+            const MultiAngleGeometry g = multiAngleGeometry(as);
+            std::vector<double> per_batch;
+            if (batches != nullptr)
+                for (const auto& batch : *batches) per_batch.push_back(batch.eval(g.wi, g.wo)[b]);
+            std::printf(" %11.5g+-%-7.2g", table.brdf.eval(g.wi, g.wo)[b],
+                        mc::batchEstimate(per_batch).std_error);
+        }
+        std::printf("\n");
+    }
+    for (const auto& note : mc::estimatorLimitations(recipe)) std::printf("note: %s\n", note.c_str());
+    return 0;
+}
+
 int runMc(const McOptions& o) {
+    if (o.table) return runMcTable(o);
     checkBands(o.bands);
     const mc::McSettings settings = mcSettings(o);
     const Recipe recipe = loadRecipeFile(o.recipe);
@@ -155,9 +242,16 @@ int runMc(const McOptions& o) {
         out["settings"] = settingsJson(settings, r);
         out["wavelengths_nm"] = wavelengths;
         ordered_json albedo = ordered_json::array();
-        albedo.push_back({{"theta_i_deg", 0.0}, {"albedo", estimatesJson(r, 0, -1)}});
-        albedo.push_back({{"theta_i_deg", kMultiAngleIlluminationDeg}, {"albedo", estimatesJson(r, 1, -1)}});
+        albedo.push_back({{"theta_i_deg", 0.0}, {"albedo", estimatesJson(r, 0, kAlbedo)}});
+        albedo.push_back(
+            {{"theta_i_deg", kMultiAngleIlluminationDeg}, {"albedo", estimatesJson(r, 1, kAlbedo)}});
         out["albedo"] = std::move(albedo);  // directional-hemispherical, mirror term included
+        ordered_json transmittance = ordered_json::array();
+        transmittance.push_back(
+            {{"theta_i_deg", 0.0}, {"transmittance", estimatesJson(r, 0, kTransmittance)}});
+        transmittance.push_back({{"theta_i_deg", kMultiAngleIlluminationDeg},
+                                 {"transmittance", estimatesJson(r, 1, kTransmittance)}});
+        out["transmittance"] = std::move(transmittance);  // into a transparent substrate (0 for others)
         ordered_json geometries = ordered_json::array();
         for (std::size_t k = 0; k < kAspecularAnglesDeg.size(); ++k)
             geometries.push_back({{"aspecular_deg", kAspecularAnglesDeg[k]},
@@ -220,12 +314,7 @@ std::vector<double> coneAverage(const LayeredBrdf& fast, const Direction& wi, co
 
 int runCompare(const McOptions& o) {
     const mc::McSettings settings = mcSettings(o);
-    Preset preset = Preset::Standard;
-    try {
-        preset = presetFromName(o.preset);
-    } catch (const InputError& e) {
-        throw InputError("<argument>", "--preset", e.detail());
-    }
+    const Preset preset = parsePreset(o.preset);
     const Recipe recipe = loadRecipeFile(o.recipe);
     const LayeredBrdf fast =
         computeLayeredBrdf(recipe, presetSettings(preset), terminalProgress("fast model"));
@@ -324,6 +413,13 @@ void addStopOptions(CLI::App* command, McOptions& o) {
     command->add_option("--cone", o.cone_deg,
                         "Histogram estimator: cone half-angle in degrees (default: next-event; 5 with "
                         "--explicit-flakes); f is then the cone average");
+    command->add_flag("--reject-overlaps", o.reject_overlaps,
+                      "With --explicit-flakes: re-draw flakes that would intersect one already placed");
+    command
+        ->add_option("--batches", o.batches,
+                     "Batches of paths (each its own flake tile with --explicit-flakes; the standard "
+                     "errors are then over the batches)")
+        ->capture_default_str();
 }
 
 }  // namespace
@@ -335,6 +431,14 @@ void addMcCommands(CLI::App& app, CommandAction& action) {
                                             "multi-angle geometries, with std errors");
     addStopOptions(mc, *o);
     mc->add_option("--bands", o->bands, "Wavelength bands over 380-780 nm")->capture_default_str();
+    mc->add_flag(
+        "--table", o->table,
+        "Tabulate the BRDF on the fast model's basis (--preset's grid and bands); --out FILE.json|.csv "
+        "writes it like `brdf --out`, with standard errors");
+    mc->add_option("--preset", o->preset, "With --table: the fast-model preset whose grid is used")
+        ->capture_default_str();
+    mc->add_option("--step", o->step_deg, "With --table: angular step of the written table in degrees")
+        ->capture_default_str();
     mc->callback([o, &action] { action = [o] { return runMc(*o); }; });
 
     CLI::App* compare = app.add_subcommand(
