@@ -243,25 +243,33 @@ McEngine::McEngine(const Recipe& recipe, const McSettings& settings)
         throw InputError("", "histogram_cone_deg",
                          "explicit flakes need the histogram estimator (a cone > 0)");
     if (!settings.explicit_flakes) return;
-    // Explicit flakes: per batch one tile per layer with flakes, the same for every band.
-    m_tiles.resize(static_cast<std::size_t>(m_batches));
-    for (std::size_t k = 0; k < m_tiles.size(); ++k) {
-        m_tiles[k].resize(recipe.layers.size());
-        double depth = 0.0;
-        for (std::size_t l = 0; l < recipe.layers.size(); ++l) {
-            const auto geometries = layerFlakeGeometries(recipe.layers[l]);
-            if (!geometries.empty()) {
-                // Batch 0 keeps the single tile's seed of earlier versions.
-                const std::uint64_t tile_seed =
-                    settings.seed ^ (0x9e3779b97f4a7c15ULL * (l + 1)) ^ (0xd1b54a32d192ed03ULL * k);
-                m_tiles[k][l] = std::make_unique<FlakeTile>(
-                    geometries, depth, depth + recipe.layers[l].thickness_um, tile_seed, settings.tile_flakes,
-                    settings.max_tile_flakes, settings.reject_overlaps);
-                m_tile_side_um = std::max(m_tile_side_um, m_tiles[k][l]->sideUm());
-            }
-            depth += recipe.layers[l].thickness_um;
-        }
+    // Explicit flakes: per batch one tile per layer with flakes, the same for
+    // every band, built in parallel (each tile has its own seed and Embree device).
+    std::vector<std::vector<FlakeGeometry>> geometries;
+    std::vector<double> tops;
+    double depth = 0.0;
+    for (const auto& layer : recipe.layers) {
+        geometries.push_back(layerFlakeGeometries(layer));
+        tops.push_back(depth);
+        depth += layer.thickness_um;
     }
+    const std::size_t layers = recipe.layers.size();
+    m_tiles.resize(static_cast<std::size_t>(m_batches));
+    for (auto& tiles : m_tiles) tiles.resize(layers);
+    tbb::parallel_for(std::size_t{0}, m_tiles.size() * layers, [&](std::size_t index) {
+        const std::size_t k = index / layers;
+        const std::size_t l = index % layers;
+        if (geometries[l].empty()) return;
+        // Batch 0 keeps the single tile's seed of earlier versions.
+        const std::uint64_t tile_seed =
+            settings.seed ^ (0x9e3779b97f4a7c15ULL * (l + 1)) ^ (0xd1b54a32d192ed03ULL * k);
+        m_tiles[k][l] = std::make_unique<FlakeTile>(
+            geometries[l], tops[l], tops[l] + recipe.layers[l].thickness_um, tile_seed, settings.tile_flakes,
+            settings.max_tile_flakes, settings.reject_overlaps);
+    });
+    for (const auto& tiles : m_tiles)
+        for (const auto& tile : tiles)
+            if (tile) m_tile_side_um = std::max(m_tile_side_um, tile->sideUm());
 }
 
 McEngine::~McEngine() = default;

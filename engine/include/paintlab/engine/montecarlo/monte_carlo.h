@@ -21,9 +21,11 @@
 //    transparent (what crosses it is lost);
 //  - a depth-varying concentration is a stack of homogeneous slices.
 //
-// Estimators, each with its standard error over independent paths:
+// Estimators, each with its standard error:
 //  - albedo(wi): directional-hemispherical reflectance, the top interface's
 //    mirror term included (as LayeredBrdf::albedo);
+//  - transmittance(wi): what crosses into a transparent substrate (the
+//    unscattered beam included), 0 for the other substrates;
 //  - f(wi, wo) by next-event (point) estimation: from every scattering vertex
 //    the radiance that reaches wo through the stack's smooth interfaces along
 //    the one direction that refracts into wo (straight up, or down and back by
@@ -33,18 +35,28 @@
 //  - or, with histogram_cone_deg > 0 (always with explicit flakes, whose
 //    mirror reflections are deltas that next-event estimation cannot reach),
 //    the escaping weight in a cone of that half-angle around wo over the
-//    cone's projected solid angle: the cone average of f cos over that of cos.
+//    cone's projected solid angle: the cone average of f cos over that of cos;
+//  - a whole table on the fast model's basis: mc_table.h.
+//
+// Standard errors: over independent paths, except with explicit flakes,
+// where the paths are split into `batches`, each tracing its own tile
+// realisation, and the error is that of the batches' means (batches - 1
+// degrees of freedom): it then includes the randomness of the flake
+// arrangement, which at a few hundred flakes per tile is several times the
+// path error (tests/engine/montecarlo/test_flake_tiles.cpp).
 //
 // Determinism: path p of (band b, incidence i) draws from a generator seeded
-// by (seed, b, i, p) alone, paths are summed in fixed chunks in order, so the
-// numbers do not depend on the thread count or scheduling. Stopping by time
-// only changes how many chunks are summed.
+// by (seed, b, i, p) alone, chunk c of paths belongs to batch c mod batches
+// and tile k of a layer is seeded by (seed, layer, k); chunks are merged in
+// order, so the numbers do not depend on the thread count or scheduling.
+// Stopping by time only changes how many chunks are merged.
 //
-// Known limits: the standard errors are over paths for one flake tile; the
-// tile is one realisation of the paint (its normals are low-discrepancy in
-// depth order to keep that small; at the default 20000 flakes it stayed
-// within the path error in the tests, at 2000 it moved f by ~20 %). The
-// tile's geometry is float (Embree). Settings.threads sets TBB's
+// Known limits: the tile is periodic (its side is set by tile_flakes, at
+// least two flake diameters), so arrangements longer-ranged than the tile are
+// not represented; its geometry is float (Embree); flakes are thickness-less
+// 16-gons and overlap unless reject_overlaps. The histogram estimator that
+// explicit flakes need costs ~1e7 paths per band for 1 % in a 5 degree cone
+// where f is small (docs/PERFORMANCE.md). Settings.threads sets TBB's
 // process-wide parallelism for the duration of the call.
 
 #include "paintlab/engine/brdf.h"
