@@ -38,9 +38,16 @@ namespace paintlab {
 
 namespace {
 
-// Fitted to the 96 points of docs/fast_vs_full.csv (weighted_rel; see the report).
-constexpr double kAmplitude = 1.0;
-constexpr double kX0 = 1.0;
+// Fitted to the 102 points of docs/fast_vs_full.csv (weighted_rel of the
+// grid and the small-flake series, by tools/compare_report/fit_boundary.py:
+// least squares weighted by 1 / (se^2 + 0.03^2)). Residuals: RMS 6
+// percentage points, largest 34 (metal flakes at the maximum concentration
+// and 20 deg spread, measured +115 % against 81 %); at the 10 % boundary the
+// rule never calls a paint inside that the report measured outside by more
+// than 2 standard errors, and calls one outside that was inside (50 µm
+// interference flakes in the 20 µm film, which the full model squeezes).
+constexpr double kAmplitude = 0.90;
+constexpr double kX0 = 2.225;
 constexpr double kPower = 1.0;
 
 // The report's incidence: 45° in air, refracted into the binder.

@@ -106,25 +106,42 @@ TEST(ModelValidity, NoFlakesIsExact) {
 }
 
 TEST(ModelValidity, ReproducesTheReport) {
-    // Every grid point of the report: the rule against the measured
-    // signal-weighted difference, within the fit's largest residual plus
-    // three standard errors of the measurement.
+    // Every point of the report (the 96 of the grid the rule was fitted to and
+    // the 6 of the small-flake series it was not): the rule against the
+    // measured signal-weighted difference of the full model from the fast one.
     const auto rows = readCsv(PAINTLAB_TEST_DATA_DIR "/../../docs/fast_vs_full.csv");
-    ASSERT_EQ(rows.size(), 96U);
-    // The fit's largest residual over the grid (model_validity.cpp; the report
-    // gives the distribution): the rule is a two-parameter curve through
-    // 96 points, not an interpolation of them.
-    constexpr double kFitResidual = 0.20;
+    ASSERT_EQ(rows.size(), 102U);
+    int misses = 0;
+    int false_alarms = 0;
     for (const auto& row : rows) {
-        const Recipe r = reportPaint(row.at("flake_type"), std::stod(row.at("volume_fraction")),
-                                     std::stod(row.at("diameter_um")), std::stod(row.at("spread_deg")));
+        const std::string type = row.at("flake_type");
+        const double d_um = std::stod(row.at("diameter_um"));
+        const Recipe r =
+            reportPaint(type, std::stod(row.at("volume_fraction")), d_um, std::stod(row.at("spread_deg")));
         const double measured = std::stod(row.at("weighted_rel"));
         const double se = std::stod(row.at("weighted_rel_se"));
-        const double expected = fastModelValidity(r).expected_rel_difference;
-        EXPECT_NEAR(expected, measured, kFitResidual + 3.0 * se)
-            << row.at("flake_type") << " d " << row.at("diameter_um") << " c " << row.at("volume_fraction")
-            << " spread " << row.at("spread_deg");
+        const FastModelValidity v = fastModelValidity(r);
+        // A curve of three constants through paints from 1 % to 115 %: good
+        // to 5 points plus 30 % of the difference (the RMS residual is 6
+        // points), plus 3 times the measurement's error: the paths' standard
+        // error and the flake tile's realisation, which the report measured
+        // by changing the seed (spread ~2 points, against path errors of 1-3).
+        constexpr double kTileError = 0.02;
+        const double error = std::hypot(se, kTileError);
+        EXPECT_NEAR(v.expected_rel_difference, measured, 0.05 + 0.3 * std::abs(measured) + 3.0 * error)
+            << type << " d " << d_um << " c " << row.at("volume_fraction") << " spread "
+            << row.at("spread_deg");
+        // The boundary: measured outside / inside by more than 2 standard errors.
+        if (measured - 2.0 * se > kDefaultFastModelTolerance && v.within) ++misses;
+        if (measured + 2.0 * se < kDefaultFastModelTolerance && !v.within) {
+            ++false_alarms;
+            // The one the report names: 50 µm platelets in the 20 µm film,
+            // which the full model has to squeeze or clip.
+            EXPECT_GT(d_um, 20.0) << type << " c " << row.at("volume_fraction");
+        }
     }
+    EXPECT_EQ(misses, 0);
+    EXPECT_LE(false_alarms, 1);
 }
 
 TEST(ModelValidity, InsideAndOutside) {

@@ -184,6 +184,17 @@ def summarise(result, lo_nm=400.0, hi_nm=700.0):
 VISIBLE_FRACTION = 0.03
 
 
+# Paints whose flakes reflect little (interference and dielectric platelets
+# at the two lower concentrations: f of a few 1e-2 /sr over black) get this
+# many times the base paths, so that their standard errors are not several
+# times the others'.
+LOW_SIGNAL_FACTOR = 4
+
+
+def samples_for(kind, volume_fraction, base):
+    return base * LOW_SIGNAL_FACTOR if kind != "mirror" and volume_fraction <= 0.04 else base
+
+
 def visible(geo):
     peak = max(g["fast"] for g in geo)
     return [g for g in geo if g["fast"] >= VISIBLE_FRACTION * peak]
@@ -212,7 +223,8 @@ def main():
     parser.add_argument("--cli", default=str(REPO / "build" / "release" / "cli" / "paintlab-cli"))
     parser.add_argument("--work", default="/tmp/paintlab-compare-report", help="recipes and raw JSON")
     parser.add_argument("--out", default=str(REPO / "docs"), help="where the CSV and PNG go")
-    parser.add_argument("--samples", type=int, default=4000, help="MC paths per band and incidence")
+    parser.add_argument("--samples", type=int, default=4000,
+                        help="MC paths per band and incidence (x4 for weakly reflecting paints, see LOW_SIGNAL_FACTOR)")
     parser.add_argument("--preset", default="standard", help="fast-model preset (its bands are the MC's)")
     parser.add_argument("--quick", action="store_true", help="two points only (a smoke test)")
     parser.add_argument("--no-plot", action="store_true")
@@ -232,18 +244,18 @@ def main():
         tag = f"{kind}_d{d:g}_c{vf:g}_s{spread:g}"
         rp = work / "recipes" / f"{tag}.json"
         rp.write_text(json.dumps(recipe(kind, d, vf, spread), indent=1))
-        suffix = f"_n{args.samples}_{args.preset}"
+        samples = samples_for(kind, vf, args.samples)
+        suffix = f"_n{samples}_{args.preset}"
         ctag = f"{kind}_c{vf:g}_s{spread:g}_continuum"
         if args.cached_only and not all(
                 (work / "runs" / f"{t}{suffix}.json").exists() for t in (tag, ctag)):
             continue
-        full = run_compare(args.cli, rp, work / "runs" / f"{tag}{suffix}.json", args.samples, args.preset, True)
+        full = run_compare(args.cli, rp, work / "runs" / f"{tag}{suffix}.json", samples, args.preset, True)
         # The control does not depend on the diameter: run it once, at the smallest.
         crp = work / "recipes" / f"{kind}_d{DIAMETERS_UM[0]:g}_c{vf:g}_s{spread:g}.json"
         if not crp.exists():
             crp.write_text(json.dumps(recipe(kind, DIAMETERS_UM[0], vf, spread), indent=1))
-        control = run_compare(args.cli, crp, work / "runs" / f"{ctag}{suffix}.json", args.samples, args.preset,
-                              False)
+        control = run_compare(args.cli, crp, work / "runs" / f"{ctag}{suffix}.json", samples, args.preset, False)
         geo = summarise(full)
         cgeo = summarise(control)
         worst = max(visible(geo), key=lambda g: abs(g["rel"]))

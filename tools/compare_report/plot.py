@@ -22,8 +22,7 @@ MARKERS = {5.0: "o", 20.0: "^"}
 
 
 def plot(table, path):
-    grid_rows = [r for r in table if r["series"] == "grid"]
-    constants = fit([{k: str(v) for k, v in r.items()} for r in grid_rows])
+    constants = fit([{k: str(v) for k, v in r.items()} for r in table])
     kinds = [k for k in TYPE_TITLES if any(r["flake_type"] == k for r in table)]
     fig, axes = plt.subplots(2, len(kinds), figsize=(4.8 * len(kinds), 8.0), squeeze=False, sharex="col")
     for col, kind in enumerate(kinds):
