@@ -63,7 +63,6 @@ struct FlakeTerm {
     double transmittance = 0.0;  // of one flake, straight on (0 for metal)
     double x = 0.0;              // diameter over min(film thickness, extinction free path)
     double coverage = 0.0;       // flake area per unit film area
-    double free_path_um = 0.0;   // t / (c (1 - T))
     std::string what;            // layer and component, for the reason
 };
 
@@ -107,7 +106,6 @@ FlakeTerm flakeTerm(const Layer& layer, double volume_fraction, double thickness
     term.coverage = volume_fraction * H / thickness_um;
     term.tau = extinction * term.coverage / mu;
     const double sigma_per_um = extinction * volume_fraction / thickness_um;  // extinction area per volume
-    term.free_path_um = sigma_per_um > 0.0 ? 1.0 / sigma_per_um : HUGE_VAL;
     term.x = diameter_um * std::max(1.0 / H, sigma_per_um);
     return term;
 }
@@ -174,7 +172,8 @@ FastModelValidity fastModelValidity(const Recipe& recipe, double tolerance) {
         if (expected >= result.expected_rel_difference) {
             result.expected_rel_difference = expected;
             char text[256];
-            std::snprintf(text, sizeof text, ": coverage %.3g flake layers, diameter / free path %.3g",
+            std::snprintf(text, sizeof text,
+                          ": coverage %.3g flake layers, diameter / min(film, free path) %.3g",
                           dominant->coverage, x_weighted / tau);
             worst = dominant->what;
             worst.append(text);
@@ -182,7 +181,8 @@ FastModelValidity fastModelValidity(const Recipe& recipe, double tolerance) {
     }
     result.within = result.expected_rel_difference <= tolerance;
     if (!any_flakes) {
-        result.reason = "no flakes: both models solve the same radiative-transfer equation";
+        result.reason = "no flakes that take light out of the beam: both models solve the same "
+                        "radiative-transfer equation";
         return result;
     }
     char head[128];

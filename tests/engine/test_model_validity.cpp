@@ -101,8 +101,12 @@ TEST(ModelValidity, NoFlakesIsExact) {
     raw.layers[0].components.emplace_back(test::rawMedium(0.9, 2.0, 0.5));
     EXPECT_EQ(fastModelValidity(raw).expected_rel_difference, 0.0);
 
-    // A flake component with no flakes in it contributes nothing either.
+    // A flake component with no flakes in it contributes nothing either, nor
+    // does an uncoated platelet of the binder's index (it is not there optically).
     EXPECT_EQ(fastModelValidity(reportPaint("mirror", 0.0, 20.0, 10.0)).expected_rel_difference, 0.0);
+    Recipe matched = reportPaint("dielectric", 0.3, 50.0, 10.0);
+    std::get<InterferenceFlake>(matched.layers[0].components[0]).mica_refractive_index = Spectrum(1.5);
+    EXPECT_NEAR(fastModelValidity(matched).expected_rel_difference, 0.0, 1e-9);
 }
 
 TEST(ModelValidity, ReproducesTheReport) {

@@ -12,8 +12,8 @@
 // the way out runs close to the way in, which was just found free of flakes:
 // light escapes more easily (the hiding or opposition effect of dense media
 // of large scatterers) and the full model is brighter, by up to a factor of
-// two in single scattering. The rule below is that mechanism with two
-// constants fitted to the report's grid (model_validity.cpp).
+// two in single scattering. The rule is that mechanism with three
+// constants fitted to the report's points (model_validity.cpp).
 
 #include "paintlab/engine/recipe.h"
 
