@@ -2,9 +2,9 @@
 """Fast vs full model over a grid of flake paints (issue 4, item 5).
 
 Writes one recipe per grid point (flake type x diameter x volume fraction x
-orientation spread), runs
+orientation spread, then a small-flake series of metal flakes), runs
 
-    paintlab-cli compare RECIPE --json --explicit-flakes --samples N --seed K --preset P
+    paintlab-cli compare RECIPE --json --explicit-flakes --cone 5 --samples N --seed K --preset P
 
 on each (the full model with real flat flakes in an Embree tile against the
 fast model's continuum of flakes), plus one control run per (type, volume
