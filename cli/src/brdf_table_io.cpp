@@ -22,9 +22,11 @@ std::vector<double> angleGrid(double step, double last) {
 void batchStdError(const std::vector<LayeredBrdf>& batches, const Direction& wi, const Direction& wo,
                    std::vector<double>& se) {
     std::vector<std::vector<double>> values;
+    values.reserve(batches.size());
     for (const auto& b : batches) values.push_back(b.eval(wi, wo));
     for (std::size_t k = 0; k < se.size(); ++k) {
         std::vector<double> column;
+        column.reserve(values.size());
         for (const auto& v : values) column.push_back(v[k]);
         se[k] = mc::batchEstimate(column).std_error;
     }

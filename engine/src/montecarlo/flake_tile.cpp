@@ -68,9 +68,9 @@ public:
         const int reach = std::min(1, m_cells / 2);  // a small grid: every cell once
         for (int di = -reach; di <= reach + (m_cells == 2 ? -1 : 0); ++di)
             for (int dj = -reach; dj <= reach + (m_cells == 2 ? -1 : 0); ++dj) {
-                const auto b = static_cast<std::size_t>(wrap(ci + di) * m_cells + wrap(cj + dj));
-                for (std::size_t index : m_bins[b]) {
-                    PlacedFlake other = placed[index];
+                const std::size_t b = index(wrap(ci + di), wrap(cj + dj));
+                for (std::size_t k : m_bins[b]) {
+                    PlacedFlake other = placed[k];
                     other.centre.x -= m_side * std::round((other.centre.x - flake.centre.x) / m_side);
                     other.centre.y -= m_side * std::round((other.centre.y - flake.centre.y) / m_side);
                     if (disksIntersect(flake, other)) return true;
@@ -82,7 +82,10 @@ public:
 private:
     int cell(double x) const { return std::clamp(static_cast<int>(x / m_side * m_cells), 0, m_cells - 1); }
     int wrap(int i) const { return ((i % m_cells) + m_cells) % m_cells; }
-    std::size_t bin(const Vec3& c) const { return static_cast<std::size_t>(cell(c.x) * m_cells + cell(c.y)); }
+    std::size_t index(int i, int j) const {
+        return static_cast<std::size_t>(i) * static_cast<std::size_t>(m_cells) + static_cast<std::size_t>(j);
+    }
+    std::size_t bin(const Vec3& c) const { return index(cell(c.x), cell(c.y)); }
 
     static constexpr int kMaxCells = 256;  // wider cells only cost more candidate pairs
     double m_side;

@@ -149,11 +149,13 @@ void checkEntries(const Models& m) {
 // (plus the basis' error: expected vs fine).
 void checkEval(const Recipe& recipe, const Models& m) {
     std::vector<std::pair<Direction, Direction>> pairs;
+    pairs.reserve(kAspecularAnglesDeg.size() + 2);
     for (double as : kAspecularAnglesDeg)
         pairs.emplace_back(multiAngleGeometry(as).wi, multiAngleGeometry(as).wo);
     pairs.emplace_back(directionFromAnglesDeg(10.0, 0.0), directionFromAnglesDeg(50.0, 90.0));
     pairs.emplace_back(directionFromAnglesDeg(60.0, 0.0), directionFromAnglesDeg(30.0, 150.0));
     std::vector<mc::IncidenceRequest> requests;
+    requests.reserve(pairs.size());
     for (const auto& [wi, wo] : pairs) requests.push_back({wi, {wo}});
     mc::McSettings ms;
     ms.seed = 5;
@@ -193,6 +195,7 @@ void checkColours(const Models& m) {
         };
         for (int c = 0; c < 3; ++c) {
             std::vector<double> per_batch;
+            per_batch.reserve(batches.size());
             for (const auto& r : batches) per_batch.push_back(component(r, c));
             const mc::Estimate e = mc::batchEstimate(per_batch);
             const double allowance = std::abs(component(expected, c) - component(fast, c));
