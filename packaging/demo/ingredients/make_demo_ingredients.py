@@ -26,6 +26,7 @@ A rerun on the same inputs gives the same bytes.
 import argparse
 import json
 import os
+import re
 import sys
 from pathlib import Path
 
@@ -58,9 +59,18 @@ EXTRA_METALS = {  # key: (file, ingredient name, density key, tags)
 }
 
 
+def publication_year(source):
+    """Year of the measured data: the first "(YYYY)" of the literature reference, else the first year named."""
+    found = re.search(r"\((\d{4})\)", source) or re.search(r"\b(1[89]\d\d|20\d\d)\b", source)
+    return found.group(1) if found else ""
+
+
 def spectrum(value, unit, source):
-    """An ingredient spectrum: the recipe generator's value (number or table) plus unit and source."""
+    """An ingredient spectrum: the recipe generator's value (number or table), unit, source and data year."""
     out = {"unit": unit, "source": source}
+    year = publication_year(source)
+    if year:
+        out["date"] = year
     if isinstance(value, dict):
         out["wavelengths_nm"] = value["wavelengths_nm"]
         out["values"] = value["values"]
