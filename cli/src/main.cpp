@@ -30,6 +30,7 @@ int run(int argc, char** argv) {
     paintlab::cli::addAccuracyCommand(app, action);
     paintlab::cli::addMcCommands(app, action);
     paintlab::cli::addDbCommands(app, action);
+    paintlab::cli::addRaymapCommands(app, action);
 
     try {
         app.parse(argc, argv);

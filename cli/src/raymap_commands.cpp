@@ -1,0 +1,203 @@
+// `raymap build`, `relight` and `render`: ray maps from the command line
+// (docs/RAYMAPS.md). Options are a public contract (issue 6): extend, never rename.
+
+#include "commands.h"
+
+#include "paintlab/engine/error.h"
+#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/recipe_json.h"
+#include "paintlab/raymaps/raymap.h"
+#include "paintlab/raymaps/relight.h"
+#include "paintlab/raymaps/scene.h"
+
+#include <CLI/CLI.hpp>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+namespace paintlab::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+struct BuildOptions {
+    std::string scene;
+    std::string out;
+    raymaps::RayMapSettings settings;
+    int width = 0;  // 0: the scene's camera
+    int height = 0;
+};
+
+struct RelightOptions {
+    std::string map;
+    std::string recipe;
+    std::string preset = "standard";
+    std::string out;
+    double exposure_ev = 0.0;
+    int repeat = 1;
+};
+
+void addBuildOptions(CLI::App* command, BuildOptions& o) {
+    command->add_option("--aa", o.settings.aa_samples, "Camera samples per pixel")->capture_default_str();
+    command
+        ->add_option("--bake-paths", o.settings.bake_paths, "Paths per camera sample on non-paint surfaces")
+        ->capture_default_str();
+    command->add_option("--light-rays", o.settings.light_rays, "Hemisphere rays per paint pixel")
+        ->capture_default_str();
+    command->add_option("--cells", o.settings.cells, "J: cells in cos(theta_i) of the light moments")
+        ->capture_default_str();
+    command->add_option("--orders", o.settings.orders, "M_L: azimuthal orders of the light moments")
+        ->capture_default_str();
+    command->add_option("--seed", o.settings.seed, "Random seed")->capture_default_str();
+    command->add_option("--width", o.width, "Image width (default: the scene camera's)");
+    command->add_option("--height", o.height, "Image height (default: the scene camera's)");
+}
+
+void addRelightOptions(CLI::App* command, RelightOptions& o) {
+    command->add_option("--recipe", o.recipe, "Recipe JSON file")->required();
+    command->add_option("--preset", o.preset, "Fast-model preset: preview, standard or reference")
+        ->capture_default_str();
+    command->add_option("--out", o.out, "Output image: .exr (linear) or .png (tone mapped)")->required();
+    command->add_option("--exposure", o.exposure_ev, "Exposure in EV (x 2^EV)")->capture_default_str();
+}
+
+raymaps::RayMapProgress terminalProgress(const char* what) {
+    if (isatty(STDERR_FILENO) == 0) return {};
+    return [what](double fraction) {
+        std::fprintf(stderr, "\r%s: %3.0f%%", what, 100.0 * fraction);
+        if (fraction >= 1.0) std::fprintf(stderr, "\n");
+        return true;
+    };
+}
+
+void build(const BuildOptions& o, const std::filesystem::path& out) {
+    raymaps::Scene scene = raymaps::loadSceneFile(o.scene);
+    if (o.width != 0 || o.height != 0) {
+        if (o.width < 1 || o.width > 16384 || o.height < 1 || o.height > 16384)
+            throw InputError("<argument>", "--width/--height", "give both, each in [1, 16384]");
+        scene.camera.width = o.width;
+        scene.camera.height = o.height;
+    }
+    const raymaps::RayMapHeader h = raymaps::buildRayMap(scene, o.settings, out, terminalProgress("ray map"));
+    const auto record = raymaps::recordBytes(h.cells, h.orders, static_cast<int>(h.lights.size()));
+    std::printf("ray map %s: %d x %d, %llu paint pixels, %zu bytes per paint record, %llu bytes on disk\n",
+                out.string().c_str(), h.width, h.height, static_cast<unsigned long long>(h.paint_pixels),
+                record, static_cast<unsigned long long>(std::filesystem::file_size(out)));
+    std::printf("precompute: %.2f s, %llu rays, %.3g rays/s\n", h.seconds,
+                static_cast<unsigned long long>(h.rays),
+                h.seconds > 0.0 ? static_cast<double>(h.rays) / h.seconds : 0.0);
+}
+
+// Before any work: a wrong image type is found in a second, not after the precompute.
+void checkImagePath(const std::string& out) {
+    std::string ext = std::filesystem::path(out).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".exr" && ext != ".png")
+        throw InputError("<argument>", "--out", out + ": the image must be .exr (linear) or .png");
+}
+
+int relightMap(const RelightOptions& o, const std::filesystem::path& map_path) {
+    checkImagePath(o.out);
+    if (o.repeat < 1 || o.repeat > 1000) throw InputError("<argument>", "--repeat", "must be in [1, 1000]");
+    const Preset preset = presetFromName(o.preset);
+    auto start = Clock::now();
+    const auto map = raymaps::RayMap::open(map_path);
+    map->loadAll();
+    const double load_s = secondsSince(start);
+    start = Clock::now();
+    const Recipe recipe = loadRecipeFile(o.recipe);
+    const LayeredBrdf brdf = computeLayeredBrdf(recipe, presetSettings(preset));
+    const double brdf_s = secondsSince(start);
+    start = Clock::now();
+    const raymaps::RelightTables tables(brdf, map->header().cells, map->header().orders);
+    const double tables_s = secondsSince(start);
+    raymaps::RgbImage image;
+    double best_s = 1e30;
+    for (int i = 0; i < o.repeat; ++i) {
+        start = Clock::now();
+        image = raymaps::relight(*map, tables);
+        best_s = std::min(best_s, secondsSince(start));
+    }
+    raymaps::writeImage(image, o.out, o.exposure_ev);
+    std::printf("relit %s: %d x %d, %llu paint pixels\n", o.out.c_str(), image.width, image.height,
+                static_cast<unsigned long long>(map->header().paint_pixels));
+    std::printf("load %.1f ms, fast model (%s) %.1f ms, relight tables %.1f ms, relight %.2f ms%s\n",
+                1e3 * load_s, o.preset.c_str(), 1e3 * brdf_s, 1e3 * tables_s, 1e3 * best_s,
+                o.repeat > 1 ? " (best of --repeat)" : "");
+    return 0;
+}
+
+// The intermediate ray map of `render` is removed however the command ends.
+class RemoveOnExit {
+public:
+    explicit RemoveOnExit(std::filesystem::path path) : m_path(std::move(path)) {}
+    RemoveOnExit(const RemoveOnExit&) = delete;
+    RemoveOnExit& operator=(const RemoveOnExit&) = delete;
+    RemoveOnExit(RemoveOnExit&&) = delete;
+    RemoveOnExit& operator=(RemoveOnExit&&) = delete;
+    ~RemoveOnExit() {
+        std::error_code ec;
+        std::filesystem::remove(m_path, ec);
+    }
+
+private:
+    std::filesystem::path m_path;
+};
+
+}  // namespace
+
+void addRaymapCommands(CLI::App& app, CommandAction& action) {
+    auto b = std::make_shared<BuildOptions>();
+    CLI::App* raymap = app.add_subcommand("raymap", "Ray maps: precompute a scene once, relight its paint");
+    raymap->require_subcommand(1);
+    CLI::App* cmd = raymap->add_subcommand("build", "Trace SCENE.json once and write its ray map");
+    cmd->add_option("scene", b->scene, "Scene JSON file")->required();
+    cmd->add_option("--out", b->out, "Ray-map file to write (.prm)")->required();
+    addBuildOptions(cmd, *b);
+    cmd->callback([b, &action] {
+        action = [b] {
+            build(*b, b->out);
+            return 0;
+        };
+    });
+
+    auto r = std::make_shared<RelightOptions>();
+    CLI::App* relight = app.add_subcommand("relight", "Re-shade the paint of a ray map with a recipe");
+    relight->add_option("map", r->map, "Ray-map file (.prm)")->required();
+    addRelightOptions(relight, *r);
+    relight->add_option("--repeat", r->repeat, "Relight this many times and report the best time")
+        ->capture_default_str();
+    relight->callback([r, &action] { action = [r] { return relightMap(*r, r->map); }; });
+
+    auto rb = std::make_shared<BuildOptions>();
+    auto rr = std::make_shared<RelightOptions>();
+    CLI::App* render = app.add_subcommand("render", "raymap build, then relight (the map is not kept)");
+    render->add_option("scene", rb->scene, "Scene JSON file")->required();
+    addRelightOptions(render, *rr);
+    addBuildOptions(render, *rb);
+    render->callback([rb, rr, &action] {
+        action = [rb, rr] {
+            const std::filesystem::path map = std::filesystem::temp_directory_path() /
+                                              ("paintlab-render-" + std::to_string(getpid()) + ".prm");
+            checkImagePath(rr->out);
+            (void)presetFromName(rr->preset);
+            const RemoveOnExit remove(map);
+            build(*rb, map);
+            return relightMap(*rr, map);
+        };
+    });
+}
+
+}  // namespace paintlab::cli

@@ -1,0 +1,123 @@
+#pragma once
+// Ray maps (docs/RAYMAPS.md): a scene traced once from its camera, with the
+// final radiance of everything that is not paint baked, and for every paint
+// pixel a bounded record of what shading it needs (frame, view, light
+// moments, explicit-light visibility, mirror radiance). relight.h re-shades
+// the paint with any LayeredBrdf in a time that depends on the image size only.
+//
+// File (chunk_file.h framing, magic PLRAYMAP, version 1): a header chunk
+// (JSON text: image size, J cells, M_L orders, band height, the explicit
+// lights, the scene file's name, the record layout's size, statistics), then
+// per band of rows a BAKE chunk (baked radiance, 3 half floats per pixel) and
+// a PNTR chunk (the band's paint records, recordBytes() each, layout in
+// raymap.cpp). Bands are read and checked when first used.
+
+#include "paintlab/raymaps/scene.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace paintlab::raymaps {
+
+struct RayMapSettings {
+    int aa_samples = 4;         // camera samples per pixel (stratified, rounded to a square)
+    int bake_paths = 4;         // paths per camera sample that meets a non-paint surface
+    int light_rays = 64;        // hemisphere rays per paint pixel for the light moments
+    int cells = 4;              // J: cells in mu_i (equal projected solid angle)
+    int orders = 4;             // M_L: azimuthal Fourier orders of the incident light
+    int sun_shadow_rays = 8;    // per sun and camera sample (soft shadows of the sun's disk)
+    int max_depth = 4;          // path vertices of the bake
+    int indirect_depth = 2;     // path vertices behind a moment or mirror ray
+    int max_delta_bounces = 8;  // mirror / glass bounces followed before the paint
+    int band_rows = 32;         // rows per chunk
+    std::uint64_t seed = 1;
+};
+
+// Throws InputError ("<argument>", field) if a setting is out of its range.
+void validateRayMapSettings(const RayMapSettings& settings);
+
+struct ExplicitLight {
+    enum class Kind { Sun, Point };
+    Kind kind = Kind::Sun;
+    Eigen::Vector3d vector{0.0, 1.0, 0.0};  // Sun: unit direction towards it; Point: position
+    Rgb3 power{1.0, 1.0, 1.0};              // Sun: irradiance W/m^2; Point: intensity W/sr
+    double solid_angle_sr = 0.0;            // Sun: of its disk; Point: 0
+};
+
+struct RayMapHeader {
+    int width = 0;
+    int height = 0;
+    int cells = 4;
+    int orders = 4;
+    int band_rows = 32;
+    std::vector<ExplicitLight> lights;
+    std::string scene_file;
+    double paint_proxy_albedo = 0.0;
+    int env_lights = 0;  // K_env: HDR regions extracted as lights (not yet: 0)
+    // Statistics of the precompute.
+    std::uint64_t paint_pixels = 0;
+    std::uint64_t rays = 0;
+    double seconds = 0.0;
+};
+
+// Bytes of one paint record for J cells, M_L orders and K lights.
+std::size_t recordBytes(int cells, int orders, int lights);
+
+struct RayMapBand {
+    int first_row = 0;
+    int rows = 0;
+    std::vector<std::uint16_t> baked;  // half floats, rows x width x 3
+    std::vector<std::byte> records;    // paint records, ascending pixel index
+    std::size_t record_count = 0;
+};
+
+// An opened ray-map file. Construction reads the header and indexes the
+// chunks; bands are read, checked and kept on first use.
+class RayMap {
+public:
+    // Throws InputError naming the file (and the chunk or field) if it is
+    // missing, not a ray map, of a newer version, truncated or inconsistent.
+    static std::unique_ptr<RayMap> open(const std::filesystem::path& path);
+    ~RayMap();
+    RayMap(const RayMap&) = delete;
+    RayMap& operator=(const RayMap&) = delete;
+    RayMap(RayMap&&) = delete;
+    RayMap& operator=(RayMap&&) = delete;
+
+    const RayMapHeader& header() const { return m_header; }
+    const std::filesystem::path& path() const;
+    int bandCount() const { return static_cast<int>(m_bands.size()); }
+    std::size_t recordBytes() const { return m_record_bytes; }
+    // Thread safe. Throws InputError naming the file and the chunk if the
+    // band is corrupt (checksum, sizes, pixel indices).
+    const RayMapBand& band(int index) const;
+    // Reads every band (in parallel).
+    void loadAll() const;
+
+private:
+    struct Impl;
+    RayMap() = default;
+    RayMapHeader m_header;
+    std::size_t m_record_bytes = 0;
+    std::unique_ptr<Impl> m_impl;
+    mutable std::vector<std::unique_ptr<RayMapBand>> m_bands;
+    mutable std::vector<std::unique_ptr<std::once_flag>> m_once;
+};
+
+// Called with the fraction done (0..1); return false to cancel.
+using RayMapProgress = std::function<bool(double fraction)>;
+
+// Traces `scene` (camera, objects, environment, lights) and writes the ray
+// map to `out` (atomically: nothing under that name unless it succeeds).
+// Throws InputError for bad settings or scene content (missing files),
+// Error("cancelled") if progress returns false, Error on I/O failure.
+RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, const std::filesystem::path& out,
+                         const RayMapProgress& progress = {});
+
+}  // namespace paintlab::raymaps

@@ -1,0 +1,319 @@
+// The precompute of a ray map (docs/RAYMAPS.md): camera rays through the
+// mirrors and glass to the first other surface; the paint's records there,
+// the baked radiance everywhere else.
+
+#include "path_tracer.h"
+#include "raymap_io.h"
+#include "record_layout.h"
+#include "sampling.h"
+#include "scene_tracer.h"
+
+#include "paintlab/engine/error.h"
+#include "paintlab/raymaps/environment_map.h"
+#include "paintlab/raymaps/raymap.h"
+#include "paintlab/raymaps/scene_geometry.h"
+
+#include <Imath/half.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <span>
+
+namespace paintlab::raymaps {
+
+namespace {
+
+void checkRange(int value, int low, int high, const char* field) {
+    if (value < low || value > high)
+        throw InputError("<argument>", field,
+                         std::to_string(value) + " is outside [" + std::to_string(low) + ", " +
+                             std::to_string(high) + "]");
+}
+
+// What the camera samples of one pixel found on the paint, summed.
+struct PaintAccumulator {
+    int samples = 0;
+    Vec3 normal, view, position;
+    double footprint = 0.0;
+    Rgb3 weight = Rgb3::Zero();
+    Rgb3 mirror = Rgb3::Zero();
+    std::vector<Rgb3> moments;  // [j * orders + m]
+    std::vector<double> visibility;
+};
+
+class PixelTracer {
+public:
+    // `pt` bakes the non-paint samples; `indirect` (shorter paths) serves the
+    // paint's moment and mirror rays.
+    PixelTracer(const PathTracer& pt, const PathTracer& indirect, const PinholeCamera& camera,
+                const RayMapSettings& s, int width)
+        : m_pt(pt), m_indirect(indirect), m_camera(camera), m_s(s), m_width(width),
+          m_lights(static_cast<int>(pt.suns().size() + pt.points().size())) {
+        m_side = std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(s.aa_samples)))));
+        const int samples = m_side * m_side;
+        // Equally spaced azimuths (one random rotation per cell): the moments
+        // of a light that varies slowly in azimuth are exact for orders below
+        // this count, so it is at least M_L.
+        m_azimuths = std::max(s.orders, (s.light_rays + s.cells * samples - 1) / (s.cells * samples));
+    }
+
+    // Returns the baked radiance; fills `paint` if a sample met the paint.
+    Rgb3 trace(int x, int y, PaintAccumulator& paint) const {
+        const auto pixel = static_cast<std::uint64_t>(y) * static_cast<std::uint64_t>(m_width) +
+                           static_cast<std::uint64_t>(x);
+        Rng rng(m_s.seed, pixel, 0);
+        const int samples = m_side * m_side;
+        Rgb3 baked = Rgb3::Zero();
+        paint.samples = 0;
+        paint.weight.setZero();
+        paint.mirror.setZero();
+        paint.moments.assign(static_cast<std::size_t>(m_s.cells * m_s.orders), Rgb3::Zero());
+        paint.visibility.assign(static_cast<std::size_t>(m_lights), 0.0);
+        for (int sy = 0; sy < m_side; ++sy)
+            for (int sx = 0; sx < m_side; ++sx) {
+                const double px = x + (sx + rng.uniform()) / m_side;
+                const double py = y + (sy + rng.uniform()) / m_side;
+                baked += traceSample(m_camera.direction(px, py), rng, paint);
+            }
+        if (paint.samples > 0) {
+            const double inv = 1.0 / paint.samples;
+            for (Rgb3& l : paint.moments) l *= inv;
+            for (double& v : paint.visibility) v *= inv;
+            paint.mirror *= inv;
+            paint.weight /= samples;
+        }
+        return baked / samples;
+    }
+
+private:
+    Rgb3 traceSample(Vec3 dir, Rng& rng, PaintAccumulator& paint) const {
+        Vec3 origin = m_camera.origin();
+        Rgb3 beta = Rgb3::Ones();
+        double distance = 0.0;
+        for (int bounce = 0;; ++bounce) {
+            const Hit hit = m_pt.tracer().intersect(origin, dir);
+            if (!hit.found) return beta.cwiseProduct(m_pt.escaped(dir, true));
+            distance += hit.t;
+            const Material& m = m_pt.material(hit);
+            if (m.kind == MaterialKind::Paint) {
+                addPaint(hit, dir, beta, distance, rng, paint);
+                return Rgb3::Zero();
+            }
+            if ((m.kind == MaterialKind::Mirror || m.kind == MaterialKind::Glass) &&
+                bounce < m_s.max_delta_bounces) {
+                dir = m_pt.deltaBounce(m, hit, dir, rng, beta);
+                origin = m_pt.offset(hit.position, hit.geometric_normal, dir);
+                continue;
+            }
+            Rgb3 l = Rgb3::Zero();
+            for (int k = 0; k < m_s.bake_paths; ++k) l += m_pt.radianceAt(hit, dir, rng, true);
+            return beta.cwiseProduct(l) / m_s.bake_paths;
+        }
+    }
+
+    void addPaint(const Hit& hit, const Vec3& dir, const Rgb3& beta, double distance, Rng& rng,
+                  PaintAccumulator& paint) const {
+        const Vec3 wo = -dir;
+        const Vec3 ng =
+            hit.geometric_normal.dot(wo) >= 0.0 ? hit.geometric_normal : Vec3(-hit.geometric_normal);
+        Vec3 ns = hit.shading_normal.dot(ng) >= 0.0 ? hit.shading_normal : Vec3(-hit.shading_normal);
+        if (ns.dot(wo) <= 1e-3) ns = ng;  // silhouettes: the interpolated normal faces away
+        // x towards the view: the azimuth of wi is measured from the view's.
+        const Frame frame = Frame::fromNormalAndTangent(ns, wo);
+        const Vec3 origin = m_pt.offset(hit.position, ng, ng);
+        if (paint.samples == 0) {
+            paint.normal = ns;
+            paint.view = wo;
+            paint.position = hit.position;
+            paint.footprint = distance * m_camera.pixelAngle();
+        }
+        ++paint.samples;
+        paint.weight += beta;
+
+        // Light moments: l^m_j = (pi / J) E[L cos(m phi)] for directions
+        // uniform in the projected solid angle of cell j (mu^2 in [j/J, (j+1)/J]).
+        const int cells = m_s.cells;
+        for (int j = 0; j < cells; ++j) {
+            const double rotation = rng.uniform();
+            for (int a = 0; a < m_azimuths; ++a) {
+                const double mu = std::sqrt((j + rng.uniform()) / cells);
+                const double phi = 2.0 * kPi * (a + rotation) / m_azimuths;
+                const double sin_theta = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+                Vec3 wi = frame.toWorld(Vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu));
+                // Below the triangle's own plane (shading normal != geometric
+                // normal): mirrored above it, where the light is most alike.
+                if (wi.dot(ng) <= 0.0) wi -= 2.0 * wi.dot(ng) * ng;
+                const Rgb3 l = m_indirect.radiance(origin, wi, rng, false) * (kPi / (cells * m_azimuths));
+                for (int m = 0; m < m_s.orders; ++m)
+                    paint.moments[static_cast<std::size_t>(j * m_s.orders + m)] += l * std::cos(m * phi);
+            }
+        }
+        std::size_t k = 0;
+        for (const auto& sun : m_pt.suns())
+            paint.visibility[k++] += m_pt.sunVisibility(hit.position, ng, sun, m_s.sun_shadow_rays, rng);
+        for (const auto& point : m_pt.points())
+            paint.visibility[k++] += m_pt.pointVisible(hit.position, ng, point) ? 1.0 : 0.0;
+        Vec3 r = reflect(wo, ns);
+        if (r.dot(ng) <= 0.0) r = reflect(wo, ng);
+        paint.mirror += m_indirect.radiance(origin, r, rng, true);
+    }
+
+    const PathTracer& m_pt;
+    const PathTracer& m_indirect;
+    const PinholeCamera& m_camera;
+    const RayMapSettings& m_s;
+    int m_width;
+    int m_lights;
+    int m_side = 1;
+    int m_azimuths = 4;
+};
+
+template <typename T> void put(std::byte* at, const T& value) { std::memcpy(at, &value, sizeof(T)); }
+
+std::uint16_t halfBits(double x) {
+    // Half's largest finite value: brighter radiance saturates (a sun's disk
+    // seen directly), which no display exposure distinguishes.
+    constexpr double kHalfMax = 65504.0;
+    return Imath::half(static_cast<float>(std::clamp(x, 0.0, kHalfMax))).bits();
+}
+
+void encodeRecord(const PaintAccumulator& p, std::uint32_t pixel, const RecordLayout& layout,
+                  std::byte* out) {
+    put(out + RecordLayout::kPixel, pixel);
+    std::uint16_t oct[2];
+    encodeOctahedral(p.normal, oct);
+    std::memcpy(out + RecordLayout::kNormal, oct, 4);
+    encodeOctahedral(p.view, oct);
+    std::memcpy(out + RecordLayout::kView, oct, 4);
+    for (int c = 0; c < 3; ++c) {
+        const auto uc = static_cast<std::size_t>(c);
+        put(out + RecordLayout::kPosition + 4 * uc, static_cast<float>(p.position[c]));
+        put(out + RecordLayout::kWeight + 2 * uc, halfBits(p.weight[c]));
+        put(out + RecordLayout::kMirror + 4 * uc, static_cast<float>(p.mirror[c]));
+    }
+    put(out + RecordLayout::kFootprint, halfBits(p.footprint));
+    const auto orders = static_cast<std::size_t>(layout.orders);
+    for (std::size_t j = 0; j < static_cast<std::size_t>(layout.cells); ++j) {
+        const Rgb3& l0 = p.moments[j * orders];
+        for (int c = 0; c < 3; ++c) {
+            const auto uc = static_cast<std::size_t>(c);
+            put(out + RecordLayout::kMoments0 + 6 * j + 2 * uc, halfBits(l0[c]));
+            for (std::size_t m = 1; m < orders; ++m) {
+                const double ratio = l0[c] > 0.0 ? p.moments[j * orders + m][c] / l0[c] : 0.0;
+                const auto q = static_cast<std::int8_t>(std::lround(127.0 * std::clamp(ratio, -1.0, 1.0)));
+                put(out + layout.momentsM() + 3 * ((orders - 1) * j + (m - 1)) + uc, q);
+            }
+        }
+    }
+    for (std::size_t k = 0; k < p.visibility.size(); ++k)
+        put(out + layout.visibility() + k,
+            static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(p.visibility[k], 0.0, 1.0))));
+}
+
+}  // namespace
+
+std::size_t recordBytes(int cells, int orders, int lights) {
+    return RecordLayout{cells, orders, lights}.bytes();
+}
+
+void validateRayMapSettings(const RayMapSettings& s) {
+    checkRange(s.aa_samples, 1, 256, "aa_samples");
+    checkRange(s.bake_paths, 1, 1024, "bake_paths");
+    checkRange(s.light_rays, 1, 65536, "light_rays");
+    checkRange(s.cells, 1, 16, "cells");
+    checkRange(s.orders, 1, 16, "orders");
+    checkRange(s.sun_shadow_rays, 1, 256, "sun_shadow_rays");
+    checkRange(s.max_depth, 1, 64, "max_depth");
+    checkRange(s.indirect_depth, 1, 64, "indirect_depth");
+    checkRange(s.max_delta_bounces, 0, 64, "max_delta_bounces");
+    checkRange(s.band_rows, 1, 4096, "band_rows");
+}
+
+RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, const std::filesystem::path& out,
+                         const RayMapProgress& progress) {
+    validateRayMapSettings(settings);
+    const auto start = std::chrono::steady_clock::now();
+    const SceneGeometry geometry = buildSceneGeometry(scene);
+    const EnvironmentMap environment = EnvironmentMap::load(scene.environment);
+    const SceneTracer tracer(geometry);
+    const PathTracer pt(scene, tracer, environment, settings.max_depth);
+    const PathTracer pt_indirect(scene, tracer, environment, settings.indirect_depth);
+    const PinholeCamera camera(scene.camera);
+
+    RayMapHeader header;
+    header.width = scene.camera.width;
+    header.height = scene.camera.height;
+    header.cells = settings.cells;
+    header.orders = settings.orders;
+    header.band_rows = settings.band_rows;
+    header.scene_file = scene.file.filename().string();
+    header.paint_proxy_albedo = kPaintProxyAlbedo;
+    for (const auto& sun : pt.suns())
+        header.lights.push_back({ExplicitLight::Kind::Sun, sun.direction, sun.irradiance,
+                                 2.0 * kPi * (1.0 - sun.cos_half_angle)});
+    for (const auto& point : pt.points())
+        header.lights.push_back({ExplicitLight::Kind::Point, point.position, point.intensity, 0.0});
+    if (header.lights.size() > 255)
+        throw InputError(scene.file.string(), "lights", "more than 255 explicit lights");
+    const RecordLayout layout{settings.cells, settings.orders, static_cast<int>(header.lights.size())};
+
+    // The header is written last (it holds the statistics), so the bands go
+    // to memory first: a ray map is a few hundred bytes per paint pixel.
+    const int width = header.width;
+    const int bands = (header.height + settings.band_rows - 1) / settings.band_rows;
+    std::vector<RayMapBand> done(static_cast<std::size_t>(bands));
+    const PixelTracer pixels(pt, pt_indirect, camera, settings, width);
+    for (int b = 0; b < bands; ++b) {
+        RayMapBand& band = done[static_cast<std::size_t>(b)];
+        band.first_row = b * settings.band_rows;
+        band.rows = std::min(settings.band_rows, header.height - band.first_row);
+        band.baked.assign(static_cast<std::size_t>(band.rows) * static_cast<std::size_t>(width) * 3, 0);
+        std::vector<std::vector<std::byte>> row_records(static_cast<std::size_t>(band.rows));
+        tbb::parallel_for(tbb::blocked_range<int>(0, band.rows), [&](const tbb::blocked_range<int>& range) {
+            PaintAccumulator paint;
+            for (int r = range.begin(); r != range.end(); ++r) {
+                const int y = band.first_row + r;
+                auto& records = row_records[static_cast<std::size_t>(r)];
+                for (int x = 0; x < width; ++x) {
+                    const Rgb3 baked = pixels.trace(x, y, paint);
+                    const std::size_t at =
+                        3 * (static_cast<std::size_t>(r) * static_cast<std::size_t>(width) +
+                             static_cast<std::size_t>(x));
+                    for (int c = 0; c < 3; ++c)
+                        band.baked[at + static_cast<std::size_t>(c)] = halfBits(baked[c]);
+                    if (paint.samples == 0) continue;
+                    const std::size_t offset = records.size();
+                    records.resize(offset + layout.bytes());
+                    encodeRecord(paint,
+                                 static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(width) +
+                                     static_cast<std::uint32_t>(x),
+                                 layout, records.data() + offset);
+                }
+            }
+        });
+        for (const auto& records : row_records) {
+            band.records.insert(band.records.end(), records.begin(), records.end());
+            band.record_count += records.size() / layout.bytes();
+        }
+        header.paint_pixels += band.record_count;
+        if (progress && !progress(static_cast<double>(b + 1) / bands)) throw Error("cancelled");
+    }
+    header.rays = tracer.raysTraced();
+    header.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    ChunkFileWriter writer(out, kRayMapMagic, kRayMapVersion);
+    const std::string json = headerToJson(header);
+    writer.addChunk(kHeaderChunk, std::as_bytes(std::span(json.data(), json.size())));
+    for (const RayMapBand& band : done) {
+        writer.addChunk(kBakedChunk, std::as_bytes(std::span(band.baked)));
+        writer.addChunk(kPaintChunk, std::span<const std::byte>(band.records));
+    }
+    writer.finish();
+    return header;
+}
+
+}  // namespace paintlab::raymaps

@@ -1,0 +1,300 @@
+// Ray maps: precompute, file and relight against independent truths (the
+// BRDF's own albedo and eval(), energy), determinism, and the rejection of
+// corrupt or truncated files.
+
+#include "scratch_dir.h"
+
+#include "paintlab/engine/error.h"
+#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/recipe_json.h"
+#include "paintlab/raymaps/raymap.h"
+#include "paintlab/raymaps/relight.h"
+#include "paintlab/raymaps/scene.h"
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace paintlab::raymaps {
+namespace {
+
+const std::filesystem::path kData = std::filesystem::path(PAINTLAB_RAYMAPS_TEST_DATA_DIR);
+
+LayeredBrdf brdfOf(const std::filesystem::path& recipe) {
+    return computeLayeredBrdf(loadRecipeFile(recipe), presetSettings(Preset::Preview));
+}
+
+// A lat-long EXR of constant radiance.
+std::filesystem::path writeUniformSky(const test::ScratchDir& dir, float radiance) {
+    const auto path = dir.path() / "uniform.exr";
+    const int w = 16;
+    const int h = 8;
+    std::vector<float> rgb(static_cast<std::size_t>(w * h * 3), radiance);
+    auto out = OIIO::ImageOutput::create(path.string());
+    EXPECT_TRUE(out && out->open(path.string(), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
+    EXPECT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()));
+    out->close();
+    return path;
+}
+
+// A paint sphere of radius 1 at the origin, seen from +z, nothing else.
+std::string sphereScene(const std::filesystem::path& sky, int size) {
+    return R"({"schema_version": 1,
+      "camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "vertical_fov_deg": 35, "width": )" +
+           std::to_string(size) + R"(, "height": )" + std::to_string(size) + R"(},
+      "environment": {"file": ")" +
+           sky.string() + R"("},
+      "materials": [{"name": "paint", "kind": "paint"}],
+      "objects": [{"name": "ball", "sphere": {"radius": 1, "subdivisions": 5}, "material": "paint"}]})";
+}
+
+RayMapSettings smallSettings() {
+    RayMapSettings s;
+    s.aa_samples = 1;
+    s.light_rays = 16;
+    s.bake_paths = 1;
+    s.sun_shadow_rays = 4;
+    s.band_rows = 8;
+    return s;
+}
+
+Rgb3 pixel(const RgbImage& image, int x, int y) {
+    const auto i = 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
+                        static_cast<std::size_t>(x));
+    return {image.rgb[i], image.rgb[i + 1], image.rgb[i + 2]};
+}
+
+// Under a uniform environment L a convex body sees L in every direction,
+// so its radiance is L x albedo(wo) (reciprocity), whatever its shape.
+// With a uniform sky every moment ray returns exactly L: l^0_j = L pi / J,
+// and l^m (m >= 1) vanish exactly because the azimuths of each cell are
+// equally spaced (sum_a cos(m phi_a) = 0 for 0 < m < count); no order is
+// truncated, and sum_j fbar^0_j l^0_j = 2 pi L int a_0 mu dmu = L albedo.
+// What remains: half-float storage (5e-4), the 8-point Gauss rule per cell
+// and the fast model's own quadrature behind albedo() (1e-3 together for
+// this flat BRDF), linear interpolation in mu_o (the albedo is flat to 1e-4
+// here), and the pixel's sample not being at its centre. Budget 0.5 %.
+TEST(RayMap, ConvexLambertianUnderUniformSkyShowsAlbedoTimesRadiance) {
+    const test::ScratchDir dir;
+    const float sky_radiance = 0.8F;
+    const int size = 24;
+    const Scene scene = parseSceneJson(sphereScene(writeUniformSky(dir, sky_radiance), size), "sphere.json");
+    const auto map_path = dir.path() / "sphere.prm";
+    const RayMapHeader built = buildRayMap(scene, smallSettings(), map_path);
+    EXPECT_GT(built.paint_pixels, 100U);
+
+    const auto map = RayMap::open(map_path);
+    const LayeredBrdf brdf = brdfOf(kData / "lambertian_index_matched.json");
+    const RelightTables tables(brdf, map->header().cells, map->header().orders);
+    const RgbImage image = relight(*map, tables);
+    const double camera_z = 4.0;
+    const double half_height = std::tan(0.5 * 35.0 * std::numbers::pi / 180.0);
+    int checked = 0;
+    double worst = 0.0;
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            // The pixel centre's ray and its hit on the unit sphere.
+            const Eigen::Vector3d d = Eigen::Vector3d((2.0 * (x + 0.5) - size) / size * half_height,
+                                                      (size - 2.0 * (y + 0.5)) / size * half_height, -1.0)
+                                          .normalized();
+            const Eigen::Vector3d o(0, 0, camera_z);
+            const double b = o.dot(d);
+            const double disc = b * b - (o.squaredNorm() - 1.0);
+            // Only pixels well inside the silhouette (every sample on the paint).
+            if (disc < 0.15) continue;
+            const Eigen::Vector3d p = o + (-b - std::sqrt(disc)) * d;
+            const double mu_o = std::clamp(p.normalized().dot(-d), 0.0, 1.0);
+            const Direction wo{std::sqrt(1.0 - mu_o * mu_o), 0.0, mu_o};
+            const Rgb3 expected = tables.toRgb(brdf.albedo(wo)) * sky_radiance;
+            const Rgb3 got = pixel(image, x, y);
+            for (int c = 0; c < 3; ++c) {
+                EXPECT_NEAR(got[c], expected[c], 5e-3 * expected[c])
+                    << "pixel " << x << ", " << y << " channel " << c;
+                worst = std::max(worst, std::abs(got[c] - expected[c]) / expected[c]);
+            }
+            ++checked;
+        }
+    EXPECT_GT(checked, 100);
+    std::printf("%d paint pixels, largest relative error %.2e\n", checked, worst);
+    // And the background is the sky itself.
+    EXPECT_NEAR(pixel(image, 0, 0).x(), sky_radiance, 1e-3);
+}
+
+// A plane lit by a sun alone (black sky), seen from far away through a
+// narrow field so that wo is the same at every pixel to 0.15 degrees:
+// L = f_rgb(wi, wo) E cos(theta_i) with f from the BRDF's own eval().
+// The explicit-light path adds only the light table's trilinear
+// interpolation (spacing 1/32 in mu, 1/16 in cos dphi) and half floats;
+// the flake paint's lobe is ~25 degrees wide, so the interpolation error
+// h^2 f''/8 stays below 1 % (measured: 0.5 % worst pixel). Budget 1.5 %.
+TEST(RayMap, SunLitPlaneMatchesBrdfTimesIrradianceTimesCosine) {
+    const test::ScratchDir dir;
+    const Eigen::Vector3d sun = Eigen::Vector3d(0.4, 0.8, -0.3).normalized();
+    const Eigen::Vector3d eye(0.0, 300.0, 400.0);
+    const std::string text = R"({"schema_version": 1,
+      "camera": {"position": [0, 300, 400], "look_at": [0, 0, 0], "vertical_fov_deg": 0.3, "width": 12, "height": 12},
+      "environment": {"intensity": 0},
+      "lights": [{"type": "sun", "direction": [0.4, 0.8, -0.3], "irradiance": [2, 3, 4]}],
+      "materials": [{"name": "paint", "kind": "paint"}],
+      "objects": [{"name": "panel", "plane": {"size": 20}, "material": "paint"}]})";
+    const Scene scene = parseSceneJson(text, "panel.json");
+    const auto map_path = dir.path() / "panel.prm";
+    buildRayMap(scene, smallSettings(), map_path);
+    const auto map = RayMap::open(map_path);
+    ASSERT_EQ(map->header().lights.size(), 1U);
+    const LayeredBrdf brdf = brdfOf(std::filesystem::path(PAINTLAB_TEST_DATA_DIR) / "valid_minimal.json");
+    const RelightTables tables(brdf, map->header().cells, map->header().orders);
+    const RgbImage image = relight(*map, tables);
+
+    // Local frame of the plane: z = +y (normal), x = +x, y = -z (right-handed).
+    const auto local = [](const Eigen::Vector3d& w) { return Direction{w.x(), -w.z(), w.y()}; };
+    const Eigen::Vector3d wo = eye.normalized();
+    const Rgb3 f = tables.toRgb(brdf.eval(local(sun), local(wo)));
+    const Rgb3 expected = f.cwiseProduct(Rgb3(2, 3, 4)) * sun.y();
+    double worst = 0.0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                EXPECT_NEAR(pixel(image, x, y)[c], expected[c], 1.5e-2 * expected[c])
+                    << "pixel " << x << ", " << y << " channel " << c;
+                worst = std::max(worst, std::abs(pixel(image, x, y)[c] - expected[c]) / expected[c]);
+            }
+    std::printf("largest relative error %.2e\n", worst);
+}
+
+// The light table against eval() at off-grid points of a flake paint: the
+// same interpolation budget as above, here over the whole hemisphere away
+// from grazing angles (where f itself varies fastest).
+TEST(RelightTables, LightTableMatchesEvalWithinInterpolationError) {
+    const LayeredBrdf brdf = brdfOf(std::filesystem::path(PAINTLAB_TEST_DATA_DIR) / "valid_minimal.json");
+    const RelightTables tables(brdf, 4, 4);
+    double worst = 0.0;
+    for (double theta_o : {7.0, 23.0, 41.0, 58.0})
+        for (double theta_i : {11.0, 29.0, 47.0, 63.0})
+            for (double phi : {0.0, 37.0, 95.0, 170.0}) {
+                const Direction wi = directionFromAnglesDeg(theta_i, phi);
+                const Direction wo = directionFromAnglesDeg(theta_o, 0.0);
+                const Rgb3 f = tables.toRgb(brdf.eval(wi, wo));
+                const Rgb3 t = tables.lightTable(wo.z, wi.z, std::cos(phi * std::numbers::pi / 180.0));
+                for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(t[c] - f[c]) / f[c]);
+            }
+    std::printf("largest relative error of the light table: %.2e\n", worst);
+    EXPECT_LT(worst, 1.5e-2);
+}
+
+// The same pixels come out for one thread and for two: every pixel draws
+// its own random numbers.
+TEST(RayMap, OutputDoesNotDependOnTheThreadCount) {
+    const test::ScratchDir dir;
+    const Scene scene = parseSceneJson(sphereScene(writeUniformSky(dir, 1.0F), 16), "sphere.json");
+    RayMapSettings s = smallSettings();
+    std::vector<std::vector<float>> images;
+    for (int threads : {1, 2}) {
+        const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                        static_cast<std::size_t>(threads));
+        const auto path = dir.path() / ("t" + std::to_string(threads) + ".prm");
+        buildRayMap(scene, s, path);
+        const auto map = RayMap::open(path);
+        const LayeredBrdf brdf = brdfOf(std::filesystem::path(PAINTLAB_TEST_DATA_DIR) / "valid_minimal.json");
+        images.push_back(relight(*map, RelightTables(brdf, 4, 4)).rgb);
+    }
+    ASSERT_EQ(images[0].size(), images[1].size());
+    EXPECT_TRUE(images[0] == images[1]);
+}
+
+class RayMapFile : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const Scene scene = parseSceneJson(sphereScene(writeUniformSky(m_dir, 1.0F), 16), "sphere.json");
+        m_path = m_dir.path() / "map.prm";
+        buildRayMap(scene, smallSettings(), m_path);
+    }
+    std::vector<char> bytes() const {
+        std::ifstream in(m_path, std::ios::binary);
+        return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    }
+    void write(const std::vector<char>& data) const {
+        std::ofstream(m_path, std::ios::binary | std::ios::trunc)
+            .write(data.data(), static_cast<std::streamsize>(data.size()));
+    }
+    test::ScratchDir m_dir;
+    std::filesystem::path m_path;
+};
+
+TEST_F(RayMapFile, ReportsItsLayout) {
+    const auto map = RayMap::open(m_path);
+    EXPECT_EQ(map->header().width, 16);
+    EXPECT_EQ(map->bandCount(), 2);
+    // J = 4, M_L = 4, no light: 44 + 24 + 36 bytes (docs/RAYMAPS.md).
+    EXPECT_EQ(map->recordBytes(), 104U);
+    map->loadAll();
+    EXPECT_EQ(map->band(0).record_count + map->band(1).record_count, map->header().paint_pixels);
+}
+
+TEST_F(RayMapFile, CorruptPaintRecordIsRejectedNamingFileAndChunk) {
+    std::vector<char> data = bytes();
+    // The last PNTR chunk ends 32 bytes before the file's end (the end chunk
+    // is a 24-byte header + 8 bytes); flip a byte inside it.
+    data[data.size() - 32 - 50] ^= 0x10;
+    write(data);
+    const auto map = RayMap::open(m_path);  // only chunk headers are read here
+    try {
+        map->loadAll();
+        FAIL() << "a corrupt paint chunk was accepted";
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find(m_path.string()), std::string::npos) << what;
+        EXPECT_NE(what.find("PNTR"), std::string::npos) << what;
+        EXPECT_NE(what.find("checksum"), std::string::npos) << what;
+    }
+}
+
+TEST_F(RayMapFile, TruncatedFileIsRejectedNamingTheFile) {
+    std::vector<char> data = bytes();
+    data.resize(data.size() * 2 / 3);
+    write(data);
+    try {
+        (void)RayMap::open(m_path);
+        FAIL() << "a truncated ray map was opened";
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find(m_path.string()), std::string::npos) << what;
+        EXPECT_NE(what.find("truncated"), std::string::npos) << what;
+    }
+}
+
+TEST_F(RayMapFile, OtherFileIsRejected) {
+    std::vector<char> data = bytes();
+    data[0] = 'X';
+    write(data);
+    EXPECT_THROW((void)RayMap::open(m_path), InputError);
+}
+
+TEST(RayMap, BadSettingsAreInputErrors) {
+    RayMapSettings s;
+    s.cells = 0;
+    EXPECT_THROW(validateRayMapSettings(s), InputError);
+    s = RayMapSettings{};
+    s.orders = 40;
+    EXPECT_THROW(validateRayMapSettings(s), InputError);
+}
+
+TEST(RayMap, CancelledBuildLeavesNoFile) {
+    const test::ScratchDir dir;
+    const Scene scene = parseSceneJson(sphereScene(writeUniformSky(dir, 1.0F), 16), "sphere.json");
+    const auto path = dir.path() / "cancelled.prm";
+    EXPECT_THROW(buildRayMap(scene, smallSettings(), path, [](double) { return false; }), Error);
+    EXPECT_FALSE(std::filesystem::exists(path));
+}
+
+}  // namespace
+}  // namespace paintlab::raymaps
