@@ -71,7 +71,8 @@ public:
         paint.samples = 0;
         paint.weight.setZero();
         paint.mirror.setZero();
-        paint.moments.assign(static_cast<std::size_t>(m_s.cells * m_s.orders), Rgb3::Zero());
+        paint.moments.assign(static_cast<std::size_t>(m_s.cells) * static_cast<std::size_t>(m_s.orders),
+                             Rgb3::Zero());
         paint.visibility.assign(static_cast<std::size_t>(m_lights), 0.0);
         for (int sy = 0; sy < m_side; ++sy)
             for (int sx = 0; sx < m_side; ++sx) {
@@ -149,7 +150,8 @@ private:
                 if (wi.dot(ng) <= 0.0) wi -= 2.0 * wi.dot(ng) * ng;
                 const Rgb3 l = m_indirect.radiance(origin, wi, rng, false) * (kPi / (cells * m_azimuths));
                 for (int m = 0; m < m_s.orders; ++m)
-                    paint.moments[static_cast<std::size_t>(j * m_s.orders + m)] += l * std::cos(m * phi);
+                    paint.moments[static_cast<std::size_t>(j) * static_cast<std::size_t>(m_s.orders) +
+                                  static_cast<std::size_t>(m)] += l * std::cos(m * phi);
             }
         }
         std::size_t k = 0;

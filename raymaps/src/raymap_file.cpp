@@ -25,7 +25,7 @@ json vec3(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()});
 
 class HeaderReader {
 public:
-    HeaderReader(const json& j, std::string file) : m_j(j), m_file(std::move(file)) {}
+    explicit HeaderReader(std::string file) : m_file(std::move(file)) {}
     [[noreturn]] void fail(const std::string& field, const std::string& message) const {
         throw InputError(m_file, "chunk 1 (HEAD) > " + field, message);
     }
@@ -66,7 +66,6 @@ public:
     }
 
 private:
-    const json& m_j;
     std::string m_file;
 };
 
@@ -78,7 +77,7 @@ RayMapHeader parseHeader(const std::vector<std::byte>& payload, const std::strin
     } catch (const json::exception& e) {
         throw InputError(file, "chunk 1 (HEAD)", std::string("header is not valid JSON: ") + e.what());
     }
-    const HeaderReader r(j, file);
+    const HeaderReader r(file);
     RayMapHeader h;
     h.width = r.integer(j, "width", 1, kMaxImageSide, "width");
     h.height = r.integer(j, "height", 1, kMaxImageSide, "height");

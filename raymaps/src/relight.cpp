@@ -43,6 +43,11 @@ inline float fastAcos(float x) {
 // The grid is uniform in the polar angle: the odd Fourier orders of f go as
 // sin(theta) near the normal, which no grid in mu = cos(theta) follows. At
 // the horizon eval() is 0 by definition, so that node takes mu = 0.002.
+// i * n + m in size_t.
+std::size_t index2(int i, int n, int m) {
+    return static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(m);
+}
+
 double muNode(int k) { return std::max(0.002, std::cos(0.5 * kPi * k / (kN - 1))); }
 
 // Continuous index on the theta grid, clamped to its ends.
@@ -57,6 +62,12 @@ float halfToFloat(std::uint16_t bits) {
     Imath::half h;
     h.setBits(bits);
     return static_cast<float>(h);
+}
+
+// The nearest fine-grid node of a position (k, t) on the coarse theta grid.
+inline std::size_t fineIndex(int k, float t) {
+    constexpr float kRatio = static_cast<float>(RelightTables::kFineNodes - 1) / static_cast<float>(kN - 1);
+    return static_cast<std::size_t>((static_cast<float>(k) + t) * kRatio + 0.5F);
 }
 
 template <typename T> T get(const std::byte* at) {
@@ -92,8 +103,9 @@ RelightTables::RelightTables(const LayeredBrdf& brdf, int cells, int orders)
     const int n_phi = std::max(8, brdf.settings().orders);
     const auto nu = static_cast<std::size_t>(kN);
     m_light.assign(nu * nu * static_cast<std::size_t>(kC) * 3, 0.0F);
-    m_moments.assign(nu * static_cast<std::size_t>(cells * orders) * 3, 0.0F);
-    m_coat.assign(nu * 3, 0.0F);
+    const std::size_t per_node = static_cast<std::size_t>(cells) * static_cast<std::size_t>(orders) * 3;
+    std::vector<float> moments(nu * per_node, 0.0F);
+    std::vector<float> coats(nu * 3, 0.0F);
 
     tbb::parallel_for(0, kN, [&](int o) {
         const double mu_o = muNode(o);
@@ -124,7 +136,7 @@ RelightTables::RelightTables(const LayeredBrdf& brdf, int cells, int orders)
         for (int i = 0; i < kN; ++i) {
             coefficients(muNode(i));
             for (int m = 0; m < orders && m < n_phi; ++m)
-                node_a[static_cast<std::size_t>(i * orders + m)] = a[static_cast<std::size_t>(m)];
+                node_a[index2(i, orders, m)] = a[static_cast<std::size_t>(m)];
             for (int c = 0; c < kC; ++c) {
                 const double dphi = kPi * c / (kC - 1);
                 Rgb3 value = Rgb3::Zero();
@@ -158,26 +170,43 @@ RelightTables::RelightTables(const LayeredBrdf& brdf, int cells, int orders)
                     const double t = x - k;
                     const double w = 0.5 * (a1 - a0) * kGaussW[g] * std::cos(theta) * std::sin(theta);
                     for (int m = 0; m < orders; ++m)
-                        sum[static_cast<std::size_t>(m)] +=
-                            w * ((1.0 - t) * node_a[static_cast<std::size_t>(k * orders + m)] +
-                                 t * node_a[static_cast<std::size_t>((k + 1) * orders + m)]);
+                        sum[static_cast<std::size_t>(m)] += w * ((1.0 - t) * node_a[index2(k, orders, m)] +
+                                                                 t * node_a[index2(k + 1, orders, m)]);
                 }
             }
             for (int m = 0; m < orders; ++m)
                 for (int ch = 0; ch < 3; ++ch)
-                    m_moments[((static_cast<std::size_t>(o) * static_cast<std::size_t>(cells) +
-                                static_cast<std::size_t>(j)) *
-                                   static_cast<std::size_t>(orders) +
-                               static_cast<std::size_t>(m)) *
-                                  3 +
-                              static_cast<std::size_t>(ch)] =
+                    moments[((static_cast<std::size_t>(o) * static_cast<std::size_t>(cells) +
+                              static_cast<std::size_t>(j)) *
+                                 static_cast<std::size_t>(orders) +
+                             static_cast<std::size_t>(m)) *
+                                3 +
+                            static_cast<std::size_t>(ch)] =
                         static_cast<float>(sum[static_cast<std::size_t>(m)][ch] * 2.0 * cells);
         }
         const Rgb3 coat = toRgb(brdf.specularReflectance(mu_o));
         for (int ch = 0; ch < 3; ++ch)
-            m_coat[3 * static_cast<std::size_t>(o) + static_cast<std::size_t>(ch)] =
+            coats[3 * static_cast<std::size_t>(o) + static_cast<std::size_t>(ch)] =
                 static_cast<float>(coat[ch]);
     });
+    // Resampled on the fine grid (see kFineNodes), m >= 1 scaled by 1/127.
+    constexpr int kF = kFineNodes;
+    m_moments.assign(static_cast<std::size_t>(kF) * per_node, 0.0F);
+    m_coat.assign(static_cast<std::size_t>(kF) * 3, 0.0F);
+    for (int f = 0; f < kF; ++f) {
+        const double x = std::min(static_cast<double>(f) * (kN - 1) / (kF - 1), kN - 1 - 1e-9);
+        const auto k = static_cast<std::size_t>(x);
+        const auto t = static_cast<float>(x - static_cast<double>(k));
+        const auto uf = static_cast<std::size_t>(f);
+        for (std::size_t e = 0; e < per_node; ++e) {
+            const bool first_order = (e / 3) % static_cast<std::size_t>(orders) == 0;
+            m_moments[uf * per_node + e] =
+                ((1.0F - t) * moments[k * per_node + e] + t * moments[(k + 1) * per_node + e]) *
+                (first_order ? 1.0F : 1.0F / 127.0F);
+        }
+        for (std::size_t c = 0; c < 3; ++c)
+            m_coat[uf * 3 + c] = (1.0F - t) * coats[k * 3 + c] + t * coats[(k + 1) * 3 + c];
+    }
     m_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -284,22 +313,19 @@ RgbImage relight(const RayMap& map, const RelightTables& tables) {
                     float to = 0.0F;
                     muIndex(mu_o, ko, to);
                     Eigen::Vector3f l = Eigen::Vector3f::Zero();
-                    // Incident-light moments: sum_j sum_m fbar^m(mu_o, j) l^m_j.
-                    const float* m0 = moments + static_cast<std::size_t>(ko) * moment_stride;
-                    const float* m1 = m0 + moment_stride;
+                    // Incident-light moments: sum_j sum_m fbar^m(mu_o, j) l^m_j,
+                    // the table at the nearest fine theta_o node.
+                    const float* mt = moments + fineIndex(ko, to) * moment_stride;
+                    const auto* q = reinterpret_cast<const std::int8_t*>(rec + layout.momentsM());
                     for (std::size_t j = 0; j < cells; ++j) {
                         for (std::size_t c = 0; c < 3; ++c) {
                             const float l0 = halfToFloat(
                                 get<std::uint16_t>(rec + RecordLayout::kMoments0 + 6 * j + 2 * c));
-                            const std::size_t at = (j * orders) * 3 + c;
-                            float sum = (1.0F - to) * m0[at] + to * m1[at];
-                            for (std::size_t m = 1; m < orders; ++m) {
-                                const auto q = get<std::int8_t>(rec + layout.momentsM() +
-                                                                3 * ((orders - 1) * j + (m - 1)) + c);
-                                const std::size_t am = (j * orders + m) * 3 + c;
-                                sum += ((1.0F - to) * m0[am] + to * m1[am]) *
-                                       (static_cast<float>(q) * (1.0F / 127.0F));
-                            }
+                            const float* row = mt + j * orders * 3 + c;
+                            float sum = row[0];
+                            for (std::size_t m = 1; m < orders; ++m)
+                                sum +=
+                                    row[3 * m] * static_cast<float>(q[3 * ((orders - 1) * j + (m - 1)) + c]);
                             l[static_cast<Eigen::Index>(c)] += sum * l0;
                         }
                     }
@@ -327,12 +353,10 @@ RgbImage relight(const RayMap& map, const RelightTables& tables) {
                         l += (static_cast<float>(vis) * (1.0F / 255.0F) * mu_i) * f.cwiseProduct(e);
                     }
                     // Clear-coat mirror term.
-                    for (std::size_t c = 0; c < 3; ++c) {
-                        const float coat_r = (1.0F - to) * coat[3 * static_cast<std::size_t>(ko) + c] +
-                                             to * coat[3 * static_cast<std::size_t>(ko + 1) + c];
+                    const float* coat_o = coat + 3 * fineIndex(ko, to);
+                    for (std::size_t c = 0; c < 3; ++c)
                         l[static_cast<Eigen::Index>(c)] +=
-                            coat_r * get<float>(rec + RecordLayout::kMirror + 4 * c);
-                    }
+                            coat_o[c] * get<float>(rec + RecordLayout::kMirror + 4 * c);
                     float* px = image_base + 3 * static_cast<std::size_t>(pixel);
                     for (std::size_t c = 0; c < 3; ++c)
                         px[c] += halfToFloat(get<std::uint16_t>(rec + RecordLayout::kWeight + 2 * c)) *

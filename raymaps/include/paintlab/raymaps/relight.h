@@ -48,9 +48,14 @@ public:
 
     // [((o * kMuNodes + i) * kPhiNodes + p) * 3 + channel]
     const std::vector<float>& light() const { return m_light; }
-    // [((o * cells + j) * orders + m) * 3 + channel]
+    // The kernel reads the moment and coat tables without interpolating:
+    // they are resampled (linearly, from the 33 theta_o nodes) on this many
+    // nodes uniform in theta_o and read at the nearest (0.18 degrees away at most).
+    static constexpr int kFineNodes = 257;
+    // [((o * cells + j) * orders + m) * 3 + channel], o on the fine grid;
+    // orders m >= 1 are divided by 127 (the records' byte scale).
     const std::vector<float>& moments() const { return m_moments; }
-    // [o * 3 + channel]
+    // [o * 3 + channel], o on the fine grid
     const std::vector<float>& coat() const { return m_coat; }
 
 private:
