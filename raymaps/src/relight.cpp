@@ -65,9 +65,12 @@ float halfToFloat(std::uint16_t bits) {
 }
 
 // The nearest fine-grid node of a position (k, t) on the coarse theta grid.
+// The position is never negative, so adding 1/2 and truncating rounds to
+// nearest (without lround's library call in the kernel).
 inline std::size_t fineIndex(int k, float t) {
     constexpr float kRatio = static_cast<float>(RelightTables::kFineNodes - 1) / static_cast<float>(kN - 1);
-    return static_cast<std::size_t>((static_cast<float>(k) + t) * kRatio + 0.5F);
+    const float x = (static_cast<float>(k) + t) * kRatio + 0.5F;
+    return static_cast<std::size_t>(x);  // NOLINT(bugprone-incorrect-roundings)
 }
 
 template <typename T> T get(const std::byte* at) {
