@@ -31,7 +31,7 @@ void addMcCommands(CLI::App& app, CommandAction& action);
 // Registers `db` and its subcommands: init, list, show, recipe-save, recipe-history, backup.
 void addDbCommands(CLI::App& app, CommandAction& action);
 
-// Registers `raymap build`, `relight` and `render` (ray maps, docs/RAYMAPS.md).
+// Registers `raymap build`, `relight`, `render` and `reference` (ray maps, docs/RAYMAPS.md).
 void addRaymapCommands(CLI::App& app, CommandAction& action);
 
 }  // namespace paintlab::cli

@@ -7,6 +7,7 @@
 #include "paintlab/engine/layered_brdf.h"
 #include "paintlab/engine/recipe_json.h"
 #include "paintlab/raymaps/raymap.h"
+#include "paintlab/raymaps/reference.h"
 #include "paintlab/raymaps/relight.h"
 #include "paintlab/raymaps/scene.h"
 
@@ -83,14 +84,18 @@ raymaps::RayMapProgress terminalProgress(const char* what) {
     };
 }
 
+// --width/--height override the scene camera's resolution (both or neither).
+void applySize(raymaps::Scene& scene, int width, int height) {
+    if (width == 0 && height == 0) return;
+    if (width < 1 || width > 16384 || height < 1 || height > 16384)
+        throw InputError("<argument>", "--width/--height", "give both, each in [1, 16384]");
+    scene.camera.width = width;
+    scene.camera.height = height;
+}
+
 void build(const BuildOptions& o, const std::filesystem::path& out) {
     raymaps::Scene scene = raymaps::loadSceneFile(o.scene);
-    if (o.width != 0 || o.height != 0) {
-        if (o.width < 1 || o.width > 16384 || o.height < 1 || o.height > 16384)
-            throw InputError("<argument>", "--width/--height", "give both, each in [1, 16384]");
-        scene.camera.width = o.width;
-        scene.camera.height = o.height;
-    }
+    applySize(scene, o.width, o.height);
     const raymaps::RayMapHeader h = raymaps::buildRayMap(scene, o.settings, out, terminalProgress("ray map"));
     const auto record = raymaps::recordBytes(h.cells, h.orders, static_cast<int>(h.lights.size()));
     std::printf("ray map %s: %d x %d, %llu paint pixels, %zu bytes per paint record, %llu bytes on disk\n",
@@ -162,6 +167,32 @@ private:
     std::filesystem::path m_path;
 };
 
+struct ReferenceOptions {
+    RelightOptions image;
+    std::string scene;
+    raymaps::ReferenceSettings settings;
+    int cells = 4;
+    int orders = 4;
+    int width = 0;
+    int height = 0;
+};
+
+int reference(const ReferenceOptions& o) {
+    checkImagePath(o.image.out);
+    raymaps::Scene scene = raymaps::loadSceneFile(o.scene);
+    applySize(scene, o.width, o.height);
+    const Recipe recipe = loadRecipeFile(o.image.recipe);
+    const LayeredBrdf brdf = computeLayeredBrdf(recipe, presetSettings(presetFromName(o.image.preset)));
+    const raymaps::RelightTables tables(brdf, o.cells, o.orders);
+    const auto start = Clock::now();
+    const raymaps::ReferenceImage image =
+        raymaps::renderReference(scene, tables, o.settings, terminalProgress("reference"));
+    raymaps::writeImage(image.mean, o.image.out, o.image.exposure_ev);
+    std::printf("reference %s: %d x %d, %d samples per pixel, %.2f s\n", o.image.out.c_str(),
+                image.mean.width, image.mean.height, o.settings.samples_per_pixel, secondsSince(start));
+    return 0;
+}
+
 }  // namespace
 
 void addRaymapCommands(CLI::App& app, CommandAction& action) {
@@ -186,6 +217,18 @@ void addRaymapCommands(CLI::App& app, CommandAction& action) {
     relight->add_option("--repeat", r->repeat, "Relight this many times and report the best time")
         ->capture_default_str();
     relight->callback([r, &action] { action = [r] { return relightMap(*r, r->map); }; });
+
+    auto ro = std::make_shared<ReferenceOptions>();
+    CLI::App* ref = app.add_subcommand(
+        "reference",
+        "Brute-force path-traced reference of a scene with the paint's RGB BRDF (slow; for tests)");
+    ref->add_option("scene", ro->scene, "Scene JSON file")->required();
+    addRelightOptions(ref, ro->image);
+    ref->add_option("--spp", ro->settings.samples_per_pixel, "Paths per pixel")->capture_default_str();
+    ref->add_option("--seed", ro->settings.seed, "Random seed")->capture_default_str();
+    ref->add_option("--width", ro->width, "Image width (default: the scene camera's)");
+    ref->add_option("--height", ro->height, "Image height (default: the scene camera's)");
+    ref->callback([ro, &action] { action = [ro] { return reference(*ro); }; });
 
     auto rb = std::make_shared<BuildOptions>();
     auto rr = std::make_shared<RelightOptions>();

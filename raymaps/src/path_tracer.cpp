@@ -1,6 +1,7 @@
 #include "path_tracer.h"
 
 #include "paintlab/engine/fresnel.h"
+#include "paintlab/raymaps/relight.h"
 
 #include <algorithm>
 #include <cmath>
@@ -24,12 +25,31 @@ double smithG1(double mu, double alpha) {
     return 2.0 * mu / (mu + std::sqrt(a2 + (1.0 - a2) * mu * mu));
 }
 
+}  // namespace
+
+// A non-delta surface: a scene material, or the paint through the relight
+// tables' f_rgb (the reference renderer).
+struct Surface {
+    const Material& m;
+    const RelightTables* paint = nullptr;
+};
+
+namespace {
+
 // A glossy material: a Lambertian base under a rough dielectric coat; the
 // base sees the light the coat transmits on the way in and out.
-Rgb3 evalBsdf(const Material& m, const Vec3& wo, const Vec3& wi) {
+Rgb3 evalBsdf(const Surface& s, const Vec3& wo, const Vec3& wi) {
+    const Material& m = s.m;
     const double mu_o = wo.z();
     const double mu_i = wi.z();
     if (!(mu_o > 0.0) || !(mu_i > 0.0)) return Rgb3::Zero();
+    if (s.paint != nullptr) {
+        const double to = std::hypot(wo.x(), wo.y());
+        const double ti = std::hypot(wi.x(), wi.y());
+        const double cos_dphi =
+            to > 1e-9 && ti > 1e-9 ? (wo.x() * wi.x() + wo.y() * wi.y()) / (to * ti) : 1.0;
+        return s.paint->lightTable(mu_o, mu_i, cos_dphi);
+    }
     if (m.kind != MaterialKind::Glossy) return m.albedo / kPi;
     const Vec3 h = (wo + wi).normalized();
     const double alpha = std::max(m.roughness, 1e-3);
@@ -42,10 +62,11 @@ Rgb3 evalBsdf(const Material& m, const Vec3& wo, const Vec3& wi) {
 
 constexpr double kSpecularLobeProbability = 0.5;
 
-double pdfBsdf(const Material& m, const Vec3& wo, const Vec3& wi) {
+double pdfBsdf(const Surface& s, const Vec3& wo, const Vec3& wi) {
+    const Material& m = s.m;
     if (!(wo.z() > 0.0) || !(wi.z() > 0.0)) return 0.0;
     const double diffuse = wi.z() / kPi;
-    if (m.kind != MaterialKind::Glossy) return diffuse;
+    if (s.paint != nullptr || m.kind != MaterialKind::Glossy) return diffuse;
     const Vec3 h = (wo + wi).normalized();
     const double alpha = std::max(m.roughness, 1e-3);
     const double spec = ggxD(h.z(), alpha) * h.z() / (4.0 * std::abs(wo.dot(h)));
@@ -53,11 +74,12 @@ double pdfBsdf(const Material& m, const Vec3& wo, const Vec3& wi) {
 }
 
 // Returns false when no direction was produced.
-bool sampleBsdf(const Material& m, const Vec3& wo, Rng& rng, Vec3& wi) {
+bool sampleBsdf(const Surface& s, const Vec3& wo, Rng& rng, Vec3& wi) {
+    const Material& m = s.m;
     const double u0 = rng.uniform();
     const double u1 = rng.uniform();
     const double u2 = rng.uniform();
-    if (m.kind == MaterialKind::Glossy && u0 < kSpecularLobeProbability) {
+    if (s.paint == nullptr && m.kind == MaterialKind::Glossy && u0 < kSpecularLobeProbability) {
         // Half vector from D(h) cos(theta_h) (Walter et al. 2007, eqs. 35, 36).
         const double alpha = std::max(m.roughness, 1e-3);
         const double cos2 = (1.0 - u1) / (1.0 + (alpha * alpha - 1.0) * u1);
@@ -128,7 +150,7 @@ bool PathTracer::pointVisible(const Vec3& point, const Vec3& normal, const Posit
     return !m_tracer.occluded(origin, to, 1.0 - 1e-4);
 }
 
-Rgb3 PathTracer::directLight(const Hit& hit, const Vec3& wo, const Frame& frame, const Material& m,
+Rgb3 PathTracer::directLight(const Hit& hit, const Vec3& wo, const Frame& frame, const Surface& m,
                              Rng& rng) const {
     Rgb3 l = Rgb3::Zero();
     const Vec3 wo_local = frame.toLocal(wo);
@@ -216,7 +238,24 @@ Rgb3 PathTracer::radianceAt(const Hit& first, const Vec3& direction, Rng& rng, b
             dir = deltaBounce(m, hit, dir, rng, beta);
             previous_pdf = 0.0;
         } else {
-            const Material& surface = m.kind == MaterialKind::Paint ? m_paint_proxy : m;
+            const bool paint = m.kind == MaterialKind::Paint;
+            if (paint && m_paint != nullptr) {
+                // The clear coat's mirror term, chosen with probability
+                // p = its largest channel (throughput R / p), else the rest
+                // of the BRDF (throughput 1 / (1 - p)).
+                const Rgb3 r = m_paint->coat(wo.dot(ns));
+                const double p = std::clamp(r.maxCoeff(), 0.0, 0.95);
+                if (rng.uniform() < p) {
+                    beta = beta.cwiseProduct(r) / p;
+                    dir = reflect(wo, ns);
+                    if (dir.dot(ng) <= 0.0) dir = reflect(wo, ng);
+                    previous_pdf = 0.0;
+                    hit = m_tracer.intersect(offset(hit.position, hit.geometric_normal, dir), dir);
+                    continue;
+                }
+                beta /= 1.0 - p;
+            }
+            const Surface surface{paint && m_paint == nullptr ? m_paint_proxy : m, paint ? m_paint : nullptr};
             const Frame frame = Frame::fromNormal(ns);
             l += beta.cwiseProduct(directLight(hit, wo, frame, surface, rng));
             Vec3 wi_local;

@@ -22,6 +22,9 @@
 
 namespace paintlab::raymaps {
 
+class RelightTables;
+struct Surface;
+
 constexpr double kPaintProxyAlbedo = 0.35;
 
 struct DirectionalLight {
@@ -66,9 +69,12 @@ public:
         return m_scene.materials[static_cast<std::size_t>(hit.material)];
     }
     std::uint64_t raysTraced() const;
+    // Shade the paint with these tables' f_rgb and clear-coat mirror term
+    // (the brute-force reference) instead of the grey proxy.
+    void setPaint(const RelightTables* tables) { m_paint = tables; }
 
 private:
-    Rgb3 directLight(const Hit& hit, const Vec3& wo, const Frame& frame, const Material& m, Rng& rng) const;
+    Rgb3 directLight(const Hit& hit, const Vec3& wo, const Frame& frame, const Surface& m, Rng& rng) const;
 
     const Scene& m_scene;
     const SceneTracer& m_tracer;
@@ -77,6 +83,7 @@ private:
     std::vector<DirectionalLight> m_suns;
     std::vector<PositionalLight> m_points;
     Material m_paint_proxy;
+    const RelightTables* m_paint = nullptr;
 };
 
 }  // namespace paintlab::raymaps

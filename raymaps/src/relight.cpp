@@ -257,6 +257,14 @@ Rgb3 RelightTables::lightTable(double mu_o, double mu_i, double cos_dphi) const 
         .cast<double>();
 }
 
+Rgb3 RelightTables::coat(double mu_o) const {
+    int k = 0;
+    float t = 0.0F;
+    muIndex(static_cast<float>(std::clamp(mu_o, 0.0, 1.0)), k, t);
+    const std::size_t f = 3 * fineIndex(k, t);
+    return {m_coat[f], m_coat[f + 1], m_coat[f + 2]};
+}
+
 RgbImage relight(const RayMap& map, const RelightTables& tables) {
     const RayMapHeader& h = map.header();
     if (h.cells != tables.cells() || h.orders != tables.orders())

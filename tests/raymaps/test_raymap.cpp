@@ -8,6 +8,7 @@
 #include "paintlab/engine/layered_brdf.h"
 #include "paintlab/engine/recipe_json.h"
 #include "paintlab/raymaps/raymap.h"
+#include "paintlab/raymaps/reference.h"
 #include "paintlab/raymaps/relight.h"
 #include "paintlab/raymaps/scene.h"
 
@@ -294,6 +295,86 @@ TEST(RayMap, CancelledBuildLeavesNoFile) {
     const auto path = dir.path() / "cancelled.prm";
     EXPECT_THROW(buildRayMap(scene, smallSettings(), path, [](double) { return false; }), Error);
     EXPECT_FALSE(std::filesystem::exists(path));
+}
+
+}  // namespace
+}  // namespace paintlab::raymaps
+
+namespace paintlab::raymaps {
+namespace {
+
+// Relight against the brute-force reference (reference.h: the same RGB BRDF
+// and clear-coat term, traced with no ray-map approximation) on a flake
+// paint sphere on a grey floor under the built-in sky and a sun. Compared:
+// the mean over the sphere's interior pixels (per channel), where the
+// reference's noise is known (sum of its per-pixel variances of the mean).
+// Budget: 3 % (the issue's goal is 2 % RMSE; here the moments' truncation
+// at J = 4, M_L = 4 of the sky and floor, the paint proxy for light the
+// sphere sends to the floor and back, and the relight tables'
+// interpolation), plus 4 standard errors of the reference.
+TEST(Reference, RelightMatchesTheBruteForceReferenceOnASunLitSphere) {
+    const test::ScratchDir dir;
+    const int size = 32;
+    const std::string text = R"({"schema_version": 1,
+      "camera": {"position": [0, 1, 4], "look_at": [0, 0.8, 0], "vertical_fov_deg": 30, "width": 32, "height": 32},
+      "lights": [{"type": "sun", "direction": [0.5, 0.8, 0.6], "irradiance": [2, 2, 2]}],
+      "materials": [{"name": "paint", "kind": "paint"}, {"name": "ground", "kind": "diffuse", "albedo": [0.4, 0.4, 0.4]}],
+      "objects": [{"name": "ball", "sphere": {"radius": 0.8, "subdivisions": 5}, "material": "paint",
+                   "transform": {"translate": [0, 0.8, 0]}},
+                  {"name": "floor", "plane": {"size": 30}, "material": "ground"}]})";
+    const Scene scene = parseSceneJson(text, "sphere_sun.json");
+    RayMapSettings s = smallSettings();
+    s.light_rays = 64;
+    const auto map_path = dir.path() / "sphere_sun.prm";
+    buildRayMap(scene, s, map_path);
+    const auto map = RayMap::open(map_path);
+    const LayeredBrdf brdf = brdfOf(std::filesystem::path(PAINTLAB_TEST_DATA_DIR) / "valid_minimal.json");
+    const RelightTables tables(brdf, map->header().cells, map->header().orders);
+    const RgbImage relit = relight(*map, tables);
+    ReferenceSettings rs;
+    rs.samples_per_pixel = 512;
+    const ReferenceImage reference = renderReference(scene, tables, rs);
+
+    // Interior pixels of the sphere: the pixel-centre ray passes 0.1 radius
+    // inside the silhouette.
+    const Eigen::Vector3d eye(0, 1, 4);
+    const Eigen::Vector3d forward = (Eigen::Vector3d(0, 0.8, 0) - eye).normalized();
+    const Eigen::Vector3d right = forward.cross(Eigen::Vector3d::UnitY()).normalized();
+    const Eigen::Vector3d up = right.cross(forward);
+    const double half = std::tan(15.0 * std::numbers::pi / 180.0);
+    const Eigen::Vector3d centre(0, 0.8, 0);
+    Rgb3 sum_relit = Rgb3::Zero();
+    Rgb3 sum_reference = Rgb3::Zero();
+    Rgb3 variance = Rgb3::Zero();
+    int count = 0;
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const Eigen::Vector3d d = (forward + (2.0 * (x + 0.5) - size) / size * half * right +
+                                       (size - 2.0 * (y + 0.5)) / size * half * up)
+                                          .normalized();
+            const Eigen::Vector3d oc = eye - centre;
+            const double b = oc.dot(d);
+            const double distance2 = oc.squaredNorm() - b * b;  // squared distance of the ray from the centre
+            if (distance2 > 0.7 * 0.7) continue;
+            const std::size_t at = 3 * (static_cast<std::size_t>(y) * size + static_cast<std::size_t>(x));
+            for (int c = 0; c < 3; ++c) {
+                sum_relit[c] += static_cast<double>(relit.rgb[at + static_cast<std::size_t>(c)]);
+                sum_reference[c] += static_cast<double>(reference.mean.rgb[at + static_cast<std::size_t>(c)]);
+                variance[c] +=
+                    static_cast<double>(reference.variance_of_mean[at + static_cast<std::size_t>(c)]);
+            }
+            ++count;
+        }
+    ASSERT_GT(count, 100);
+    for (int c = 0; c < 3; ++c) {
+        const double sigma = std::sqrt(variance[c]);
+        const double diff = sum_relit[c] - sum_reference[c];
+        std::printf(
+            "channel %d: relit %.4f, reference %.4f +- %.4f (mean per pixel), relative difference %.2f %%\n",
+            c, sum_relit[c] / count, sum_reference[c] / count, sigma / count,
+            100.0 * diff / sum_reference[c]);
+        EXPECT_LT(std::abs(diff), 0.03 * sum_reference[c] + 4.0 * sigma) << "channel " << c;
+    }
 }
 
 }  // namespace

@@ -43,6 +43,8 @@ public:
     double seconds() const { return m_seconds; }
     // The BRDF (1/sr, RGB) at a direction pair through the light table, for tests.
     Rgb3 lightTable(double mu_o, double mu_i, double cos_dphi) const;
+    // The clear coat's mirror reflectance (RGB) at this cosine (as the kernel: nearest fine node).
+    Rgb3 coat(double mu_o) const;
     // Linear sRGB of a spectrum at the BRDF's wavelengths.
     Rgb3 toRgb(const std::vector<double>& spectrum) const;
 
