@@ -262,7 +262,7 @@ Rgb3 RelightTables::coat(double mu_o) const {
     float t = 0.0F;
     muIndex(static_cast<float>(std::clamp(mu_o, 0.0, 1.0)), k, t);
     const std::size_t f = 3 * fineIndex(k, t);
-    return {m_coat[f], m_coat[f + 1], m_coat[f + 2]};
+    return Eigen::Vector3f(m_coat[f], m_coat[f + 1], m_coat[f + 2]).cast<double>();
 }
 
 RgbImage relight(const RayMap& map, const RelightTables& tables) {
