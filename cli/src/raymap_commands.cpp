@@ -63,6 +63,10 @@ void addBuildOptions(CLI::App* command, BuildOptions& o) {
     command->add_option("--orders", o.settings.orders, "M_L: azimuthal orders of the light moments")
         ->capture_default_str();
     command->add_option("--seed", o.settings.seed, "Random seed")->capture_default_str();
+    command
+        ->add_option("--env-lights", o.settings.env_lights,
+                     "K_env: HDR hotspots made explicit lights (at most)")
+        ->capture_default_str();
     command->add_option("--width", o.width, "Image width (default: the scene camera's)");
     command->add_option("--height", o.height, "Image height (default: the scene camera's)");
 }

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <numbers>
 
 namespace paintlab::raymaps {
@@ -199,6 +200,84 @@ double EnvironmentMap::pdf(const Eigen::Vector3d& direction) const {
     const double sin_theta = std::max(std::sin(kPi * uv.y() / m_height), 1e-12);
     const double p_pixel = m_pixel_weight[v * static_cast<std::size_t>(m_width) + u] / m_weight_sum;
     return p_pixel / ((2.0 * kPi / m_width) * (kPi / m_height) * sin_theta);
+}
+
+EnvironmentMap EnvironmentMap::withoutHotspots(int max_count, double threshold,
+                                               std::vector<Hotspot>& hotspots) const {
+    hotspots.clear();
+    EnvironmentMap residual = *this;
+    const auto w = static_cast<std::size_t>(m_width);
+    const auto h = static_cast<std::size_t>(m_height);
+    const double mean = m_luminance_integral / (4.0 * kPi);
+    const std::size_t max_pixels = std::max<std::size_t>(1, w * h / 100);
+    const auto lum = [&](std::size_t i) { return luminance(pixelAt(residual.m_rgb, i)); };
+    const auto solidAngle = [&](std::size_t v) {
+        return (2.0 * kPi / static_cast<double>(w)) * (kPi / static_cast<double>(h)) *
+               std::sin(kPi * (static_cast<double>(v) + 0.5) / static_cast<double>(h));
+    };
+    std::vector<char> in_region(w * h, 0);
+    for (int k = 0; k < max_count; ++k) {
+        std::size_t peak = 0;
+        for (std::size_t i = 1; i < w * h; ++i)
+            if (lum(i) > lum(peak)) peak = i;
+        const double peak_lum = lum(peak);
+        if (!(peak_lum > threshold * mean) || !(mean > 0.0)) break;
+        const double floor_lum = std::max(threshold * mean, 0.05 * peak_lum);
+        // Flood fill from the peak (4-neighbours, wrapping in azimuth).
+        std::vector<std::size_t> region;
+        std::deque<std::size_t> queue{peak};
+        in_region[peak] = 1;
+        while (!queue.empty() && region.size() < max_pixels) {
+            const std::size_t i = queue.front();
+            queue.pop_front();
+            region.push_back(i);
+            const std::size_t u = i % w;
+            const std::size_t v = i / w;
+            const std::size_t next[4] = {v * w + (u + 1) % w, v * w + (u + w - 1) % w, v > 0 ? i - w : i,
+                                         v + 1 < h ? i + w : i};
+            for (const std::size_t n : next)
+                if (in_region[n] == 0 && lum(n) > floor_lum) {
+                    in_region[n] = 1;
+                    queue.push_back(n);
+                }
+        }
+        for (const std::size_t i : queue) in_region[i] = 0;  // not taken (size cap)
+        // The surrounding sky: mean of the 4-neighbours outside the region.
+        Rgb3 ring = Rgb3::Zero();
+        int ring_count = 0;
+        for (const std::size_t i : region) {
+            const std::size_t u = i % w;
+            const std::size_t v = i / w;
+            const std::size_t next[4] = {v * w + (u + 1) % w, v * w + (u + w - 1) % w, v > 0 ? i - w : i,
+                                         v + 1 < h ? i + w : i};
+            for (const std::size_t n : next)
+                if (in_region[n] == 0) {
+                    ring += pixelAt(residual.m_rgb, n);
+                    ++ring_count;
+                }
+        }
+        if (ring_count > 0) ring /= ring_count;
+        Hotspot spot{Eigen::Vector3d::Zero(), Rgb3::Zero(), 0.0};
+        for (const std::size_t i : region) {
+            const std::size_t u = i % w;
+            const std::size_t v = i / w;
+            const double omega = solidAngle(v);
+            const Rgb3 excess = (pixelAt(residual.m_rgb, i) - ring).cwiseMax(0.0);
+            spot.irradiance += excess * omega;
+            spot.solid_angle_sr += omega;
+            spot.direction +=
+                luminance(excess) * omega *
+                residual.uvToDirection(static_cast<double>(u) + 0.5, static_cast<double>(v) + 0.5);
+            for (std::size_t c = 0; c < 3; ++c)
+                residual.m_rgb[3 * i + c] = static_cast<float>(
+                    static_cast<double>(residual.m_rgb[3 * i + c]) - excess[static_cast<Eigen::Index>(c)]);
+        }
+        if (!(spot.direction.norm() > 0.0)) break;
+        spot.direction.normalize();
+        hotspots.push_back(spot);
+    }
+    residual.buildDistribution();
+    return residual;
 }
 
 }  // namespace paintlab::raymaps

@@ -204,11 +204,13 @@ Vec3 PathTracer::deltaBounce(const Material& m, const Hit& hit, const Vec3& dire
 
 std::uint64_t PathTracer::raysTraced() const { return m_tracer.raysTraced(); }
 
-Rgb3 PathTracer::radiance(const Vec3& origin, const Vec3& direction, Rng& rng, bool see_sun_disks) const {
-    return radianceAt(m_tracer.intersect(origin, direction), direction, rng, see_sun_disks);
+Rgb3 PathTracer::radiance(const Vec3& origin, const Vec3& direction, Rng& rng, bool see_sun_disks,
+                          const EnvironmentMap* first_escape) const {
+    return radianceAt(m_tracer.intersect(origin, direction), direction, rng, see_sun_disks, first_escape);
 }
 
-Rgb3 PathTracer::radianceAt(const Hit& first, const Vec3& direction, Rng& rng, bool see_sun_disks) const {
+Rgb3 PathTracer::radianceAt(const Hit& first, const Vec3& direction, Rng& rng, bool see_sun_disks,
+                            const EnvironmentMap* first_escape) const {
     Rgb3 l = Rgb3::Zero();
     Rgb3 beta = Rgb3::Ones();
     Hit hit = first;
@@ -217,6 +219,8 @@ Rgb3 PathTracer::radianceAt(const Hit& first, const Vec3& direction, Rng& rng, b
     bool sun_disks = see_sun_disks;
     for (int depth = 0;; ++depth) {
         if (!hit.found) {
+            if (depth == 0 && first_escape != nullptr)
+                return escaped(dir, sun_disks) - m_environment.radiance(dir) + first_escape->radiance(dir);
             const Rgb3 env = m_environment.radiance(dir);
             const double weight =
                 previous_pdf > 0.0 ? powerHeuristic(previous_pdf, m_environment.pdf(dir)) : 1.0;

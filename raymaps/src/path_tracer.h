@@ -46,9 +46,13 @@ public:
     // towards `direction` sees. `see_sun_disks`: whether a ray that escapes
     // inside a sun's disk gets its radiance (yes for camera and mirror rays;
     // no where the suns are explicit lights already).
-    Rgb3 radiance(const Vec3& origin, const Vec3& direction, Rng& rng, bool see_sun_disks) const;
+    // `first_escape`: if given, the environment a ray that escapes at once
+    // sees (the residual after hotspot extraction, for the paint's moment rays).
+    Rgb3 radiance(const Vec3& origin, const Vec3& direction, Rng& rng, bool see_sun_disks,
+                  const EnvironmentMap* first_escape = nullptr) const;
     // The same from a hit already found along `direction`.
-    Rgb3 radianceAt(const Hit& hit, const Vec3& direction, Rng& rng, bool see_sun_disks) const;
+    Rgb3 radianceAt(const Hit& hit, const Vec3& direction, Rng& rng, bool see_sun_disks,
+                    const EnvironmentMap* first_escape = nullptr) const;
 
     // Environment plus (optionally) the suns' disks, for a ray that escapes.
     Rgb3 escaped(const Vec3& direction, bool see_sun_disks) const;

@@ -49,10 +49,14 @@ class PixelTracer {
 public:
     // `pt` bakes the non-paint samples; `indirect` (shorter paths) serves the
     // paint's moment and mirror rays.
+    // `hotspots`: the environment's extracted lights; `residual`: the
+    // environment without them, seen by the moment rays that escape.
     PixelTracer(const PathTracer& pt, const PathTracer& indirect, const PinholeCamera& camera,
-                const RayMapSettings& s, int width)
+                const RayMapSettings& s, int width, const std::vector<DirectionalLight>& hotspots,
+                const EnvironmentMap& residual)
         : m_pt(pt), m_indirect(indirect), m_camera(camera), m_s(s), m_width(width),
-          m_lights(static_cast<int>(pt.suns().size() + pt.points().size())) {
+          m_lights(static_cast<int>(pt.suns().size() + pt.points().size() + hotspots.size())),
+          m_hotspots(hotspots), m_residual(residual) {
         m_side = std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(s.aa_samples)))));
         const int samples = m_side * m_side;
         // Equally spaced azimuths (one random rotation per cell): the moments
@@ -148,7 +152,8 @@ private:
                 // Below the triangle's own plane (shading normal != geometric
                 // normal): mirrored above it, where the light is most alike.
                 if (wi.dot(ng) <= 0.0) wi -= 2.0 * wi.dot(ng) * ng;
-                const Rgb3 l = m_indirect.radiance(origin, wi, rng, false) * (kPi / (cells * m_azimuths));
+                const Rgb3 l =
+                    m_indirect.radiance(origin, wi, rng, false, &m_residual) * (kPi / (cells * m_azimuths));
                 for (int m = 0; m < m_s.orders; ++m)
                     paint.moments[static_cast<std::size_t>(j) * static_cast<std::size_t>(m_s.orders) +
                                   static_cast<std::size_t>(m)] += l * std::cos(m * phi);
@@ -159,6 +164,8 @@ private:
             paint.visibility[k++] += m_pt.sunVisibility(hit.position, ng, sun, m_s.sun_shadow_rays, rng);
         for (const auto& point : m_pt.points())
             paint.visibility[k++] += m_pt.pointVisible(hit.position, ng, point) ? 1.0 : 0.0;
+        for (const auto& spot : m_hotspots)
+            paint.visibility[k++] += m_pt.sunVisibility(hit.position, ng, spot, m_s.sun_shadow_rays, rng);
         Vec3 r = reflect(wo, ns);
         if (r.dot(ng) <= 0.0) r = reflect(wo, ng);
         paint.mirror += m_indirect.radiance(origin, r, rng, true);
@@ -170,6 +177,8 @@ private:
     const RayMapSettings& m_s;
     int m_width;
     int m_lights;
+    const std::vector<DirectionalLight>& m_hotspots;
+    const EnvironmentMap& m_residual;
     int m_side = 1;
     int m_azimuths = 4;
 };
@@ -233,6 +242,10 @@ void validateRayMapSettings(const RayMapSettings& s) {
     checkRange(s.indirect_depth, 1, 64, "indirect_depth");
     checkRange(s.max_delta_bounces, 0, 64, "max_delta_bounces");
     checkRange(s.band_rows, 1, 4096, "band_rows");
+    checkRange(s.env_lights, 0, 32, "env_lights");
+    if (!(s.env_light_threshold >= 1.0 && s.env_light_threshold <= 1e9))
+        throw InputError("<argument>", "env_light_threshold",
+                         std::to_string(s.env_light_threshold) + " is outside [1, 1e9]");
 }
 
 RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, const std::filesystem::path& out,
@@ -259,6 +272,19 @@ RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, con
                                  2.0 * kPi * (1.0 - sun.cos_half_angle)});
     for (const auto& point : pt.points())
         header.lights.push_back({ExplicitLight::Kind::Point, point.position, point.intensity, 0.0});
+    // K_env: the environment's hotspots become explicit lights of the paint
+    // (the bake and the mirror rays keep the whole environment).
+    std::vector<EnvironmentMap::Hotspot> spots;
+    const EnvironmentMap residual =
+        environment.withoutHotspots(settings.env_lights, settings.env_light_threshold, spots);
+    std::vector<DirectionalLight> hotspots;
+    for (const auto& spot : spots) {
+        const double cos_half = std::max(-1.0, 1.0 - spot.solid_angle_sr / (2.0 * kPi));
+        hotspots.push_back({spot.direction, spot.irradiance, cos_half});
+        header.lights.push_back(
+            {ExplicitLight::Kind::Sun, spot.direction, spot.irradiance, spot.solid_angle_sr});
+    }
+    header.env_lights = static_cast<int>(hotspots.size());
     if (header.lights.size() > 255)
         throw InputError(scene.file.string(), "lights", "more than 255 explicit lights");
     const RecordLayout layout{settings.cells, settings.orders, static_cast<int>(header.lights.size())};
@@ -268,7 +294,7 @@ RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, con
     const int width = header.width;
     const int bands = (header.height + settings.band_rows - 1) / settings.band_rows;
     std::vector<RayMapBand> done(static_cast<std::size_t>(bands));
-    const PixelTracer pixels(pt, pt_indirect, camera, settings, width);
+    const PixelTracer pixels(pt, pt_indirect, camera, settings, width, hotspots, residual);
     for (int b = 0; b < bands; ++b) {
         RayMapBand& band = done[static_cast<std::size_t>(b)];
         band.first_row = b * settings.band_rows;

@@ -51,6 +51,20 @@ public:
     Sample sample(double u1, double u2) const;
     double pdf(const Eigen::Vector3d& direction) const;
 
+    // A bright compact region taken out of the map (docs/RAYMAPS.md, K_env):
+    // its radiance above the surrounding sky, as a directional light.
+    struct Hotspot {
+        Eigen::Vector3d direction;  // power-weighted centre, towards it
+        Rgb3 irradiance;            // W/m^2 on a surface facing it
+        double solid_angle_sr = 0.0;
+    };
+    // Up to max_count hotspots, brightest first: connected pixels whose
+    // luminance exceeds both `threshold` x the map's mean luminance and 5 %
+    // of the region's peak, at most 1 % of the pixels each. Each region's
+    // pixels are lowered to the mean of the pixels around it, and what was
+    // above that becomes the hotspot: residual + hotspots = this map.
+    EnvironmentMap withoutHotspots(int max_count, double threshold, std::vector<Hotspot>& hotspots) const;
+
     // Total power-like measure: the integral of luminance over the sphere (for tests).
     double luminanceIntegral() const { return m_luminance_integral; }
 

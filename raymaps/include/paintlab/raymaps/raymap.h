@@ -36,6 +36,11 @@ struct RayMapSettings {
     int indirect_depth = 2;     // path vertices behind a moment or mirror ray
     int max_delta_bounces = 8;  // mirror / glass bounces followed before the paint
     int band_rows = 32;         // rows per chunk
+    // K_env: HDR hotspots (EnvironmentMap::withoutHotspots) taken out of the
+    // paint's light moments and made explicit lights, at most this many,
+    // brighter than env_light_threshold x the map's mean luminance.
+    int env_lights = 4;
+    double env_light_threshold = 50.0;
     std::uint64_t seed = 1;
 };
 
@@ -59,7 +64,7 @@ struct RayMapHeader {
     std::vector<ExplicitLight> lights;
     std::string scene_file;
     double paint_proxy_albedo = 0.0;
-    int env_lights = 0;  // K_env: HDR regions extracted as lights (not yet: 0)
+    int env_lights = 0;  // K_env: HDR hotspots extracted as lights (the last entries of `lights`)
     // Statistics of the precompute.
     std::uint64_t paint_pixels = 0;
     std::uint64_t rays = 0;
