@@ -1,6 +1,7 @@
 // `brdf`, `eval` and `multiangle`: the fast model from the command line.
 // Options and JSON fields are a public contract (issue 3): extend, never rename.
 
+#include "brdf_table_io.h"
 #include "commands.h"
 
 #include "paintlab/engine/error.h"
@@ -77,71 +78,17 @@ ordered_json settingsJson(const LayeredBrdf& brdf, const std::string& preset) {
             {"compute_seconds", brdf.computeSeconds()}};
 }
 
-std::vector<double> angleGrid(double step, double last) {
-    std::vector<double> grid;
-    for (double a = 0.0; a <= last + 1e-9; a += step) grid.push_back(a);
-    return grid;
-}
-
 int runBrdf(const BrdfOptions& o) {
-    if (!(o.step_deg >= 0.5 && o.step_deg <= 45.0))
-        throw InputError("<argument>", "--step", "must be between 0.5 and 45 degrees");
     const LayeredBrdf brdf = runFastModel(o);
-    const auto wavelengths = brdf.wavelengthsNm();
-    // Regular grid: incidence and exit 0..85 deg, azimuth difference 0..180 deg
-    // (the paint is isotropic, so f depends on phi_o - phi_i only, symmetrically).
-    const auto thetas = angleGrid(o.step_deg, 85.0);
-    const auto phis = angleGrid(o.step_deg, 180.0);
-    const bool csv = o.out.size() > 4 && o.out.substr(o.out.size() - 4) == ".csv";
-    std::ostringstream text;
-    if (csv) {
-        text << "theta_i_deg,theta_o_deg,phi_deg";
-        for (double nm : wavelengths) text << ",f_" << nm << "nm_per_sr";
-        text << '\n';
-    }
-    ordered_json values = ordered_json::array();
-    for (double ti : thetas) {
-        ordered_json by_to = ordered_json::array();
-        for (double to : thetas) {
-            ordered_json by_phi = ordered_json::array();
-            for (double phi : phis) {
-                const auto f = brdf.eval(directionFromAnglesDeg(ti, 0.0), directionFromAnglesDeg(to, phi));
-                if (csv) {
-                    text << ti << ',' << to << ',' << phi;
-                    for (double v : f) text << ',' << v;
-                    text << '\n';
-                } else {
-                    by_phi.push_back(f);
-                }
-            }
-            if (!csv) by_to.push_back(std::move(by_phi));
-        }
-        if (!csv) values.push_back(std::move(by_to));
-    }
-    if (!csv) {
-        ordered_json out;
-        out["recipe"] = o.recipe;
-        out["settings"] = settingsJson(brdf, o.preset);
-        out["wavelengths_nm"] = std::vector<double>(wavelengths.begin(), wavelengths.end());
-        out["theta_i_deg"] = thetas;
-        out["theta_o_deg"] = thetas;
-        out["phi_deg"] = phis;
-        out["brdf_per_sr"] = std::move(values);  // [theta_i][theta_o][phi][band], mirror term excluded
-        ordered_json specular = ordered_json::array();
-        for (double ti : thetas) specular.push_back(brdf.specularReflectance(std::cos(ti * M_PI / 180.0)));
-        out["specular_reflectance"] =
-            std::move(specular);  // [theta_i][band], the top interface's mirror term
-        text << out.dump(1) << '\n';
-    }
+    const bool csv = isCsvPath(o.out);
+    // The same writer as `mc --table`, so the two files have one format.
+    const std::string text = brdfTableText(brdf, o.recipe, settingsJson(brdf, o.preset), o.step_deg, csv);
     if (o.out.empty()) {
-        std::cout << text.str();
+        std::cout << text;
         return 0;
     }
-    std::ofstream file(o.out, std::ios::binary | std::ios::trunc);
-    if (!file) throw InputError(o.out, "--out", "cannot open for writing");
-    file << text.str();
-    if (!file.flush()) throw Error(o.out + ": write failed");
-    std::cerr << "wrote " << o.out << " (" << (csv ? "CSV" : "JSON") << ", " << wavelengths.size()
+    writeTextFile(o.out, text, "--out");
+    std::cerr << "wrote " << o.out << " (" << (csv ? "CSV" : "JSON") << ", " << brdf.wavelengthsNm().size()
               << " bands, " << brdf.computeSeconds() << " s)\n";
     return 0;
 }
