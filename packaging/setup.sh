@@ -82,12 +82,21 @@ build() {  # build PRESET
 
 run_main_job() {
   local cli="$root/build/release/cli/paintlab-cli"
-  say "main job: validate and show the bundled demo recipes (the workstation GUI arrives with issue 8)"
+  local out="$root/build/demo"
+  say "main job: the bundled demo recipes, and the demo scene relit with them (the workstation GUI arrives with issue 8)"
   for recipe in "$root"/packaging/demo/recipes/*.json; do
     "$cli" validate "$recipe" || die "demo recipe $recipe does not validate"
     "$cli" show "$recipe" || die "paintlab-cli show $recipe"
     echo
   done
+  mkdir -p "$out"
+  "$cli" raymap build "$root/packaging/demo/scenes/car_body_sky.json" --out "$out/car_body_sky.prm" \
+    || die "paintlab-cli raymap build (demo scene)"
+  for name in pearlescent-two-layer silver-metallic solid-red; do
+    "$cli" relight "$out/car_body_sky.prm" --recipe "$root/packaging/demo/recipes/$name.json" \
+      --preset standard --out "$out/demo-car-$name.png" || die "paintlab-cli relight ($name)"
+  done
+  say "demo images: $out/demo-car-*.png"
 }
 
 run_tests() {
