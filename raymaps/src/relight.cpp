@@ -100,9 +100,7 @@ RelightTables::RelightTables(const LayeredBrdf& brdf, int cells, int orders)
         m_weights[3 * b + 1] = c.g;
         m_weights[3 * b + 2] = c.b;
     }
-    // Azimuth intervals of the cosine transform: exact for the orders the
-    // fast model computed (its f has no higher ones; eval() clipping a
-    // ringing series at zero adds a little above them, which aliases).
+    // Orders kept: at least 8 (the light table sums them at kC azimuths).
     const int n_phi = std::max(8, brdf.settings().orders);
     const auto nu = static_cast<std::size_t>(kN);
     m_light.assign(nu * nu * static_cast<std::size_t>(kC) * 3, 0.0F);
@@ -112,28 +110,25 @@ RelightTables::RelightTables(const LayeredBrdf& brdf, int cells, int orders)
 
     tbb::parallel_for(0, kN, [&](int o) {
         const double mu_o = muNode(o);
-        const Direction wo{std::sqrt(1.0 - mu_o * mu_o), 0.0, mu_o};
         std::vector<double> spectrum(bands);
-        std::vector<Rgb3> f(static_cast<std::size_t>(n_phi + 1));
         std::vector<Rgb3> a(static_cast<std::size_t>(n_phi));
         std::vector<Rgb3> node_a(static_cast<std::size_t>(kN * orders),
                                  Rgb3::Zero());  // a_m at the theta_i nodes
-        // Fourier cosine coefficients of f_rgb(mu_o, mu_i, phi) by the
-        // trapezoidal rule on [0, pi] (DCT-I): f = sum_m a_m cos(m phi).
+        // Fourier cosine coefficients of f_rgb(mu_o, mu_i, phi): f = sum_m a_m
+        // cos(m phi), straight from the fast model's tables (one product per
+        // order and band; sampling eval() over phi cost 9x more).
+        std::vector<double> series(static_cast<std::size_t>(brdf.orders()) * bands);
         const auto coefficients = [&](double mu_i) {
-            const double sin_i = std::sqrt(std::max(0.0, 1.0 - mu_i * mu_i));
-            for (int p = 0; p <= n_phi; ++p) {
-                const double phi = kPi * p / n_phi;
-                brdf.eval(Direction{sin_i * std::cos(phi), sin_i * std::sin(phi), mu_i}, wo, spectrum);
-                f[static_cast<std::size_t>(p)] = toRgb(spectrum);
-            }
+            brdf.fourierCoefficients(mu_o, mu_i, series);
             for (int m = 0; m < n_phi; ++m) {
-                Rgb3 sum = Rgb3::Zero();
-                for (int p = 0; p <= n_phi; ++p) {
-                    const double end = (p == 0 || p == n_phi) ? 0.5 : 1.0;
-                    sum += end * std::cos(m * kPi * p / n_phi) * f[static_cast<std::size_t>(p)];
+                const auto mm = static_cast<std::size_t>(m);
+                if (m >= brdf.orders()) {
+                    a[mm] = Rgb3::Zero();
+                    continue;
                 }
-                a[static_cast<std::size_t>(m)] = sum * ((m == 0 ? 1.0 : 2.0) / n_phi);
+                std::copy_n(series.begin() + static_cast<std::ptrdiff_t>(mm * bands), bands,
+                            spectrum.begin());
+                a[mm] = toRgb(spectrum);
             }
         };
         for (int i = 0; i < kN; ++i) {

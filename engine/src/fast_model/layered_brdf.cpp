@@ -454,6 +454,40 @@ std::vector<double> LayeredBrdf::specularReflectance(double cos_theta) const {
     return r;
 }
 
+int LayeredBrdf::orders() const {
+    std::size_t orders = 0;
+    for (const BandTable& t : m_bands) orders = std::max(orders, t.f.size());
+    return static_cast<int>(orders);
+}
+
+void LayeredBrdf::fourierCoefficients(double cos_o, double cos_i, std::span<double> out) const {
+    const std::size_t bands = m_bands.size();
+    const auto orders = static_cast<std::size_t>(this->orders());
+    if (out.size() < orders * bands)
+        throw InputError("<argument>", "out",
+                         "needs orders x bands = " + std::to_string(orders * bands) + " values");
+    std::fill(out.begin(), out.end(), 0.0);
+    if (!(cos_o > 0.0) || !(cos_i > 0.0)) return;
+    Eigen::VectorXd out_even;
+    Eigen::VectorXd out_odd;
+    Eigen::VectorXd in_even;
+    Eigen::VectorXd in_odd;
+    for (std::size_t b = 0; b < bands; ++b) {
+        const BandTable& t = m_bands[b];
+        interpolationBasis(t, m_ambient_index, std::min(cos_o, 1.0), out_even, out_odd);
+        interpolationBasis(t, m_ambient_index, std::min(cos_i, 1.0), in_even, in_odd);
+        const double eta = m_top_index_per_band[b] / m_ambient_index;
+        const double transmit = (1.0 - fresnelDielectric(cos_i, eta)) * (1.0 - fresnelDielectric(cos_o, eta));
+        // As in eval(): weight 1 for m = 0 and 2 (-1)^m for m > 0 (the sign
+        // turns the propagation azimuth of the incident light into that of wi).
+        for (std::size_t m = 0; m < t.f.size(); ++m) {
+            const double weight = m == 0 ? 1.0 : (m % 2 == 0 ? 2.0 : -2.0);
+            const double value = m % 2 == 0 ? out_even.dot(t.f[m] * in_even) : out_odd.dot(t.f[m] * in_odd);
+            out[m * bands + b] = transmit * weight * value;
+        }
+    }
+}
+
 std::vector<double> LayeredBrdf::albedo(const Direction& wi) const {
     std::vector<double> a;
     Eigen::VectorXd even;

@@ -275,5 +275,41 @@ TEST(FastModelReciprocity, DemoRecipesAreReciprocalFiniteAndConserveEnergy) {
     }
 }
 
+// The Fourier coefficients are the series eval() sums: summed at any
+// azimuth they give eval()'s value (where eval() does not clip ringing below
+// zero), to round-off.
+TEST(FastModelFourier, CoefficientsSumToEval) {
+    const Recipe recipe =
+        loadRecipeFile(std::filesystem::path(PAINTLAB_DEMO_DIR) / "recipes" / "silver-metallic.json");
+    const LayeredBrdf brdf = computeLayeredBrdf(recipe, presetSettings(Preset::Preview));
+    const auto bands = brdf.wavelengthsNm().size();
+    const auto orders = static_cast<std::size_t>(brdf.orders());
+    ASSERT_GE(orders, 2U);
+    std::vector<double> c(orders * bands);
+    std::vector<double> f(bands);
+    int compared = 0;
+    for (const double theta_i : {5.0, 45.0, 80.0})
+        for (const double theta_o : {0.0, 30.0, 70.0}) {
+            brdf.fourierCoefficients(std::cos(theta_i * std::numbers::pi / 180.0),
+                                     std::cos(theta_o * std::numbers::pi / 180.0), c);
+            for (const double phi : {0.0, 60.0, 135.0, 180.0}) {
+                brdf.eval(directionFromAnglesDeg(theta_i, 0.0), directionFromAnglesDeg(theta_o, phi), f);
+                const double dphi = phi * std::numbers::pi / 180.0;
+                for (std::size_t b = 0; b < bands; ++b) {
+                    double sum = 0.0;
+                    for (std::size_t m = 0; m < orders; ++m)
+                        sum += c[m * bands + b] * std::cos(double(m) * dphi);
+                    if (sum <= 0.0) continue;  // eval() clips there
+                    EXPECT_NEAR(sum, f[b], 1e-12 * f[b] + 1e-15) << theta_i << " " << theta_o << " " << phi;
+                    ++compared;
+                }
+            }
+        }
+    EXPECT_GT(compared, 100);
+    // Below the horizon there is nothing.
+    brdf.fourierCoefficients(0.5, -0.1, c);
+    for (const double x : c) EXPECT_EQ(x, 0.0);
+}
+
 }  // namespace
 }  // namespace paintlab

@@ -14,6 +14,7 @@
 
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -61,6 +62,16 @@ public:
 
     // Fresnel reflectance of the top interface at this incidence cosine, per band.
     std::vector<double> specularReflectance(double cos_theta) const;
+
+    // The azimuthal Fourier series of eval() between two polar directions
+    // (cosines in the ambient medium): f(wi, wo) = sum over m of
+    // out[m * bands + b] cos(m (phi_o - phi_i)), for m < orders(), per band b,
+    // 1/sr. One matrix-vector product per order and band instead of sampling
+    // eval() over the azimuth: what a renderer's tables need. Unlike eval(),
+    // the series is not clipped at zero where truncation makes it ring.
+    void fourierCoefficients(double cos_o, double cos_i, std::span<double> out) const;
+    // Orders in fourierCoefficients(): the largest computed in any band.
+    int orders() const;
     // Directional-hemispherical albedo for light from wi, mirror term included, per band.
     std::vector<double> albedo(const Direction& wi) const;
     // Albedo for uniform diffuse incidence (mirror term included), per band.
