@@ -170,16 +170,23 @@ double ObjectReader::number(std::string_view key, const nlohmann::json& value) c
     return x;
 }
 
-double ObjectReader::numberOr(std::string_view key, double fallback) {
-    const nlohmann::json* value = find(key);
-    return value == nullptr ? fallback : number(key, *value);
+double ObjectReader::numberIn(std::string_view key, double lo, double hi, std::optional<double> fallback,
+                              bool lo_exclusive) {
+    const nlohmann::json* value = fallback ? find(key) : &require(key, "a number");
+    const double x = value == nullptr ? *fallback : number(key, *value);
+    if (x < lo || x > hi || (lo_exclusive && x == lo)) {
+        std::string message = "must lie in ";
+        message.append(lo_exclusive ? "(" : "[").append(std::to_string(lo)).append(", ");
+        message.append(std::to_string(hi)).append("], found ").append(std::to_string(x));
+        fail(key, message);
+    }
+    return x;
 }
 
-bool ObjectReader::booleanOr(std::string_view key, bool fallback) {
-    const nlohmann::json* value = find(key);
-    if (value == nullptr) return fallback;
-    if (!value->is_boolean()) fail(key, "expected true or false, found " + typeName(*value));
-    return value->get<bool>();
+int ObjectReader::integerIn(std::string_view key, int lo, int hi, std::optional<int> fallback) {
+    const double x = numberIn(key, lo, hi, fallback ? std::optional<double>(*fallback) : std::nullopt);
+    if (x != std::floor(x)) fail(key, "must be a whole number, found " + std::to_string(x));
+    return static_cast<int>(x);
 }
 
 std::vector<double> ObjectReader::numberArray(std::string_view key, const nlohmann::json& value,

@@ -5,6 +5,7 @@
 #include "record_layout.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/json_reader.h"
 #include "paintlab/raymaps/raymap.h"
 
 #include <nlohmann/json.hpp>
@@ -12,6 +13,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <numbers>
 
 namespace paintlab::raymaps {
 
@@ -23,104 +25,54 @@ constexpr int kMaxImageSide = 16384;
 
 json vec3(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
 
-class HeaderReader {
-public:
-    explicit HeaderReader(std::string file) : m_file(std::move(file)) {}
-    [[noreturn]] void fail(const std::string& field, const std::string& message) const {
-        throw InputError(m_file, "chunk 1 (HEAD) > " + field, message);
-    }
-    const json& at(const json& object, const std::string& key, const std::string& path) const {
-        if (!object.is_object() || !object.contains(key)) fail(path, "missing");
-        return object.at(key);
-    }
-    double number(const json& object, const std::string& key, double low, double high,
-                  const std::string& path) const {
-        const json& v = at(object, key, path);
-        if (!v.is_number()) fail(path, "not a number");
-        const double x = v.get<double>();
-        if (!(x >= low && x <= high))
-            fail(path, std::to_string(x) + " is outside [" + std::to_string(low) + ", " +
-                           std::to_string(high) + "]");
-        return x;
-    }
-    int integer(const json& object, const std::string& key, int low, int high,
-                const std::string& path) const {
-        const json& v = at(object, key, path);
-        if (!v.is_number_integer()) fail(path, "not an integer");
-        const auto x = v.get<std::int64_t>();
-        if (x < low || x > high)
-            fail(path, std::to_string(x) + " is outside [" + std::to_string(low) + ", " +
-                           std::to_string(high) + "]");
-        return static_cast<int>(x);
-    }
-    Eigen::Vector3d vector(const json& object, const std::string& key, const std::string& path) const {
-        const json& v = at(object, key, path);
-        if (!v.is_array() || v.size() != 3) fail(path, "not an array of 3 numbers");
-        Eigen::Vector3d out;
-        for (std::size_t i = 0; i < 3; ++i) {
-            if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
-                fail(path, "not an array of 3 numbers");
-            out[static_cast<Eigen::Index>(i)] = v[i].get<double>();
-        }
-        return out;
-    }
-
-private:
-    std::string m_file;
-};
+Eigen::Vector3d vector3(jsonio::ObjectReader& r, std::string_view key) {
+    const std::vector<double> v = r.fixedNumberArray(key, r.require(key, "3 numbers"), 3);
+    return {v[0], v[1], v[2]};
+}
 
 RayMapHeader parseHeader(const std::vector<std::byte>& payload, const std::string& file) {
-    json j;
-    try {
-        j = json::parse(reinterpret_cast<const char*>(payload.data()),
-                        reinterpret_cast<const char*>(payload.data()) + payload.size());
-    } catch (const json::exception& e) {
-        throw InputError(file, "chunk 1 (HEAD)", std::string("header is not valid JSON: ") + e.what());
-    }
-    const HeaderReader r(file);
+    const std::string text(reinterpret_cast<const char*>(payload.data()), payload.size());
+    const json j = jsonio::parseUntrustedJson(text, file);
+    jsonio::ObjectReader r(j, "chunk 1 (HEAD)", file);
     RayMapHeader h;
-    h.width = r.integer(j, "width", 1, kMaxImageSide, "width");
-    h.height = r.integer(j, "height", 1, kMaxImageSide, "height");
-    h.cells = r.integer(j, "cells", 1, 16, "cells");
-    h.orders = r.integer(j, "orders", 1, 16, "orders");
-    h.band_rows = r.integer(j, "band_rows", 1, 4096, "band_rows");
-    h.env_lights = r.integer(j, "env_lights", 0, 255, "env_lights");
-    h.paint_proxy_albedo = r.number(j, "paint_proxy_albedo", 0.0, 1.0, "paint_proxy_albedo");
-    const json& scene = r.at(j, "scene_file", "scene_file");
-    if (!scene.is_string()) r.fail("scene_file", "not a string");
-    h.scene_file = scene.get<std::string>();
-    const json& lights = r.at(j, "lights", "lights");
+    h.width = r.integerIn("width", 1, kMaxImageSide);
+    h.height = r.integerIn("height", 1, kMaxImageSide);
+    h.cells = r.integerIn("cells", 1, 16);
+    h.orders = r.integerIn("orders", 1, 16);
+    h.band_rows = r.integerIn("band_rows", 1, 4096);
+    h.env_lights = r.integerIn("env_lights", 0, 255);
+    h.paint_proxy_albedo = r.numberIn("paint_proxy_albedo", 0.0, 1.0);
+    h.scene_file = r.string("scene_file", true);
+    const json& lights = r.require("lights", "the explicit lights");
     if (!lights.is_array() || lights.size() > 255) r.fail("lights", "not an array of at most 255 lights");
     for (std::size_t i = 0; i < lights.size(); ++i) {
-        const std::string path = "lights > light " + std::to_string(i + 1);
-        const json& l = lights[i];
+        jsonio::ObjectReader l(lights[i], r.fieldPath("lights > light " + std::to_string(i + 1)), file);
         ExplicitLight light;
-        const json& kind = r.at(l, "kind", path + " > kind");
-        if (kind == "sun") {
+        const std::string kind = l.string("kind", true);
+        if (kind == "sun")
             light.kind = ExplicitLight::Kind::Sun;
-        } else if (kind == "point") {
+        else if (kind == "point")
             light.kind = ExplicitLight::Kind::Point;
-        } else {
-            r.fail(path + " > kind", "not 'sun' or 'point'");
-        }
-        light.vector = r.vector(l, "vector", path + " > vector");
-        light.power = r.vector(l, "power", path + " > power");
-        light.solid_angle_sr =
-            r.number(l, "solid_angle_sr", 0.0, 4.0 * 3.14159266, path + " > solid_angle_sr");
-        if (light.kind == ExplicitLight::Kind::Sun) {
-            if (std::abs(light.vector.norm() - 1.0) > 1e-6)
-                r.fail(path + " > vector", "not a unit direction");
-        }
+        else
+            l.fail("kind", "not 'sun' or 'point'");
+        light.vector = vector3(l, "vector");
+        light.power = vector3(l, "power");
+        light.solid_angle_sr = l.numberIn("solid_angle_sr", 0.0, 4.0 * std::numbers::pi);
+        if (light.kind == ExplicitLight::Kind::Sun && std::abs(light.vector.norm() - 1.0) > 1e-6)
+            l.fail("vector", "not a unit direction");
+        l.finish();
         h.lights.push_back(light);
     }
-    const json& stats = r.at(j, "statistics", "statistics");
-    h.paint_pixels =
-        static_cast<std::uint64_t>(r.number(stats, "paint_pixels", 0.0, 1e12, "statistics > paint_pixels"));
-    h.rays = static_cast<std::uint64_t>(r.number(stats, "rays", 0.0, 1e18, "statistics > rays"));
-    h.seconds = r.number(stats, "seconds", 0.0, 1e9, "statistics > seconds");
-    const int record = r.integer(j, "record_bytes", 1, 1 << 20, "record_bytes");
+    jsonio::ObjectReader stats(r.require("statistics", "precompute statistics"), r.fieldPath("statistics"),
+                               file);
+    h.paint_pixels = static_cast<std::uint64_t>(stats.numberIn("paint_pixels", 0.0, 1e12));
+    h.rays = static_cast<std::uint64_t>(stats.numberIn("rays", 0.0, 1e18));
+    h.seconds = stats.numberIn("seconds", 0.0, 1e9);
+    stats.finish();
+    const int record = r.integerIn("record_bytes", 1, 1 << 20);
     if (static_cast<std::size_t>(record) != recordBytes(h.cells, h.orders, static_cast<int>(h.lights.size())))
         r.fail("record_bytes", "does not match the layout of version 1 for these cells, orders and lights");
+    r.finish();
     return h;
 }
 

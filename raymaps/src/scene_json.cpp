@@ -44,21 +44,6 @@ Rgb3 colour(ObjectReader& reader, std::string_view key, const Rgb3& fallback, do
     return c;
 }
 
-double numberIn(ObjectReader& reader, std::string_view key, double fallback, double lo, double hi,
-                bool lo_exclusive = false) {
-    const double x = reader.numberOr(key, fallback);
-    if (x < lo || x > hi || (lo_exclusive && x == lo))
-        reader.fail(key, "must lie in " + std::string(lo_exclusive ? "(" : "[") + std::to_string(lo) + ", " +
-                             std::to_string(hi) + "], found " + std::to_string(x));
-    return x;
-}
-
-int integerIn(ObjectReader& reader, std::string_view key, int fallback, int lo, int hi) {
-    const double x = numberIn(reader, key, fallback, lo, hi);
-    if (x != std::floor(x)) reader.fail(key, "must be a whole number, found " + std::to_string(x));
-    return static_cast<int>(x);
-}
-
 std::filesystem::path resolveFile(ObjectReader& reader, std::string_view key,
                                   const std::filesystem::path& base) {
     const std::string name = reader.string(key, true);
@@ -76,9 +61,9 @@ Camera readCamera(const json& value, const std::string& source) {
     c.position = vector3(r, "position", c.position);
     c.look_at = vector3(r, "look_at", c.look_at);
     c.up = vector3(r, "up", c.up);
-    c.vertical_fov_deg = numberIn(r, "vertical_fov_deg", c.vertical_fov_deg, 0.0, 170.0, true);
-    c.width = integerIn(r, "width", c.width, 1, kMaxImageSide);
-    c.height = integerIn(r, "height", c.height, 1, kMaxImageSide);
+    c.vertical_fov_deg = r.numberIn("vertical_fov_deg", 0.0, 170.0, c.vertical_fov_deg, true);
+    c.width = r.integerIn("width", 1, kMaxImageSide, c.width);
+    c.height = r.integerIn("height", 1, kMaxImageSide, c.height);
     r.finish();
     const Eigen::Vector3d view = c.look_at - c.position;
     if (view.norm() <= 0.0) r.fail("look_at", "equals the camera position");
@@ -91,8 +76,8 @@ Environment readEnvironment(const json& value, const std::string& source, const 
     ObjectReader r(value, "environment", source);
     Environment e;
     if (r.find("file") != nullptr) e.file = resolveFile(r, "file", base);
-    e.rotation_deg = numberIn(r, "rotation_deg", e.rotation_deg, -360.0, 360.0);
-    e.intensity = numberIn(r, "intensity", e.intensity, 0.0, 1e6);
+    e.rotation_deg = r.numberIn("rotation_deg", -360.0, 360.0, e.rotation_deg);
+    e.intensity = r.numberIn("intensity", 0.0, 1e6, e.intensity);
     r.finish();
     return e;
 }
@@ -106,7 +91,7 @@ Light readLight(const json& value, const std::string& path, const std::string& s
         if (sun.direction.norm() <= 0.0) r.fail("direction", "must not be zero");
         sun.direction.normalize();
         sun.irradiance = colour(r, "irradiance", sun.irradiance, 1e6);
-        sun.angular_diameter_deg = numberIn(r, "angular_diameter_deg", sun.angular_diameter_deg, 0.0, 30.0);
+        sun.angular_diameter_deg = r.numberIn("angular_diameter_deg", 0.0, 30.0, sun.angular_diameter_deg);
         r.finish();
         return sun;
     }
@@ -139,8 +124,8 @@ Material readMaterial(const json& value, const std::string& path, const std::str
     m.kind = materialKind(r, r.string("kind", true));
     // Albedo 1 would make a closed scene's path tracing never converge; no real material reaches it.
     m.albedo = colour(r, "albedo", m.albedo, 0.99);
-    m.roughness = numberIn(r, "roughness", m.roughness, 0.0, 1.0, true);
-    m.ior = numberIn(r, "ior", m.ior, 1.0, 4.0);
+    m.roughness = r.numberIn("roughness", 0.0, 1.0, m.roughness, true);
+    m.ior = r.numberIn("ior", 1.0, 4.0, m.ior);
     m.radiance = colour(r, "radiance", m.radiance, 1e9);
     r.finish();
     return m;
@@ -153,7 +138,7 @@ Transform readTransform(ObjectReader& owner, const std::string& source) {
     ObjectReader r(*value, owner.fieldPath("transform"), source);
     t.translate = vector3(r, "translate", t.translate);
     t.rotate_deg = vector3(r, "rotate_deg", t.rotate_deg);
-    t.scale = numberIn(r, "scale", t.scale, 0.0, 1e6, true);
+    t.scale = r.numberIn("scale", 0.0, 1e6, t.scale, true);
     r.finish();
     return t;
 }
@@ -165,7 +150,7 @@ Shape readShape(ObjectReader& r, const std::string& source, const std::filesyste
         ObjectReader m(*v, r.fieldPath("mesh"), source);
         MeshShape mesh;
         mesh.file = resolveFile(m, "file", base);
-        mesh.fit_size = numberIn(m, "fit_size", 0.0, 0.0, 1e6);
+        mesh.fit_size = m.numberIn("fit_size", 0.0, 1e6, 0.0);
         if (const json* map = m.find("material_map")) {
             if (!map->is_object())
                 m.fail("material_map", R"(expected an object {"mesh material": "scene material"})");
@@ -182,8 +167,8 @@ Shape readShape(ObjectReader& r, const std::string& source, const std::filesyste
     if (const json* v = r.find("sphere")) {
         ObjectReader s(*v, r.fieldPath("sphere"), source);
         SphereShape sphere;
-        sphere.radius = numberIn(s, "radius", sphere.radius, 0.0, 1e6, true);
-        sphere.subdivisions = integerIn(s, "subdivisions", sphere.subdivisions, 0, 8);
+        sphere.radius = s.numberIn("radius", 0.0, 1e6, sphere.radius, true);
+        sphere.subdivisions = s.integerIn("subdivisions", 0, 8, sphere.subdivisions);
         s.finish();
         shape = sphere;
         ++found;
@@ -191,7 +176,7 @@ Shape readShape(ObjectReader& r, const std::string& source, const std::filesyste
     if (const json* v = r.find("plane")) {
         ObjectReader p(*v, r.fieldPath("plane"), source);
         PlaneShape plane;
-        plane.size = numberIn(p, "size", plane.size, 0.0, 1e6, true);
+        plane.size = p.numberIn("size", 0.0, 1e6, plane.size, true);
         p.finish();
         shape = plane;
         ++found;
@@ -199,7 +184,7 @@ Shape readShape(ObjectReader& r, const std::string& source, const std::filesyste
     if (const json* v = r.find("car_body")) {
         ObjectReader c(*v, r.fieldPath("car_body"), source);
         CarBodyShape car;
-        car.length = numberIn(c, "length", car.length, 0.0, 1e6, true);
+        car.length = c.numberIn("length", 0.0, 1e6, car.length, true);
         car.wheel_material = c.string("wheel_material", false);
         c.finish();
         shape = car;

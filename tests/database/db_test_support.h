@@ -5,6 +5,8 @@
 #include "paintlab/engine/recipe.h"
 #include "paintlab/engine/recipe_json.h"
 
+#include "temp_dir.h"
+
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
@@ -15,28 +17,7 @@
 
 namespace paintlab::db::test {
 
-// A fresh folder under $TMPDIR (or /tmp), removed with everything in it.
-class TempDir {
-public:
-    TempDir() {
-        const char* base = std::getenv("TMPDIR");  // NOLINT(concurrency-mt-unsafe)
-        std::string pattern = (base != nullptr && *base != '\0' ? std::string(base) : std::string("/tmp"));
-        pattern.append("/paintlab-db-test-XXXXXX");
-        if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
-        m_path = pattern;
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    ~TempDir() {
-        std::error_code ec;
-        std::filesystem::remove_all(m_path, ec);
-    }
-    const std::filesystem::path& path() const { return m_path; }
-    std::filesystem::path operator/(const std::string& name) const { return m_path / name; }
-
-private:
-    std::filesystem::path m_path;
-};
+using paintlab::test::TempDir;
 
 inline std::string fileBytes(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);

@@ -1,7 +1,7 @@
 // The ray-map file framing: round trip, and every truncation and every
 // single-byte corruption detected and named, never trusted.
 
-#include "scratch_dir.h"
+#include "temp_dir.h"
 
 #include "paintlab/engine/error.h"
 #include "paintlab/raymaps/chunk_file.h"
@@ -25,7 +25,7 @@ std::vector<std::byte> pattern(std::size_t n, int seed) {
     return v;
 }
 
-std::filesystem::path writeSample(const test::ScratchDir& dir) {
+std::filesystem::path writeSample(const test::TempDir& dir) {
     const auto file = dir.path() / "sample.prm";
     ChunkFileWriter writer(file, kMagic, 1);
     writer.addChunk(kImage, pattern(300, 1));
@@ -51,7 +51,7 @@ void loadAll(const std::filesystem::path& file) {
 }
 
 TEST(ChunkFile, RoundTrip) {
-    const test::ScratchDir dir;
+    const test::TempDir dir;
     const auto file = writeSample(dir);
     EXPECT_FALSE(std::filesystem::exists(file.string() + ".partial"));
     const ChunkFileReader reader(file, kMagic, 1);
@@ -70,7 +70,7 @@ TEST(ChunkFile, Crc32MatchesTheStandardCheckValue) {
 }
 
 TEST(ChunkFile, EveryTruncationIsDetected) {
-    const test::ScratchDir dir;
+    const test::TempDir dir;
     const auto bytes = bytesOf(writeSample(dir));
     const auto cut = dir.path() / "cut.prm";
     for (std::size_t n = 0; n < bytes.size(); ++n) {
@@ -85,7 +85,7 @@ TEST(ChunkFile, EveryTruncationIsDetected) {
 }
 
 TEST(ChunkFile, EverySingleByteCorruptionIsDetected) {
-    const test::ScratchDir dir;
+    const test::TempDir dir;
     const auto bytes = bytesOf(writeSample(dir));
     const auto bad = dir.path() / "bad.prm";
     int payload_errors = 0;
@@ -106,7 +106,7 @@ TEST(ChunkFile, EverySingleByteCorruptionIsDetected) {
 }
 
 TEST(ChunkFile, WrongMagicNewerVersionAndMissingFile) {
-    const test::ScratchDir dir;
+    const test::TempDir dir;
     const auto file = writeSample(dir);
     constexpr Magic other = {'N', 'O', 'T', 'A', 'M', 'A', 'P', '!'};
     EXPECT_THROW(ChunkFileReader(file, other, 1), InputError);
@@ -124,7 +124,7 @@ TEST(ChunkFile, WrongMagicNewerVersionAndMissingFile) {
 }
 
 TEST(ChunkFile, AnUnfinishedWriterLeavesNothingBehind) {
-    const test::ScratchDir dir;
+    const test::TempDir dir;
     const auto file = dir.path() / "unfinished.prm";
     {
         ChunkFileWriter writer(file, kMagic, 1);

@@ -1,7 +1,7 @@
 // HDR environments: lookup, importance sampling (unbiased, pdf integrates to
 // one, matches where samples land), and bad pixels and files named.
 
-#include "scratch_dir.h"
+#include "temp_dir.h"
 
 #include "paintlab/engine/error.h"
 #include "paintlab/raymaps/environment_map.h"
@@ -157,7 +157,7 @@ void writeExr(const std::filesystem::path& file, int w, int h, const std::vector
 }
 
 TEST(EnvironmentMap, FilesRoundTripAndBadFilesAreNamed) {
-    const test::ScratchDir dir;
+    const test::TempDir dir;
     Environment spec;
     spec.file = dir.path() / "grey.exr";
     writeExr(spec.file, 16, 8, constantPixels(16, 8, 0.5F));

@@ -1,7 +1,7 @@
 // Mesh files through assimp: real third-party models load, broken ones give
 // an error naming the file or a documented, reported repair.
 
-#include "scratch_dir.h"
+#include "temp_dir.h"
 
 #include "paintlab/engine/error.h"
 #include "paintlab/raymaps/scene_geometry.h"
@@ -41,7 +41,7 @@ TEST(MeshImport, RealModelsInSeveralFormats) {
 }
 
 TEST(MeshImport, MissingNormalsAreComputedAndReported) {
-    const test::ScratchDir dir;
+    const test::TempDir dir;
     // A unit square as two triangles, no normals in the file: the computed ones face +z.
     const auto file = dir.write("square.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
     std::vector<std::string> repairs;
@@ -54,7 +54,7 @@ TEST(MeshImport, MissingNormalsAreComputedAndReported) {
 }
 
 TEST(MeshImport, ZeroAreaTrianglesAreDroppedAndReported) {
-    const test::ScratchDir dir;
+    const test::TempDir dir;
     // Second face repeats a vertex, third is collinear: both have zero area.
     const auto file =
         dir.write("degenerate.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 1 3\nf 1 2 4\n");
@@ -67,7 +67,7 @@ TEST(MeshImport, ZeroAreaTrianglesAreDroppedAndReported) {
 }
 
 TEST(MeshImport, BrokenFilesAreErrorsNamingTheFile) {
-    const test::ScratchDir dir;
+    const test::TempDir dir;
     const auto expectError = [](const std::filesystem::path& file, const std::string& part) {
         std::vector<std::string> repairs;
         try {

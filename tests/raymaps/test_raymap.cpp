@@ -2,7 +2,7 @@
 // BRDF's own albedo and eval(), energy), determinism, and the rejection of
 // corrupt or truncated files.
 
-#include "scratch_dir.h"
+#include "temp_dir.h"
 
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/layered_brdf.h"
@@ -36,7 +36,7 @@ LayeredBrdf brdfOf(const std::filesystem::path& recipe) {
 }
 
 // A lat-long EXR of constant radiance.
-std::filesystem::path writeUniformSky(const test::ScratchDir& dir, float radiance) {
+std::filesystem::path writeUniformSky(const test::TempDir& dir, float radiance) {
     const auto path = dir.path() / "uniform.exr";
     const int w = 16;
     const int h = 8;
@@ -86,7 +86,7 @@ Rgb3 pixel(const RgbImage& image, int x, int y) {
 // this flat BRDF), linear interpolation in mu_o (the albedo is flat to 1e-4
 // here), and the pixel's sample not being at its centre. Budget 0.5 %.
 TEST(RayMap, ConvexLambertianUnderUniformSkyShowsAlbedoTimesRadiance) {
-    const test::ScratchDir dir;
+    const test::TempDir dir;
     const float sky_radiance = 0.8F;
     const int size = 24;
     const Scene scene = parseSceneJson(sphereScene(writeUniformSky(dir, sky_radiance), size), "sphere.json");
@@ -139,7 +139,7 @@ TEST(RayMap, ConvexLambertianUnderUniformSkyShowsAlbedoTimesRadiance) {
 // the flake paint's lobe is ~25 degrees wide, so the interpolation error
 // h^2 f''/8 stays below 1 % (measured: 0.5 % worst pixel). Budget 1.5 %.
 TEST(RayMap, SunLitPlaneMatchesBrdfTimesIrradianceTimesCosine) {
-    const test::ScratchDir dir;
+    const test::TempDir dir;
     const Eigen::Vector3d sun = Eigen::Vector3d(0.4, 0.8, -0.3).normalized();
     const Eigen::Vector3d eye(0.0, 300.0, 400.0);
     const std::string text = R"({"schema_version": 1,
@@ -196,7 +196,7 @@ TEST(RelightTables, LightTableMatchesEvalWithinInterpolationError) {
 // The same pixels come out for one thread and for two: every pixel draws
 // its own random numbers.
 TEST(RayMap, OutputDoesNotDependOnTheThreadCount) {
-    const test::ScratchDir dir;
+    const test::TempDir dir;
     const Scene scene = parseSceneJson(sphereScene(writeUniformSky(dir, 1.0F), 16), "sphere.json");
     RayMapSettings s = smallSettings();
     std::vector<std::vector<float>> images;
@@ -228,7 +228,7 @@ protected:
         std::ofstream(m_path, std::ios::binary | std::ios::trunc)
             .write(data.data(), static_cast<std::streamsize>(data.size()));
     }
-    test::ScratchDir m_dir;
+    test::TempDir m_dir;
     std::filesystem::path m_path;
 };
 
@@ -291,7 +291,7 @@ TEST(RayMap, BadSettingsAreInputErrors) {
 }
 
 TEST(RayMap, CancelledBuildLeavesNoFile) {
-    const test::ScratchDir dir;
+    const test::TempDir dir;
     const Scene scene = parseSceneJson(sphereScene(writeUniformSky(dir, 1.0F), 16), "sphere.json");
     const auto path = dir.path() / "cancelled.prm";
     EXPECT_THROW(buildRayMap(scene, smallSettings(), path, [](double) { return false; }), Error);
@@ -314,7 +314,7 @@ namespace {
 // sphere sends to the floor and back, and the relight tables'
 // interpolation), plus 4 standard errors of the reference.
 // `lighting`: the scene's "lights" and "environment" members (JSON).
-void expectRelightMatchesReference(const test::ScratchDir& dir, const std::string& lighting,
+void expectRelightMatchesReference(const test::TempDir& dir, const std::string& lighting,
                                    int expected_env_lights, const std::filesystem::path& recipe) {
     const int size = 32;
     const std::string text = R"({"schema_version": 1,
@@ -381,7 +381,7 @@ void expectRelightMatchesReference(const test::ScratchDir& dir, const std::strin
 }
 
 TEST(Reference, RelightMatchesTheBruteForceReferenceOnASunLitSphere) {
-    const test::ScratchDir dir;
+    const test::TempDir dir;
     expectRelightMatchesReference(
         dir, R"("lights": [{"type": "sun", "direction": [0.5, 0.8, 0.6], "irradiance": [2, 2, 2]}])", 0,
         std::filesystem::path(PAINTLAB_TEST_DATA_DIR) / "valid_minimal.json");
@@ -395,7 +395,7 @@ TEST(Reference, RelightMatchesTheBruteForceReferenceOnASunLitSphere) {
 // coat (the Lambertian-like test recipe): the coat's mirror image of a
 // radiance-3000 spot is a delta path the reference can only hit by chance,
 // which made its noise (7 % per pixel mean) larger than the budget.
-std::filesystem::path writeSkyWithHotspot(const test::ScratchDir& dir) {
+std::filesystem::path writeSkyWithHotspot(const test::TempDir& dir) {
     const int w = 64;
     const int h = 32;
     std::vector<float> rgb(static_cast<std::size_t>(w * h * 3));
@@ -414,7 +414,7 @@ std::filesystem::path writeSkyWithHotspot(const test::ScratchDir& dir) {
 }
 
 TEST(Reference, RelightMatchesTheReferenceUnderAnHdrWithAHotspot) {
-    const test::ScratchDir dir;
+    const test::TempDir dir;
     expectRelightMatchesReference(
         dir, R"("environment": {"file": ")" + writeSkyWithHotspot(dir).string() + R"("})", 1,
         kData / "lambertian_index_matched.json");
@@ -424,7 +424,7 @@ TEST(Reference, RelightMatchesTheReferenceUnderAnHdrWithAHotspot) {
 // (luminance integral; the hotspot's irradiance is its excess radiance
 // times the pixels' solid angles, the same measure). Float storage: 1e-6.
 TEST(EnvironmentHotspots, ResidualPlusHotspotsIsTheMap) {
-    const test::ScratchDir dir;
+    const test::TempDir dir;
     const EnvironmentMap map = EnvironmentMap::load(Environment{writeSkyWithHotspot(dir), 0.0, 1.0});
     std::vector<EnvironmentMap::Hotspot> spots;
     const EnvironmentMap residual = map.withoutHotspots(4, 50.0, spots);

@@ -1,7 +1,7 @@
 // Scene files: what a valid file gives, and a clear error naming the field
 // for every kind of bad input.
 
-#include "scratch_dir.h"
+#include "temp_dir.h"
 
 #include "paintlab/engine/error.h"
 #include "paintlab/raymaps/scene.h"
@@ -110,7 +110,7 @@ TEST(SceneJson, BadInputNamesTheField) {
 }
 
 TEST(SceneJson, MissingFilesAreNamed) {
-    const test::ScratchDir dir;
+    const test::TempDir dir;
     const std::string mesh_scene =
         edited(R"("sphere": {"radius": 0.5})", R"("mesh": {"file": "missing-teapot.obj"})");
     const auto file = dir.write("scene.json", mesh_scene);
@@ -129,7 +129,7 @@ TEST(SceneJson, MissingFilesAreNamed) {
 }
 
 TEST(SceneJson, RelativeMeshPathsResolveAgainstTheSceneFolder) {
-    const test::ScratchDir dir;
+    const test::TempDir dir;
     dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     const auto file =
         dir.write("scene.json", edited(R"("sphere": {"radius": 0.5})", R"("mesh": {"file": "tri.obj"})"));

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -45,8 +46,12 @@ public:
     // A finite number; value is the JSON found at key.
     double number(std::string_view key, const nlohmann::json& value) const;
     double number(std::string_view key, std::string_view what) { return number(key, require(key, what)); }
-    double numberOr(std::string_view key, double fallback);
-    bool booleanOr(std::string_view key, bool fallback);
+    // A number in [lo, hi] ((lo, hi] with lo_exclusive); required unless a
+    // fallback is given for an absent key.
+    double numberIn(std::string_view key, double lo, double hi, std::optional<double> fallback = std::nullopt,
+                    bool lo_exclusive = false);
+    // A whole number in [lo, hi]; required unless a fallback is given.
+    int integerIn(std::string_view key, int lo, int hi, std::optional<int> fallback = std::nullopt);
     // At most max_entries finite numbers.
     std::vector<double> numberArray(std::string_view key, const nlohmann::json& value,
                                     std::size_t max_entries = kMaxArrayEntries) const;
