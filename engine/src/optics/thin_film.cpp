@@ -16,7 +16,7 @@ using C = std::complex<double>;
 // sin(beta) / beta, accurate near 0 (Taylor to beta^4: the next term is
 // beta^6 / 5040 < 1e-19 for |beta| < 1e-3).
 C sinc(C beta) {
-    if (std::abs(beta) < 1e-3) {
+    if (std::norm(beta) < 1e-6) {  // |beta| < 1e-3
         const C b2 = beta * beta;
         return 1.0 - b2 / 6.0 + b2 * b2 / 120.0;
     }
@@ -277,7 +277,7 @@ bool averageOverMica(const Mat2& A, C Y_mica, double Y1, const std::vector<C>& m
     const C D_U = aU + bU, D_V = aV + bV, N_U = aU - bU, N_V = aV - bV;
     C p;
     double G = 0.0;
-    if (std::abs(D_U) < std::abs(D_V)) {
+    if (std::norm(D_U) < std::norm(D_V)) {  // norm: |z|^2 without hypot's cost
         p = -D_U / D_V;
         G = 1.0 / (std::norm(D_V) * (1.0 - std::norm(p)));
     } else {
@@ -288,6 +288,7 @@ bool averageOverMica(const Mat2& A, C Y_mica, double Y1, const std::vector<C>& m
     if (!(abs_p < 1.0 - 1e-9) || !std::isfinite(G)) return false;
     // Terms smaller than tail_tol leave a geometric tail below 1e-3 tol.
     const double tail_tol = 1e-3 * tol * (1.0 - abs_p);
+    const double tail_tol2 = tail_tol * tail_tol;  // compared with |p^m|^2: no square root per term
     const std::size_t M = mu.size() - 2;
     C sum0(0.0), sum1 = mu[1];
     C pm(1.0);
@@ -302,7 +303,7 @@ bool averageOverMica(const Mat2& A, C Y_mica, double Y1, const std::vector<C>& m
             cpm *= cp;
             sum1 += cpm * std::conj(mu[m - 1]);  // g_{-m} mu_{1-m}
         }
-        if (std::abs(pm) < tail_tol) break;
+        if (std::norm(pm) < tail_tol2) break;
     }
     const double S0 = 1.0 + 2.0 * sum0.real();
     const double n0 = std::norm(N_U) + std::norm(N_V);
