@@ -26,10 +26,12 @@ VectorXd wVector(const layered::Quadrature& q) {
 // (the kernel is even in the azimuth difference): the midpoint rule is exact
 // for cos(m phi) below 2 N and spectrally accurate for a smooth periodic lobe
 // once its spacing is below the lobe's azimuthal width, ~2 sigma / sin(theta)
-// >= 2 sigma; four points per sigma, capped (a narrower lobe is the deficit's).
-int azimuthPoints(double spread_deg, int orders) {
+// >= 2 sigma; points_per_spread points per sigma (4 by default), capped (a
+// narrower lobe is the deficit's).
+int azimuthPoints(double spread_deg, int orders, double points_per_spread) {
     const double sigma = std::max(spread_deg, 0.1) * std::numbers::pi / 180.0;
-    const int resolve = static_cast<int>(std::ceil(4.0 * std::numbers::pi / sigma));
+    const int resolve =
+        static_cast<int>(std::ceil(std::clamp(points_per_spread, 0.25, 16.0) * std::numbers::pi / sigma));
     return std::max(orders + 8, std::min(resolve, 256));
 }
 
@@ -232,7 +234,7 @@ void addFlakes(const std::vector<FlakeKind>& kinds, const layered::Quadrature& q
             deficit(j) = kind.area_density_per_um * totals.reflected;
         }
         if (!orientation.isDelta()) {
-            const int n_phi = azimuthPoints(kind.spread_deg, orders);
+            const int n_phi = azimuthPoints(kind.spread_deg, orders, sampling.kernel_points_per_spread);
             const double dphi = std::numbers::pi / n_phi;
             const double scale = 0.25 * kind.area_density_per_um * 2.0 * dphi;  // [0, pi] counted twice
             std::vector<double> cphi(static_cast<std::size_t>(n_phi));

@@ -37,9 +37,10 @@ struct SlabKernels {
 };
 
 struct FlakeSampling {
-    int polar = 24;    // Gauss nodes in the flake normal's tilt (per smooth piece)
-    int azimuth = 48;  // and azimuth (per smooth piece of [0, pi])
-    int table = 129;   // cosines of the flakes' R(cos), T(cos) table
+    int polar = 24;                         // Gauss nodes in the flake normal's tilt (per smooth piece)
+    int azimuth = 48;                       // and azimuth (per smooth piece of [0, pi])
+    int table = 129;                        // cosines of the flakes' R(cos), T(cos) table
+    double kernel_points_per_spread = 4.0;  // azimuth points per spread sigma in the kernel's Fourier sums
 };
 
 // Kernels of the slab for orders 0..max_order on the medium quadrature q

@@ -99,7 +99,8 @@ BandStack buildBandStack(const Recipe& recipe, double wavelength_nm, const FastM
         wavelength_nm, StackQuadrature(settings.nodes, indices), recipe.ambient_refractive_index, {}, {}};
 
     double n_above = recipe.ambient_refractive_index;
-    const FlakeSampling sampling{settings.flake_polar, settings.flake_azimuth, settings.flake_table};
+    const FlakeSampling sampling{settings.flake_polar, settings.flake_azimuth, settings.flake_table,
+                                 settings.flake_kernel_points_per_spread};
     for (const auto& layer : recipe.layers) {
         const double n_layer = layer.binder.refractive_index(wavelength_nm);
         if (std::abs(n_layer - n_above) > kSameIndex)

@@ -31,6 +31,11 @@ struct FastModelSettings {
     int flake_polar = 12;  // Gauss nodes (tilt x azimuth, per smooth piece) for the flake totals
     int flake_azimuth = 12;
     int flake_table = 129;  // cosines at which the flakes' reflectance is tabulated (cubic in between)
+    // Azimuth points per orientation spread sigma in the Fourier coefficients of
+    // the flake reflection kernel (midpoint rule over [0, pi], at least orders + 8):
+    // 4 resolves the lobe, 1 spaces the points one sigma apart, still below the
+    // lobe's azimuthal width of ~2 sigma (preview: a fifth less work, docs/PERFORMANCE.md).
+    double flake_kernel_points_per_spread = 4.0;
     // Fourier orders beyond the first whose kernels (every slab's largest
     // |K^m| relative to its |K^0|) fall below this are not computed (their
     // f^m are zero), unless the substrate reflects in that order (a mirror).
