@@ -14,8 +14,10 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <initializer_list>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <string>
 
 namespace paintlab::cli {
@@ -53,43 +55,29 @@ int runAccuracy(const AccuracyOptions& o) {
         rows.push_back({"preset", std::string(presetName(p)), presetSettings(p)});
     // One knob at a time away from the standard preset, the others as standard.
     const FastModelSettings standard = presetSettings(Preset::Standard);
-    for (int n : {8, 12, 16, 32}) {
-        FastModelSettings s = standard;
-        s.nodes = n;
-        rows.push_back({"nodes", std::to_string(n), s});
-    }
-    for (int m : {4, 8, 24, 32}) {
-        FastModelSettings s = standard;
-        s.orders = m;
-        rows.push_back({"orders", std::to_string(m), s});
-    }
-    for (int b : {8, 24, 41}) {
-        FastModelSettings s = standard;
-        s.bands = b;
-        rows.push_back({"bands", std::to_string(b), s});
-    }
-    for (double d : {1.0 / 16.0, 1.0 / 64.0, 1.0 / 1024.0}) {
-        FastModelSettings s = standard;
-        s.max_start_tau = d;
-        rows.push_back({"max_start_tau", std::to_string(d), s});
-    }
-    // The flake knobs (they matter only for recipes with flakes).
-    for (int t : {9, 17, 65}) {
-        FastModelSettings s = standard;
-        s.flake_table = t;
-        rows.push_back({"flake_table", std::to_string(t), s});
-    }
-    for (int q : {2, 4, 12}) {
-        FastModelSettings s = standard;
-        s.flake_polar = q;
-        s.flake_azimuth = q;
-        rows.push_back({"flake_quadrature", std::to_string(q) + "x" + std::to_string(q), s});
-    }
-    for (double k : {1.0, 2.0, 8.0}) {
-        FastModelSettings s = standard;
-        s.flake_kernel_points_per_spread = k;
-        rows.push_back({"flake_kernel_points_per_spread", std::to_string(k), s});
-    }
+    const auto sweep = [&](const char* knob, std::initializer_list<double> values, auto&& set) {
+        for (double v : values) {
+            FastModelSettings s = standard;
+            set(s, v);
+            std::ostringstream label;
+            label << v;
+            rows.push_back({knob, label.str(), s});
+        }
+    };
+    const auto whole = [](double v) { return static_cast<int>(v); };
+    sweep("nodes", {8, 12, 16, 32}, [&](FastModelSettings& s, double v) { s.nodes = whole(v); });
+    sweep("orders", {4, 8, 24, 32}, [&](FastModelSettings& s, double v) { s.orders = whole(v); });
+    sweep("bands", {8, 24, 41}, [&](FastModelSettings& s, double v) { s.bands = whole(v); });
+    sweep("max_start_tau", {1.0 / 16.0, 1.0 / 64.0, 1.0 / 1024.0},
+          [](FastModelSettings& s, double v) { s.max_start_tau = v; });
+    // The flake knobs (they matter only for recipes with flakes); quadrature: tilt x azimuth nodes.
+    sweep("flake_table", {9, 17, 65}, [&](FastModelSettings& s, double v) { s.flake_table = whole(v); });
+    sweep("flake_quadrature", {2, 4, 12}, [&](FastModelSettings& s, double v) {
+        s.flake_polar = whole(v);
+        s.flake_azimuth = whole(v);
+    });
+    sweep("flake_kernel_points_per_spread", {1, 2, 8},
+          [](FastModelSettings& s, double v) { s.flake_kernel_points_per_spread = v; });
     for (Row& row : rows) {
         const LayeredBrdf brdf = computeLayeredBrdf(recipe, row.settings);
         row.seconds = brdf.computeSeconds();
