@@ -78,12 +78,16 @@ ContentKind detectKind(const std::string& text, FileFormat format, const std::st
             "not a PaintLab file: expected \"format\": \"paintlab-ingredients\", \"paintlab-spectra\" "
             "or \"paintlab-measurement\", or a recipe (give --kind to say which)");
     }
-    const std::string header = text.substr(0, text.find('\n'));
+    // The header's column names, unquoted.
+    std::vector<std::string> columns(1);
+    for (const char c : std::string_view(text).substr(0, text.find('\n'))) {
+        if (c == ',')
+            columns.emplace_back();
+        else if (c != '"' && c != '\r')
+            columns.back().push_back(c);
+    }
     const auto has = [&](std::string_view column) {
-        std::string h = "," + header + ",";
-        std::erase(h, '\r');
-        std::erase(h, '"');
-        return h.find("," + std::string(column) + ",") != std::string::npos;
+        return std::find(columns.begin(), columns.end(), column) != columns.end();
     };
     if (has("kind") && has("spectrum")) return ContentKind::Ingredients;
     if (has("quantity") && has("wavelength_nm")) return ContentKind::Spectra;

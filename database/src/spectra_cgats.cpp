@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <type_traits>
 
 namespace paintlab::db {
 
@@ -71,7 +72,7 @@ void logHandler(cmsContext context, cmsUInt32Number /*code*/, const char* text) 
 }
 
 struct ContextDeleter {
-    void operator()(void* context) const { cmsDeleteContext(static_cast<cmsContext>(context)); }
+    void operator()(cmsContext context) const { cmsDeleteContext(context); }
 };
 struct It8Deleter {
     void operator()(void* handle) const { cmsIT8Free(handle); }
@@ -87,7 +88,8 @@ std::string property(cmsHANDLE it8, const char* key) {
 std::vector<NamedSpectrum> parseSpectraCgats(std::string_view text, const std::string& source,
                                              const CgatsOptions& options) {
     Log log;
-    const std::unique_ptr<void, ContextDeleter> context(cmsCreateContext(nullptr, &log));
+    const std::unique_ptr<std::remove_pointer_t<cmsContext>, ContextDeleter> context(
+        cmsCreateContext(nullptr, &log));
     if (!context) throw Error("liblcms2: cannot create a context");
     cmsSetLogErrorHandlerTHR(context.get(), logHandler);
     if (text.size() > 0xffffffffU) throw InputError(source, "", "too large for a CGATS file");
@@ -232,8 +234,8 @@ std::string spectraToCgats(const std::vector<NamedSpectrum>& spectra) {
     for (const double wavelength : wavelengths) out += " SPECTRAL_NM" + number(wavelength);
     out += "\nEND_DATA_FORMAT\nNUMBER_OF_SETS " + std::to_string(spectra.size()) + "\nBEGIN_DATA\n";
     for (std::size_t i = 0; i < spectra.size(); ++i) {
-        out += std::to_string(i + 1) + " " + quoted(spectra[i].name);
-        for (const double value : spectra[i].spectrum.values()) out += " " + number(value);
+        out.append(std::to_string(i + 1)).append(" ").append(quoted(spectra[i].name));
+        for (const double value : spectra[i].spectrum.values()) out.append(" ").append(number(value));
         out += "\n";
     }
     out += "END_DATA\n";

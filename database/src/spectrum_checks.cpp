@@ -66,7 +66,8 @@ Spectrum checkedSpectrum(const std::string& source, const std::string& field,
                              std::to_string(values.size()) + " values");
     if (values.empty()) throw InputError(source, field, "no sample");
     for (std::size_t i = 0; i < values.size(); ++i) {
-        const std::string at = "[" + std::to_string(i) + "]";
+        std::string at = "[";
+        at.append(std::to_string(i)).append("]");
         if (!std::isfinite(wavelengths_nm[i]))
             throw InputError(source, field + ".wavelengths_nm" + at, "not a finite number");
         if (!std::isfinite(values[i]))

@@ -295,8 +295,8 @@ TEST_P(BadImport, IsRefusedNamingFileAndFieldAndChangesNothing) {
     EXPECT_TRUE(db.integrityCheck().empty());
 }
 
-INSTANTIATE_TEST_SUITE_P(Files, BadImport, ::testing::ValuesIn(badFiles()), [](const auto& info) {
-    return std::regex_replace(info.param.label, std::regex("[^A-Za-z0-9]"), "_");
+INSTANTIATE_TEST_SUITE_P(Files, BadImport, ::testing::ValuesIn(badFiles()), [](const auto& test_info) {
+    return std::regex_replace(test_info.param.label, std::regex("[^A-Za-z0-9]"), "_");
 });
 
 TEST(IngredientExchange, ABadLastIngredientLeavesNoneOfTheFile) {
@@ -374,8 +374,9 @@ TEST(SpectraExchange, NamedSpectraRoundTripThroughEveryFormat) {
             EXPECT_EQ(read->quantity, original.quantity) << name;
             EXPECT_EQ(read->info, original.info) << name;
         }
-        if (format != FileFormat::Cgats)
+        if (format != FileFormat::Cgats) {
             EXPECT_EQ(exportSpectra(copy, {}, FileFormat::Json), all_json) << name;
+        }
     }
     // The hostile name cannot be a CGATS string: refused, not mangled.
     EXPECT_THROW(exportSpectra(db, {kHostile}, FileFormat::Cgats), InputError);

@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
+
 namespace paintlab::db {
 namespace {
 
@@ -191,8 +193,8 @@ INSTANTIATE_TEST_SUITE_P(
             R"({"format": "paintlab-measurement", "format_version": 1, "name": "x", "kind": "multiangle",
                            "readings": [{"aspecular_deg": 15, "L": 50, "a": 0, "b": 0, "c": 1}]})",
             "readings[0].c"}),
-    [](const auto& info) {
-        std::string name = info.param.label;
+    [](const auto& test_info) {
+        std::string name = test_info.param.label;
         for (char& c : name)
             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
         return name;

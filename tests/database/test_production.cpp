@@ -169,9 +169,11 @@ TEST(Production, MissingDensityUnlinkedIngredientAndRawMediumAreNamed) {
     initDemoDatabase(other);  // already holds a recipe: adds nothing
     Database demo = Database::open(dir / "demo.db");
     initDemoDatabase(demo);
-    for (const auto& recipe : listRecipes(demo))
-        if (recipe.name.find("slab") != std::string::npos)
+    for (const auto& recipe : listRecipes(demo)) {
+        if (recipe.name.find("slab") != std::string::npos) {
             EXPECT_THROW(productionSheet(demo, recipe.name, std::nullopt, options), InputError);
+        }
+    }
     ProductionOptions both;
     both.batch_kg = 1.0;
     both.area_m2 = 1.0;
