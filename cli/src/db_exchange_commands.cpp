@@ -82,6 +82,9 @@ int runImport(const ExchangeOptions& options) {
     import.note = options.note;
     db::Database database = openCliDatabase(options.db_file, false);
     const auto result = db::importFile(database, options.file, import);
+    for (const auto& missing : result.unlinked)
+        std::cerr << "warning: " << options.file << ": " << missing
+                  << ": not in the database; saved with the recipe's own data, unlinked\n";
     if (options.json) {
         ordered_json out{{"database", database.file().string()},
                          {"file", options.file},

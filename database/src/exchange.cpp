@@ -209,6 +209,7 @@ ImportResult importRecipe(Database& db, const std::filesystem::path& file, FileF
     result.names.push_back(saved.recipe_name);
     result.recipe_version = saved.version;
     result.recipe_created = saved.created;
+    result.unlinked = saved.unlinked;
     return result;
 }
 

@@ -91,7 +91,12 @@ ProductionSheet productionSheet(Database& db, std::string_view recipe_name, std:
         for (std::size_t j = 0; j < layer.components.size(); ++j) {
             const Component& component = layer.components[j];
             const std::string kind(componentKind(component));
-            const std::string component_label = label + " > " + kind + " '" + componentName(component) + "'";
+            std::string component_label = label;
+            component_label.append(" > ")
+                .append(kind)
+                .append(" '")
+                .append(componentName(component))
+                .append("'");
             if (std::holds_alternative<RawMedium>(component))
                 throw InputError(
                     file, component_label,
@@ -152,6 +157,7 @@ ProductionSheet productionSheet(Database& db, std::string_view recipe_name, std:
         binder_line.dry_volume_fraction = phi_b;
         binder_line.wet_mass_fraction = m_b_in;
         binder_line.solids_mass_fraction = s;
+        binder_line.solids_stored = binder.solids_mass_fraction.has_value();
         binder_line.volatile_density_g_cm3 = binder.volatile_density_g_cm3;
         out.lines.insert(out.lines.begin(), std::move(binder_line));
         for (auto& line : out.lines) {

@@ -58,7 +58,7 @@ std::string html(std::string_view text) {
 std::string basis(const ProductionSheet& sheet) {
     const auto& o = sheet.options;
     if (o.batch_kg) return fixed(*o.batch_kg, 3) + " kg of wet paint per layer";
-    return fixed(*o.area_m2, 3) + " m2 painted at the dry film thickness, transfer efficiency " +
+    return fixed(*o.area_m2, 3) + " m² painted at the dry film thickness, transfer efficiency " +
            fixed(o.transfer_efficiency, 2);
 }
 
@@ -127,6 +127,7 @@ std::string productionJson(const ProductionSheet& sheet) {
                            {"mass_kg", line.mass_kg}};
             if (line.kind == "binder") {
                 i["solids_mass_fraction"] = optionalJson(line.solids_mass_fraction);
+                i["solids_stored"] = line.solids_stored;
                 i["volatile_density_g_cm3"] = optionalJson(line.volatile_density_g_cm3);
             }
             l["ingredients"].push_back(std::move(i));
@@ -170,25 +171,27 @@ std::string productionHtml(const ProductionSheet& sheet) {
                (layer.solids_volume_fraction ? fixed(100.0 * *layer.solids_volume_fraction, 1)
                                              : std::string("n/a")) +
                " % by volume; coating weight " + fixed(layer.coating_weight_g_m2, 1) + " g/m²; batch " +
-               fixed(layer.batch_mass_kg, 4) + " kg.</p>\n";
+               fixed(layer.batch_mass_kg, 3) + " kg of wet paint.</p>\n";
         out += "<table>\n<tr><th>Ingredient</th><th>Kind</th><th>Density g/cm³</th><th>Dry vol. %</th>"
-               "<th>Dry mass %</th><th>Wet mass %</th><th>Mass kg</th><th>Weighed</th></tr>\n";
+               "<th>Dry mass %</th><th>Wet mass %</th><th>Mass g</th><th>Weighed</th></tr>\n";
         for (const auto& line : layer.lines) {
             out += "<tr><td>" + html(line.name) + "</td><td class=\"text\">" + html(line.kind) + "</td><td>" +
                    fixed(line.density_g_cm3, 3) + "</td><td>" + fixed(100.0 * line.dry_volume_fraction, 2) +
                    "</td><td>" + fixed(100.0 * line.dry_mass_fraction, 2) + "</td><td>" +
-                   fixed(100.0 * line.wet_mass_fraction, 2) + "</td><td>" + fixed(line.mass_kg, 4) +
+                   fixed(100.0 * line.wet_mass_fraction, 2) + "</td><td>" + fixed(1000.0 * line.mass_kg, 2) +
                    "</td><td>&#9744;</td></tr>\n";
         }
         out += "</table>\n";
         for (const auto& line : layer.lines)
             if (line.kind == "binder")
-                out += "<p>Binder weighed as bought: " +
-                       fixed(100.0 * line.solids_mass_fraction.value_or(1.0), 1) + " % solids by mass" +
-                       (line.volatile_density_g_cm3
-                            ? ", volatile part " + fixed(*line.volatile_density_g_cm3, 3) + " g/cm³"
-                            : std::string()) +
-                       ".</p>\n";
+                out +=
+                    "<p>Binder weighed as bought: " +
+                    fixed(100.0 * line.solids_mass_fraction.value_or(1.0), 1) + " % solids by mass" +
+                    (line.solids_stored ? std::string() : std::string(" (no solids content stored for it)")) +
+                    (line.volatile_density_g_cm3
+                         ? ", volatile part " + fixed(*line.volatile_density_g_cm3, 3) + " g/cm³"
+                         : std::string()) +
+                    ".</p>\n";
         for (const auto& warning : layer.warnings)
             out += "<p class=\"warning\">Warning: " + html(warning) + "</p>\n";
         out += "</section>\n";

@@ -21,11 +21,18 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <type_traits>
 
 namespace paintlab::db {
 
 namespace {
+
+std::string formatNumber(double value) {
+    std::ostringstream out;
+    out << value;
+    return out.str();
+}
 
 std::string upper(std::string_view text) {
     std::string out(text);
@@ -63,12 +70,21 @@ struct Log {
     std::string messages;
 };
 
+// lcms2 writes "<file name>: Line 9, <message>\n"; the file name is empty
+// when parsing from memory, and the caller names the file.
 void logHandler(cmsContext context, cmsUInt32Number /*code*/, const char* text) {
     auto* log = static_cast<Log*>(cmsGetContextUserData(context));
-    if (log != nullptr && text != nullptr) {
-        if (!log->messages.empty()) log->messages += "; ";
-        log->messages += text;
+    if (log == nullptr || text == nullptr) return;
+    std::string_view message = text;
+    if (message.starts_with(": ")) message.remove_prefix(2);
+    if (!log->messages.empty()) log->messages.append("; ");
+    if (message.starts_with("Line ")) {
+        log->messages.append("line ");
+        message.remove_prefix(5);
     }
+    while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back())) != 0)
+        message.remove_suffix(1);
+    log->messages.append(message);
 }
 
 struct ContextDeleter {
@@ -183,10 +199,10 @@ std::vector<NamedSpectrum> parseSpectraCgats(std::string_view text, const std::s
         labels.push_back(label);
     }
     if (!unit_given && largest > 2.0)
-        throw InputError(
-            source, largest_at,
-            "value " + std::to_string(largest) +
-                " is above 2: is this reflectance in percent? Give the unit (% or 1) explicitly");
+        throw InputError(source, largest_at,
+                         "value " + formatNumber(largest) +
+                             " is above 2: is this reflectance in percent? Give the unit (% or 1) explicitly "
+                             "(paintlab-cli: --unit)");
     detail::finishNamedSpectra(out, labels, source);
     return out;
 }

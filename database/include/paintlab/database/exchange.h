@@ -51,6 +51,8 @@ struct ImportResult {
     std::vector<std::string> names;  // what was added
     int recipe_version = 0;          // recipes: the version saved (or the identical one)
     bool recipe_created = false;
+    std::vector<std::string>
+        unlinked;  // recipes: ingredients not in the database (saved with the recipe's data)
 };
 
 // Reads the file (at most 64 MiB) and stores its content in one transaction.

@@ -53,6 +53,7 @@ struct ProductionLine {
     double wet_mass_fraction = 0.0;              // of the wet paint, as weighed in
     double mass_kg = 0.0;                        // to weigh in (binder: as bought, volatiles included)
     std::optional<double> solids_mass_fraction;  // binder: s as used (unset in the database: 1)
+    bool solids_stored = false;                  // binder: s came from the database, not the default 1
     std::optional<double> volatile_density_g_cm3;
     std::string density_source;
 };
