@@ -49,8 +49,11 @@ std::vector<double> numbers(const Json& object, const std::string& key, const st
     if (!value.is_array()) throw InputError(source, field + "." + key, "expected an array of numbers");
     std::vector<double> out;
     for (std::size_t i = 0; i < value.size(); ++i) {
-        if (!value[i].is_number())
-            throw InputError(source, field + "." + key + "[" + std::to_string(i) + "]", "expected a number");
+        if (!value[i].is_number()) {
+            std::string at = field;
+            at.append(".").append(key).append("[").append(std::to_string(i)).append("]");
+            throw InputError(source, at, "expected a number");
+        }
         out.push_back(value[i].get<double>());
     }
     return out;

@@ -65,18 +65,20 @@ Spectrum checkedSpectrum(const std::string& source, const std::string& field,
                          std::to_string(wavelengths_nm.size()) + " wavelengths but " +
                              std::to_string(values.size()) + " values");
     if (values.empty()) throw InputError(source, field, "no sample");
+    const auto at = [&field](const char* what, std::size_t i) {
+        std::string out = field;
+        out.append(what).append("[").append(std::to_string(i)).append("]");
+        return out;
+    };
     for (std::size_t i = 0; i < values.size(); ++i) {
-        std::string at = "[";
-        at.append(std::to_string(i)).append("]");
         if (!std::isfinite(wavelengths_nm[i]))
-            throw InputError(source, field + ".wavelengths_nm" + at, "not a finite number");
-        if (!std::isfinite(values[i]))
-            throw InputError(source, field + ".values" + at, "not a finite number");
+            throw InputError(source, at(".wavelengths_nm", i), "not a finite number");
+        if (!std::isfinite(values[i])) throw InputError(source, at(".values", i), "not a finite number");
         if (wavelengths_nm[i] <= 0.0)
-            throw InputError(source, field + ".wavelengths_nm" + at,
+            throw InputError(source, at(".wavelengths_nm", i),
                              formatNumber(wavelengths_nm[i]) + " nm: a wavelength must be positive");
         if (i > 0 && wavelengths_nm[i] <= wavelengths_nm[i - 1])
-            throw InputError(source, field + ".wavelengths_nm" + at,
+            throw InputError(source, at(".wavelengths_nm", i),
                              formatNumber(wavelengths_nm[i]) + " nm does not increase on the previous " +
                                  formatNumber(wavelengths_nm[i - 1]) +
                                  " nm (wavelengths must be strictly increasing)");
