@@ -5,6 +5,7 @@
 #include "db_cli.h"
 
 #include "paintlab/database/exchange.h"
+#include "paintlab/database/ingredients.h"
 #include "paintlab/database/measurements.h"
 #include "paintlab/database/production.h"
 #include "paintlab/database/recipes.h"
@@ -112,15 +113,26 @@ int runExport(const ExchangeOptions& options) {
     if (options.names.empty() == !options.all)
         throw InputError("<argument>", "NAME/--all", "give the names to export or --all, not both");
     const db::FileFormat format = outputFormat(options);
-    const std::string kind = options.kind.empty() ? "ingredients" : options.kind;
+    std::string kind = options.kind.empty() ? "ingredients" : options.kind;
     db::Database database = openCliDatabase(options.db_file, false);
+    std::vector<std::string> names = options.names;
+    // --kind pigment (an ingredient kind, as in `db list`): those ingredients.
+    if (const auto ingredient_kind = db::parseIngredientKind(kind)) {
+        db::IngredientFilter filter;
+        filter.kind = ingredient_kind;
+        if (options.all)
+            for (const auto& summary : db::searchIngredients(database, filter)) names.push_back(summary.name);
+        if (names.empty())
+            throw InputError(database.file().string(), "--kind " + kind, "no ingredient of this kind");
+        kind = "ingredients";
+    }
     std::string text;
     switch (db::parseContentKind(kind)) {
     case db::ContentKind::Ingredients:
-        text = db::exportIngredients(database, options.names, format);
+        text = db::exportIngredients(database, names, format);
         break;
     case db::ContentKind::Spectra:
-        text = db::exportSpectra(database, options.names, format);
+        text = db::exportSpectra(database, names, format);
         break;
     case db::ContentKind::Measurement:
         if (options.names.size() != 1)
@@ -289,7 +301,9 @@ void addDbExchangeCommands(CLI::App& group, CommandAction& action) {
     exporter->add_flag("--all", o->all, "Export every one of the kind");
     exporter->add_option("--out", o->file, "File to write")->required();
     exporter->add_option("--format", o->format, "csv, json or cgats (default: from the extension)");
-    exporter->add_option("--kind", o->kind, "ingredients (default), spectra or measurement");
+    exporter->add_option(
+        "--kind", o->kind,
+        "ingredients (default), spectra or measurement; or an ingredient kind (pigment, ...)");
 
     CLI::App* recipe_export =
         addSubcommand(group, "recipe-export", "Write a saved recipe version to a JSON recipe file", o, action,

@@ -97,6 +97,50 @@ TEST(IngredientExchange, HostileNameAndTextRoundTripThroughEveryFormat) {
     }
 }
 
+// Kinds the demo library lacks: substrates without spectra (black,
+// transparent) or with two (metal), a mirror flake given by n and k.
+TEST(IngredientExchange, EveryKindRoundTripsThroughCsvAndJson) {
+    std::vector<Ingredient> ingredients;
+    for (const Substrate& s : {Substrate{BlackSubstrate{}}, Substrate{TransparentSubstrate{1.52}},
+                               Substrate{MetalSubstrate{Spectrum({400, 700}, {1.2, 0.3}), Spectrum(7.0)}}}) {
+        Ingredient substrate;
+        substrate.name = "substrate " + std::string(substrateKind(s));
+        substrate.data = s;
+        ingredients.push_back(substrate);
+    }
+    Ingredient mirror;
+    mirror.name = "Al, n and k";
+    mirror.diameter_sd_um = 6.0;
+    mirror.limits = {0.2, 12.0, 25.0};
+    MirrorFlake m;
+    m.name = mirror.name;
+    m.diameter_um = 18;
+    m.thickness_um = 0.3;
+    m.orientation_spread_deg = 12;
+    m.metal_n = Spectrum({400, 600}, {0.49, 1.2});
+    m.metal_k = Spectrum({400, 600}, {4.8, 7.2});
+    mirror.data = m;
+    ingredients.push_back(mirror);
+    Ingredient pearl;
+    pearl.name = "pearl";
+    InterferenceFlake p;
+    p.name = "pearl";
+    p.diameter_um = 18;
+    p.mica_thickness_nm = 350;
+    p.tio2_thickness_nm = 120;
+    pearl.data = p;
+    ingredients.push_back(pearl);
+    // Reading fills in the defaults of the provenance: compare text after one pass.
+    const auto once = parseIngredientsCsv(ingredientsToCsv(ingredients), "a.csv");
+    ASSERT_EQ(once.size(), ingredients.size());
+    EXPECT_TRUE(parseIngredientsCsv(ingredientsToCsv(once), "b.csv") == once);
+    EXPECT_TRUE(parseIngredientsJson(ingredientsToJson(once), "c.json") == once);
+    for (std::size_t i = 0; i < once.size(); ++i) {
+        EXPECT_TRUE(once[i].data == ingredients[i].data) << ingredients[i].name;
+        EXPECT_EQ(once[i].limits, ingredients[i].limits) << ingredients[i].name;
+    }
+}
+
 TEST(IngredientExchange, UnitsAreConvertedToTheDeclaredOnes) {
     const std::string csv =
         "kind,name,hg_g,particle_diameter_um,spectrum,unit,spectrum_source,wavelength_nm,value\n"
