@@ -23,18 +23,26 @@ std::string layerLabel(std::size_t index, const std::string& name) {
     return "layer " + std::to_string(index + 1) + " '" + name + "'";
 }
 
-// The stored ingredient a recipe row links to, with a density.
-Ingredient linkedIngredient(Database& db, const std::optional<std::int64_t>& id, const std::string& label) {
+// The ingredient of a recipe row, with a density: the one the version was
+// linked to when saved, or, for a row saved unlinked, the ingredient of that
+// kind and name added to the database since (versions are immutable, so
+// their links are never filled in later).
+Ingredient linkedIngredient(Database& db, const std::optional<std::int64_t>& id, IngredientKind kind,
+                            const std::string& name, const std::string& label) {
     const std::string file = db.file().string();
-    if (!id)
+    std::optional<Ingredient> ingredient;
+    if (id)
+        ingredient = readIngredient(db, *id);
+    else
+        ingredient = findIngredient(db, kind, name);
+    if (!ingredient)
         throw InputError(file, label,
-                         "not in the database, so its density is unknown; add the ingredient and save the "
-                         "recipe again to link it");
-    Ingredient ingredient = readIngredient(db, *id);
-    if (!ingredient.density_g_cm3)
+                         "not in the database, so its density is unknown; add the " +
+                             std::string(ingredientKindName(kind)) + " '" + name + "' first");
+    if (!ingredient->density_g_cm3)
         throw InputError(file, label + ".density_g_cm3",
                          "the ingredient has no density; set one to compute its mass");
-    return ingredient;
+    return std::move(*ingredient);
 }
 
 void checkLimits(const Ingredient& ingredient, double volume_fraction, double thickness_um,
@@ -103,7 +111,9 @@ ProductionSheet productionSheet(Database& db, std::string_view recipe_name, std:
                     "a raw medium is given by its optical thickness, not a composition: it has no "
                     "production recipe");
             const Ingredient ingredient =
-                linkedIngredient(db, link.components.at(j).ingredient_id, component_label);
+                linkedIngredient(db, link.components.at(j).ingredient_id,
+                                 parseIngredientKind(kind).value_or(IngredientKind::Pigment),
+                                 componentName(component), component_label);
             const double phi = componentVolumeFraction(component);
             ProductionLine line;
             line.kind = kind;
@@ -118,7 +128,8 @@ ProductionSheet productionSheet(Database& db, std::string_view recipe_name, std:
             out.lines.push_back(std::move(line));
         }
         const std::string binder_label = label + " > binder '" + layer.binder.name + "'";
-        const Ingredient binder = linkedIngredient(db, link.binder_ingredient_id, binder_label);
+        const Ingredient binder = linkedIngredient(db, link.binder_ingredient_id, IngredientKind::Binder,
+                                                   layer.binder.name, binder_label);
         const double phi_b = 1.0 - phi_components;
         const double rho_b = *binder.density_g_cm3;
         const double s = binder.solids_mass_fraction.value_or(1.0);

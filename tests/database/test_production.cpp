@@ -166,6 +166,10 @@ TEST(Production, MissingDensityUnlinkedIngredientAndRawMediumAreNamed) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("'red': not in the database"), std::string::npos) << e.what();
     }
+    // Ingredients added after the version was saved (unlinked) are found by kind and name.
+    storeMinimal(other);
+    EXPECT_NEAR(line(productionSheet(other, "test basecoat", 1, options).layers.at(0), "red").mass_kg,
+                0.5 / 2.675, 1e-12);
     initDemoDatabase(other);  // already holds a recipe: adds nothing
     Database demo = Database::open(dir / "demo.db");
     initDemoDatabase(demo);

@@ -85,10 +85,12 @@ struct ProductionSheet {
 // Validates the options (InputError naming "<argument>" and the option).
 void validateProductionOptions(const ProductionOptions& options);
 
-// The sheet of a saved recipe version (the latest if version is unset).
-// Throws InputError naming the database file and the layer and ingredient
-// when an ingredient is not in the database (a recipe component without
-// a link), has no density, or a layer holds a raw medium (no composition).
+// The sheet of a saved recipe version (the latest if version is unset),
+// with the ingredients the version links to (a component saved unlinked is
+// looked up by kind and name, in case it was added since). Throws InputError
+// naming the database file and the layer and ingredient when an ingredient
+// is not in the database, has no density, or a layer holds a raw medium
+// (no composition).
 ProductionSheet productionSheet(Database& db, std::string_view recipe_name, std::optional<int> version,
                                 const ProductionOptions& options);
 
