@@ -27,7 +27,7 @@ packages=(
   libeigen3-dev libtbb-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
   colord-data liblcms2-dev libceres-dev libnlopt-cxx-dev
   # database
-  libsqlite3-dev sqlite3
+  libsqlite3-dev sqlite3 nettle-dev
   # ray maps: ray tracing, images, HDR environments, meshes
   libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libassimp-dev assimp-testmodels zlib1g-dev
   # workstation: Qt6 + VTK (VTK's non-Qt modules only; debian12-stack.md trap 1)

@@ -1,13 +1,13 @@
 // `db init|list|show|recipe-save|recipe-history|backup`: the ingredient and
-// recipe database. One function per subcommand; `import`, `export` and
-// `production` (issue 5, part 2) add theirs beside these and register in
-// addDbCommands.
+// recipe database. One function per subcommand; import, export, production
+// and measurements are in db_exchange_commands.cpp, registered from addDbCommands.
 //
 // --db FILE selects the database. Without it the user's database is used
 // (demo.h: $XDG_DATA_HOME/paintlab/paintlab.db), created from the demo data
 // on first use. An explicit --db FILE must exist, except for `db init`.
 
 #include "commands.h"
+#include "db_cli.h"
 #include "recipe_text.h"
 
 #include "paintlab/database/demo.h"
@@ -27,6 +27,25 @@
 #include <memory>
 
 namespace paintlab::cli {
+
+// Opens the chosen database. The default one is filled from the demo while it
+// holds nothing (on first use, or after a first use that was interrupted).
+db::Database openCliDatabase(const std::string& db_file, bool create) {
+    if (!db_file.empty()) {
+        db::OpenOptions open;
+        open.create = create;
+        return db::Database::open(db_file, open);
+    }
+    db::Database database = db::Database::open(db::defaultDatabasePath());
+    if (!database.isReadOnly()) {
+        const auto summary = db::initDemoDatabase(database);
+        if (!summary.already_initialised)
+            std::cerr << "created " << database.file().string() << " from the demo data ("
+                      << summary.ingredients_added << " ingredients, " << summary.recipes_added
+                      << " recipes)\n";
+    }
+    return database;
+}
 
 namespace {
 
@@ -51,23 +70,8 @@ struct DbOptions {
     std::string target;
 };
 
-// Opens the chosen database. The default one is filled from the demo while it
-// holds nothing (on first use, or after a first use that was interrupted).
 db::Database openDatabase(const DbOptions& options, bool create) {
-    if (!options.db_file.empty()) {
-        db::OpenOptions open;
-        open.create = create;
-        return db::Database::open(options.db_file, open);
-    }
-    db::Database database = db::Database::open(db::defaultDatabasePath());
-    if (!database.isReadOnly()) {
-        const auto summary = db::initDemoDatabase(database);
-        if (!summary.already_initialised)
-            std::cerr << "created " << database.file().string() << " from the demo data ("
-                      << summary.ingredients_added << " ingredients, " << summary.recipes_added
-                      << " recipes)\n";
-    }
-    return database;
+    return openCliDatabase(options.db_file, create);
 }
 
 // Case-insensitive substring test (ASCII), as the ingredient search does.
@@ -360,6 +364,8 @@ void addDbCommands(CLI::App& app, CommandAction& action) {
     CLI::App* backup = addSubcommand(*group, "backup", "Copy the database safely while it may be in use",
                                      options, action, runBackup);
     backup->add_option("target", options->target, "New file to write the copy to")->required();
+
+    addDbExchangeCommands(*group, action);
 }
 
 }  // namespace paintlab::cli

@@ -3,9 +3,10 @@
 
 #include "paintlab/database/ingredient_json.h"
 
-#include "paintlab/engine/error.h"
+#include "ingredient_json_detail.h"
+#include "spectrum_checks.h"
 
-#include <nlohmann/json.hpp>
+#include "paintlab/engine/error.h"
 
 #include <set>
 
@@ -120,7 +121,10 @@ private:
     const std::string& m_source;
 };
 
-Ingredient readIngredient(const Json& json, const std::string& field, const std::string& source) {
+}  // namespace
+
+Ingredient detail::ingredientFromJson(const nlohmann::json& json, const std::string& field,
+                                      const std::string& source) {
     ObjectReader r(json, field, source);
     Ingredient ing;
     const std::string kind_text = r.text("kind");
@@ -154,6 +158,8 @@ Ingredient readIngredient(const Json& json, const std::string& field, const std:
         data.name = ing.name;
         data.refractive_index = spectra.take(params::kBinderIndex.key);
         data.absorption_per_um = spectra.take(params::kBinderAbsorption.key);
+        ing.solids_mass_fraction = r.optionalNumber("solids_mass_fraction");
+        ing.volatile_density_g_cm3 = r.optionalNumber("volatile_density_g_cm3");
         ing.data = std::move(data);
         break;
     }
@@ -220,6 +226,8 @@ Ingredient readIngredient(const Json& json, const std::string& field, const std:
     return ing;
 }
 
+namespace {
+
 using OrderedJson = nlohmann::ordered_json;
 
 class JsonWriter {
@@ -240,6 +248,8 @@ public:
         if (ing.limits.min_thickness_um) limits["min_thickness_um"] = *ing.limits.min_thickness_um;
         if (ing.limits.max_thickness_um) limits["max_thickness_um"] = *ing.limits.max_thickness_um;
         m_out["limits"] = limits;
+        if (ing.solids_mass_fraction) m_out["solids_mass_fraction"] = *ing.solids_mass_fraction;
+        if (ing.volatile_density_g_cm3) m_out["volatile_density_g_cm3"] = *ing.volatile_density_g_cm3;
         m_spectra = OrderedJson::object();
         std::visit([this](const auto& data) { kindFields(data); }, ing.data);
         m_out["spectra"] = m_spectra;
@@ -286,13 +296,17 @@ private:
 
 }  // namespace
 
+nlohmann::ordered_json detail::ingredientToJson(const Ingredient& ingredient) {
+    return JsonWriter(ingredient).write();
+}
+
 std::string ingredientsToJson(const std::vector<Ingredient>& ingredients) {
     OrderedJson document;
     document["format"] = "paintlab-ingredients";
     document["format_version"] = 1;
     document["ingredients"] = OrderedJson::array();
     for (const auto& ingredient : ingredients)
-        document["ingredients"].push_back(JsonWriter(ingredient).write());
+        document["ingredients"].push_back(detail::ingredientToJson(ingredient));
     return document.dump(2) + "\n";
 }
 
@@ -315,7 +329,8 @@ std::vector<Ingredient> parseIngredientsJson(std::string_view text, const std::s
         std::string field = "ingredients[" + std::to_string(i) + "]";
         if (list[i].is_object() && list[i].contains("name") && list[i]["name"].is_string())
             field.append(" '").append(list[i]["name"].get<std::string>()).append("'");
-        out.push_back(readIngredient(list[i], field, source));
+        out.push_back(detail::ingredientFromJson(list[i], field, source));
+        detail::normaliseIngredientSpectra(out.back(), source, field);
     }
     r.finish();
     return out;

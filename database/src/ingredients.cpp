@@ -101,6 +101,19 @@ void validate(const std::string& file, const Ingredient& ingredient) {
     if (!(ingredient.diameter_sd_um >= 0.0 && ingredient.diameter_sd_um < 1000.0))
         throw InputError(file, fieldOf(ingredient, "diameter_sd_um"),
                          formatNumber(ingredient.diameter_sd_um) + " µm is outside 0 to 1000");
+    const bool is_binder = std::holds_alternative<Binder>(ingredient.data);
+    if (ingredient.solids_mass_fraction &&
+        !(is_binder && *ingredient.solids_mass_fraction > 0.0 && *ingredient.solids_mass_fraction <= 1.0))
+        throw InputError(file, fieldOf(ingredient, "solids_mass_fraction"),
+                         is_binder ? formatNumber(*ingredient.solids_mass_fraction) +
+                                         " is outside 0 (exclusive) to 1"
+                                   : std::string("only a binder has a solids content"));
+    if (ingredient.volatile_density_g_cm3 &&
+        !(is_binder && *ingredient.volatile_density_g_cm3 > 0.0 && *ingredient.volatile_density_g_cm3 < 30.0))
+        throw InputError(file, fieldOf(ingredient, "volatile_density_g_cm3"),
+                         is_binder ? formatNumber(*ingredient.volatile_density_g_cm3) +
+                                         " g/cm3 is outside 0 (exclusive) to 30"
+                                   : std::string("only a binder has a volatile part"));
     const auto& limits = ingredient.limits;
     if (limits.max_volume_fraction &&
         !(*limits.max_volume_fraction > 0.0 && *limits.max_volume_fraction <= 1.0))
@@ -141,10 +154,13 @@ void insertKindRow(const Connection& c, std::int64_t id, const Ingredient& ing) 
             using T = std::decay_t<decltype(data)>;
             if constexpr (std::is_same_v<T, Binder>) {
                 Statement s(c, "INSERT INTO binder (ingredient_id, refractive_index_spectrum, "
-                               "absorption_per_um_spectrum) VALUES (?1, ?2, ?3)");
+                               "absorption_per_um_spectrum, solids_mass_fraction, volatile_density_g_cm3) "
+                               "VALUES (?1, ?2, ?3, ?4, ?5)");
                 s.bind(1, id)
                     .bind(2, storeSpectrum(c, ing, params::kBinderIndex, data.refractive_index))
                     .bind(3, storeSpectrum(c, ing, params::kBinderAbsorption, data.absorption_per_um))
+                    .bind(4, ing.solids_mass_fraction)
+                    .bind(5, ing.volatile_density_g_cm3)
                     .run();
             } else if constexpr (std::is_same_v<T, Pigment>) {
                 Statement s(
@@ -314,8 +330,8 @@ std::optional<Spectrum> loadOptional(const Connection& c, const std::optional<st
 
 void readKindRow(const Connection& c, const std::string& kind, Ingredient& ing) {
     if (kind == "binder") {
-        Statement s(c, "SELECT refractive_index_spectrum, absorption_per_um_spectrum FROM binder "
-                       "WHERE ingredient_id = ?1");
+        Statement s(c, "SELECT refractive_index_spectrum, absorption_per_um_spectrum, solids_mass_fraction, "
+                       "volatile_density_g_cm3 FROM binder WHERE ingredient_id = ?1");
         s.bind(1, ing.id);
         Binder data;
         ing.data = Binder{};
@@ -323,6 +339,8 @@ void readKindRow(const Connection& c, const std::string& kind, Ingredient& ing) 
         data.name = ing.name;
         data.refractive_index = loadSpectrum(c, s.integer(0), ing);
         data.absorption_per_um = loadSpectrum(c, s.integer(1), ing);
+        ing.solids_mass_fraction = s.optionalReal(2);
+        ing.volatile_density_g_cm3 = s.optionalReal(3);
         ing.data = std::move(data);
     } else if (kind == "pigment") {
         Statement s(c, "SELECT sigma_a_per_um_spectrum, sigma_s_per_um_spectrum, hg_g, particle_diameter_um "
@@ -597,6 +615,48 @@ std::int64_t addSpectrum(Database& db, std::string_view quantity, const Spectrum
     return id;
 }
 
+std::int64_t addNamedSpectrum(Database& db, std::string_view name, std::string_view quantity,
+                              const Spectrum& spectrum, const SpectrumInfo& info) {
+    const Connection& c = db.impl().connection;
+    if (name.empty()) throw InputError(c.file().string(), "spectrum.name", "the name is empty");
+    if (quantity.empty())
+        throw InputError(c.file().string(), "spectrum '" + std::string(name) + "'.quantity",
+                         "the quantity is empty");
+    Transaction transaction(c, Transaction::Mode::Write);
+    Statement taken(c, "SELECT id FROM spectrum WHERE name = ?1");
+    taken.bind(1, name);
+    if (taken.step())
+        throw InputError(c.file().string(), "spectrum '" + std::string(name) + "'",
+                         "a spectrum with this name already exists (id " + std::to_string(taken.integer(0)) +
+                             ")");
+    const std::int64_t id = detail::insertSpectrum(c, quantity, spectrum, info);
+    Statement set_name(c, "UPDATE spectrum SET name = ?2 WHERE id = ?1");
+    set_name.bind(1, id).bind(2, name).run();
+    transaction.commit();
+    return id;
+}
+
+std::optional<StoredSpectrum> findNamedSpectrum(Database& db, std::string_view name) {
+    const Connection& c = db.impl().connection;
+    Transaction transaction(c, Transaction::Mode::Read);
+    Statement s(c, "SELECT id FROM spectrum WHERE name = ?1");
+    s.bind(1, name);
+    std::optional<StoredSpectrum> out;
+    if (s.step()) out = detail::selectSpectrum(c, s.integer(0));
+    transaction.commit();
+    return out;
+}
+
+std::vector<StoredSpectrum> namedSpectra(Database& db) {
+    const Connection& c = db.impl().connection;
+    Transaction transaction(c, Transaction::Mode::Read);
+    Statement s(c, "SELECT id FROM spectrum WHERE name IS NOT NULL ORDER BY name");
+    std::vector<StoredSpectrum> out;
+    while (s.step()) out.push_back(detail::selectSpectrum(c, s.integer(0)));
+    transaction.commit();
+    return out;
+}
+
 StoredSpectrum readSpectrum(Database& db, std::int64_t id) {
     const Connection& c = db.impl().connection;
     Transaction transaction(c, Transaction::Mode::Read);
@@ -635,8 +695,8 @@ std::int64_t insertSpectrum(const Connection& connection, std::string_view quant
 }
 
 StoredSpectrum selectSpectrum(const Connection& connection, std::int64_t id) {
-    Statement s(connection, "SELECT quantity, unit, wavelengths_nm, spectrum_values, source, data_date "
-                            "FROM spectrum WHERE id = ?1");
+    Statement s(connection, "SELECT quantity, unit, wavelengths_nm, spectrum_values, source, data_date, "
+                            "coalesce(name, '') FROM spectrum WHERE id = ?1");
     s.bind(1, id);
     if (!s.step())
         throw InputError(connection.file().string(), "spectrum " + std::to_string(id), "no such spectrum");
@@ -644,6 +704,7 @@ StoredSpectrum selectSpectrum(const Connection& connection, std::int64_t id) {
     out.id = id;
     out.quantity = s.text(0);
     out.info = {s.text(1), s.text(4), s.text(5)};
+    out.name = s.text(6);
     try {
         const auto wavelengths = nlohmann::json::parse(s.text(2)).get<std::vector<double>>();
         const auto values = nlohmann::json::parse(s.text(3)).get<std::vector<double>>();

@@ -1,7 +1,6 @@
 #pragma once
 // SHA-256 (FIPS 180-4) of a byte string, as 64 lowercase hex digits: the
-// checksum of a recipe version's canonical JSON. Small enough to keep here
-// rather than link a crypto library for one function.
+// checksum of a recipe version's canonical JSON (computed by GNU Nettle).
 
 #include <string>
 #include <string_view>

@@ -7,6 +7,7 @@
 #include "migrations.h"
 
 #include "paintlab/database/database.h"
+#include "paintlab/database/ingredients.h"
 #include "paintlab/database/recipes.h"
 
 #include <gtest/gtest.h>
@@ -40,16 +41,16 @@ TEST(DatabaseOpen, NewFileHasLatestSchemaWalAndForeignKeys) {
     const auto file = dir / "sub" / "new.db";  // the folder is created too
     {
         Database db = Database::open(file);
-        EXPECT_EQ(db.schemaVersion(), 1);
-        EXPECT_EQ(Database::latestSchemaVersion(), 1);
+        EXPECT_EQ(db.schemaVersion(), 2);
+        EXPECT_EQ(Database::latestSchemaVersion(), 2);
         EXPECT_EQ(db.file(), file);
         EXPECT_FALSE(db.isReadOnly());
         EXPECT_TRUE(db.integrityCheck().empty());
     }
     EXPECT_EQ(rawQuery(file, "PRAGMA journal_mode"), "wal");
-    EXPECT_EQ(rawQuery(file, "PRAGMA user_version"), "1");
+    EXPECT_EQ(rawQuery(file, "PRAGMA user_version"), "2");
     EXPECT_EQ(rawQuery(file, "PRAGMA application_id"), std::to_string(detail::kApplicationId));
-    EXPECT_EQ(Database::open(file).schemaVersion(), 1);  // a second open migrates nothing
+    EXPECT_EQ(Database::open(file).schemaVersion(), 2);  // a second open migrates nothing
 }
 
 TEST(DatabaseOpen, MissingFileWithoutCreateNamesIt) {
@@ -75,7 +76,7 @@ TEST(DatabaseOpen, NewerSchemaIsRefusedAndLeftByteIdentical) {
     }
     ASSERT_EQ(rawExec(file, "PRAGMA user_version = 7"), SQLITE_OK);
     expectRefused(file, DatabaseError::Reason::NewerSchema, "schema version 7 is newer than this build");
-    expectRefused(file, DatabaseError::Reason::NewerSchema, "supports (1)");
+    expectRefused(file, DatabaseError::Reason::NewerSchema, "supports (2)");
     EXPECT_FALSE(std::filesystem::exists(file.string() + "-wal") &&
                  std::filesystem::file_size(file.string() + "-wal") > 0);
 }
@@ -156,49 +157,79 @@ TEST(DatabaseOpen, CorruptDataPageIsReportedOnRead) {
     }
 }
 
-// The migration runner with a second, test-only step: what the next schema
+// A database written by a version-1 build (schema 0001 only) is brought to
+// version 2 on open, keeping its rows; the new binder columns read as unset.
+TEST(Migrations, Version1DatabaseMigratesToVersion2KeepingItsData) {
+    TempDir dir;
+    const auto file = dir / "v1.db";
+    const auto& migrations = detail::builtInMigrations();
+    ASSERT_EQ(migrations.size(), 2U);
+    {
+        detail::Connection connection(file, true);
+        detail::migrate(connection, std::span(migrations).first(1));
+        EXPECT_EQ(detail::userVersion(connection), 1);
+    }
+    ASSERT_EQ(rawExec(file,
+                      "INSERT INTO spectrum (id, quantity, unit, wavelengths_nm, spectrum_values) VALUES "
+                      "(1, 'refractive_index', '1', '[380]', '[1.49]'), (2, 'absorption_per_um', '1/µm', "
+                      "'[380]', '[0]'); INSERT INTO ingredient (id, kind, name, density_g_cm3) VALUES "
+                      "(1, 'binder', 'kept', 1.18); INSERT INTO binder VALUES (1, 1, 2);"),
+              SQLITE_OK);
+    {
+        Database db = Database::open(file);
+        EXPECT_EQ(db.schemaVersion(), 2);
+        const auto kept = findIngredient(db, IngredientKind::Binder, "kept");
+        ASSERT_TRUE(kept.has_value());
+        EXPECT_EQ(kept->density_g_cm3, 1.18);
+        EXPECT_FALSE(kept->solids_mass_fraction.has_value());
+        EXPECT_EQ(std::get<Binder>(kept->data).refractive_index, Spectrum(1.49));
+        EXPECT_TRUE(db.integrityCheck().empty());
+    }
+    EXPECT_EQ(rawQuery(file, "SELECT count(*) FROM pragma_table_info('spectrum') WHERE name = 'name'"), "1");
+}
+
+// The migration runner with a further, test-only step: what the next schema
 // version will go through.
 TEST(Migrations, OlderSchemaIsMigratedKeepingItsData) {
     TempDir dir;
     const auto file = dir / "old.db";
-    const auto& v1 = detail::builtInMigrations();
-    ASSERT_EQ(v1.size(), 1U);
+    const auto& current = detail::builtInMigrations();
     {
         detail::Connection connection(file, true);
-        detail::migrate(connection, v1);
-        EXPECT_EQ(detail::userVersion(connection), 1);
+        detail::migrate(connection, current);
+        EXPECT_EQ(detail::userVersion(connection), 2);
     }
     ASSERT_EQ(rawExec(file, "INSERT INTO ingredient (kind, name) VALUES ('binder', 'kept')"), SQLITE_OK);
 
-    std::vector<detail::Migration> v2 = v1;
-    v2.push_back(
-        {2, "0002_supplier.sql", "ALTER TABLE ingredient ADD COLUMN supplier TEXT NOT NULL DEFAULT 'n/a';"});
+    std::vector<detail::Migration> next = current;
+    next.push_back(
+        {3, "0003_supplier.sql", "ALTER TABLE ingredient ADD COLUMN supplier TEXT NOT NULL DEFAULT 'n/a';"});
     {
         detail::Connection connection(file, true);
-        EXPECT_EQ(detail::checkSchema(connection, v2), 1);
-        detail::migrate(connection, v2);
-        EXPECT_EQ(detail::userVersion(connection), 2);
+        EXPECT_EQ(detail::checkSchema(connection, next), 2);
+        detail::migrate(connection, next);
+        EXPECT_EQ(detail::userVersion(connection), 3);
     }
     EXPECT_EQ(rawQuery(file, "SELECT name || '/' || supplier FROM ingredient"), "kept/n/a");
-    // This build knows version 1 only: the migrated file is now too new for it.
-    expectRefused(file, DatabaseError::Reason::NewerSchema, "schema version 2");
+    // This build knows version 2 only: the migrated file is now too new for it.
+    expectRefused(file, DatabaseError::Reason::NewerSchema, "schema version 3");
 }
 
 TEST(Migrations, FailingStepIsRolledBackAndNamed) {
     TempDir dir;
     const auto file = dir / "fail.db";
     std::vector<detail::Migration> steps = detail::builtInMigrations();
-    steps.push_back({2, "0002_broken.sql", "CREATE TABLE half_done (a); THIS IS NOT SQL;"});
+    steps.push_back({3, "0003_broken.sql", "CREATE TABLE half_done (a); THIS IS NOT SQL;"});
     detail::Connection connection(file, true);
     try {
         detail::migrate(connection, steps);
         FAIL();
     } catch (const DatabaseError& e) {
         EXPECT_NE(std::string(e.what()).find("fail.db"), std::string::npos) << e.what();
-        EXPECT_NE(std::string(e.what()).find("from version 1 to 2 (0002_broken.sql)"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find("from version 2 to 3 (0003_broken.sql)"), std::string::npos)
             << e.what();
     }
-    EXPECT_EQ(detail::userVersion(connection), 1);  // step 1 committed, step 2 undone
+    EXPECT_EQ(detail::userVersion(connection), 2);  // steps 1 and 2 committed, step 3 undone
     EXPECT_EQ(rawQuery(file, "SELECT count(*) FROM sqlite_schema WHERE name = 'half_done'"), "0");
 }
 
@@ -207,7 +238,7 @@ TEST(Migrations, EmptyVersionZeroFileIsUpgraded) {
     const auto file = dir / "empty.db";
     test::writeBytes(file, "");  // a zero-byte file is an empty SQLite database
     Database db = Database::open(file);
-    EXPECT_EQ(db.schemaVersion(), 1);
+    EXPECT_EQ(db.schemaVersion(), 2);
 }
 
 }  // namespace

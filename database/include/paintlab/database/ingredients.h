@@ -55,6 +55,12 @@ struct Ingredient {
     std::vector<std::string> tags;  // stored sorted, without duplicates (case-insensitive)
     TechnologicalLimits limits;
     double diameter_sd_um = 0.0;  // flakes: standard deviation of the diameter distribution
+    // Binders as bought (schema 2), for production sheets: the non-volatile
+    // (solids) mass fraction of the resin solution or dispersion (unset: weighed
+    // as 100 % solids) and the density of its volatile part (solvent, water),
+    // g/cm3. density_g_cm3 of a binder is the density of its dry film.
+    std::optional<double> solids_mass_fraction;
+    std::optional<double> volatile_density_g_cm3;
     // The name and source fields of the engine struct are not stored: they
     // are the ingredient's own (readIngredient sets them).
     IngredientData data;
@@ -101,6 +107,7 @@ std::vector<IngredientSummary> searchIngredients(Database& db, const IngredientF
 // A stored spectrum on its own (ingredient spectra included), for listing and plotting.
 struct StoredSpectrum {
     std::int64_t id = 0;
+    std::string name;      // spectra stored on their own have a unique name; ingredient spectra none
     std::string quantity;  // "refractive_index", "metal_k", "albedo", ...
     SpectrumInfo info;
     Spectrum spectrum;
@@ -110,6 +117,13 @@ struct StoredSpectrum {
 // Stores a spectrum that belongs to no ingredient (a measured one); returns its id.
 std::int64_t addSpectrum(Database& db, std::string_view quantity, const Spectrum& spectrum,
                          const SpectrumInfo& info);
+// The same with a name, unique among named spectra (InputError naming the
+// file and the name if it is taken or empty).
+std::int64_t addNamedSpectrum(Database& db, std::string_view name, std::string_view quantity,
+                              const Spectrum& spectrum, const SpectrumInfo& info);
+std::optional<StoredSpectrum> findNamedSpectrum(Database& db, std::string_view name);
+// Every named spectrum, by name.
+std::vector<StoredSpectrum> namedSpectra(Database& db);
 StoredSpectrum readSpectrum(Database& db, std::int64_t id);
 // The spectra of one ingredient, in a stable order.
 std::vector<StoredSpectrum> ingredientSpectra(Database& db, std::int64_t ingredient_id);

@@ -1,0 +1,322 @@
+// Measurement files: JSON and CSV (measurement_files.h), and the JSON of
+// the measurement table's data column (measurement_json.h).
+
+#include "paintlab/database/measurement_files.h"
+
+#include "csv.h"
+#include "measurement_json.h"
+
+#include "paintlab/engine/error.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <set>
+
+namespace paintlab::db {
+
+namespace detail {
+
+namespace {
+
+using Json = nlohmann::json;
+
+// A JSON object whose keys are taken one by one; the rest are reported as unknown.
+class Fields {
+public:
+    Fields(const Json& object, std::string field, const std::string& source)
+        : m_object(object), m_field(std::move(field)), m_source(source) {
+        if (!object.is_object()) fail("", "expected an object");
+    }
+    bool has(const char* key) const { return m_object.contains(key); }
+    const Json& get(const char* key) {
+        if (!m_object.contains(key)) fail(key, "missing");
+        m_taken.insert(key);
+        return m_object.at(key);
+    }
+    std::string text(const char* key, bool required = false) {
+        if (!required && !has(key)) return {};
+        const Json& value = get(key);
+        if (!value.is_string()) fail(key, "expected a string");
+        return value.get<std::string>();
+    }
+    double number(const char* key) {
+        const Json& value = get(key);
+        if (!value.is_number()) fail(key, "expected a number");
+        return value.get<double>();
+    }
+    std::vector<double> numbers(const char* key) {
+        const Json& value = get(key);
+        if (!value.is_array()) fail(key, "expected an array of numbers");
+        std::vector<double> out;
+        for (std::size_t i = 0; i < value.size(); ++i) {
+            if (!value[i].is_number())
+                fail(std::string(key) + "[" + std::to_string(i) + "]", "expected a number");
+            out.push_back(value[i].get<double>());
+        }
+        return out;
+    }
+    std::string at(const std::string& key) const { return key.empty() ? m_field : m_field + "." + key; }
+    [[noreturn]] void fail(const std::string& key, const std::string& message) const {
+        throw InputError(m_source, at(key), message);
+    }
+    void finish() const {
+        for (const auto& item : m_object.items())
+            if (m_taken.count(item.key()) == 0) fail(item.key(), "unknown field");
+    }
+
+private:
+    const Json& m_object;
+    std::string m_field;
+    const std::string& m_source;
+    std::set<std::string> m_taken;
+};
+
+}  // namespace
+
+nlohmann::ordered_json measurementJson(const Measurement& m, bool with_description) {
+    nlohmann::ordered_json out;
+    if (with_description) {
+        out["format"] = "paintlab-measurement";
+        out["format_version"] = 1;
+        out["name"] = m.name;
+        out["kind"] = measurementKindName(m.kind);
+        out["instrument"] = m.instrument;
+        out["geometry"] = m.geometry;
+        out["sample"] = m.sample;
+        out["measured_at"] = m.measured_at;
+        out["source"] = m.source;
+    }
+    if (m.kind == MeasurementKind::MultiAngle) {
+        out["illuminant"] = m.illuminant;
+        out["observer"] = m.observer;
+        out["readings"] = nlohmann::ordered_json::array();
+        for (const auto& r : m.readings)
+            out["readings"].push_back({{"illumination_deg", r.illumination_deg},
+                                       {"aspecular_deg", r.aspecular_deg},
+                                       {"L", r.L},
+                                       {"a", r.a},
+                                       {"b", r.b}});
+    } else {
+        if (!m.channels.empty()) out["channels"] = m.channels;
+        if (!m.wavelengths_nm.empty()) out["wavelengths_nm"] = m.wavelengths_nm;
+        out["samples"] = nlohmann::ordered_json::array();
+        for (const auto& s : m.samples)
+            out["samples"].push_back({{"theta_i_deg", s.theta_i_deg},
+                                      {"phi_i_deg", s.phi_i_deg},
+                                      {"theta_o_deg", s.theta_o_deg},
+                                      {"phi_o_deg", s.phi_o_deg},
+                                      {"values", s.values}});
+    }
+    return out;
+}
+
+void readMeasurementJson(const nlohmann::json& json, bool with_description, Measurement& m,
+                         const std::string& source) {
+    Fields f(json, "", source);
+    if (with_description) {
+        if (f.text("format", true) != "paintlab-measurement")
+            f.fail("format", "expected \"paintlab-measurement\"");
+        if (f.number("format_version") != 1.0)
+            f.fail("format_version", "only version 1 is known to this build");
+        m.name = f.text("name", true);
+        const std::string kind = f.text("kind", true);
+        const auto parsed = parseMeasurementKind(kind);
+        if (!parsed) f.fail("kind", "unknown kind '" + kind + "' (multiangle or brdf)");
+        m.kind = *parsed;
+        m.instrument = f.text("instrument");
+        m.geometry = f.text("geometry");
+        m.sample = f.text("sample");
+        m.measured_at = f.text("measured_at");
+        m.source = f.text("source");
+    }
+    if (m.kind == MeasurementKind::MultiAngle) {
+        if (f.has("illuminant")) m.illuminant = f.text("illuminant");
+        if (f.has("observer")) m.observer = f.text("observer");
+        const Json& readings = f.get("readings");
+        if (!readings.is_array()) f.fail("readings", "expected an array");
+        for (std::size_t i = 0; i < readings.size(); ++i) {
+            Fields r(readings[i], f.at("readings[" + std::to_string(i) + "]"), source);
+            MultiAngleReading reading;
+            if (r.has("illumination_deg")) reading.illumination_deg = r.number("illumination_deg");
+            reading.aspecular_deg = r.number("aspecular_deg");
+            reading.L = r.number("L");
+            reading.a = r.number("a");
+            reading.b = r.number("b");
+            r.finish();
+            m.readings.push_back(reading);
+        }
+    } else {
+        if (f.has("channels")) {
+            const Json& channels = f.get("channels");
+            if (!channels.is_array()) f.fail("channels", "expected an array of strings");
+            for (const auto& c : channels) {
+                if (!c.is_string()) f.fail("channels", "expected an array of strings");
+                m.channels.push_back(c.get<std::string>());
+            }
+        }
+        if (f.has("wavelengths_nm")) m.wavelengths_nm = f.numbers("wavelengths_nm");
+        const Json& samples = f.get("samples");
+        if (!samples.is_array()) f.fail("samples", "expected an array");
+        for (std::size_t i = 0; i < samples.size(); ++i) {
+            Fields s(samples[i], f.at("samples[" + std::to_string(i) + "]"), source);
+            BrdfSample sample{s.number("theta_i_deg"), s.number("phi_i_deg"), s.number("theta_o_deg"),
+                              s.number("phi_o_deg"), s.numbers("values")};
+            s.finish();
+            m.samples.push_back(std::move(sample));
+        }
+    }
+    f.finish();
+}
+
+}  // namespace detail
+
+namespace {
+
+using detail::CsvRecord;
+using detail::CsvTable;
+
+std::optional<double> wavelengthColumn(const std::string& column) {
+    std::string_view text = column;
+    if (text.ends_with("nm")) text.remove_suffix(2);
+    double value = 0.0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (text.empty() || error != std::errc() || end != text.data() + text.size()) return std::nullopt;
+    return value;
+}
+
+// "45as15", "45as-15": illumination and aspecular angle, in degrees.
+bool parseGeometry(const std::string& text, double& illumination, double& aspecular) {
+    const auto as = text.find("as");
+    if (as == std::string::npos || as == 0) return false;
+    const auto number = [](std::string_view part, double& out) {
+        if (!part.empty() && part.front() == '+') part.remove_prefix(1);
+        const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), out);
+        return !part.empty() && error == std::errc() && end == part.data() + part.size() &&
+               std::isfinite(out);
+    };
+    return number(std::string_view(text).substr(0, as), illumination) &&
+           number(std::string_view(text).substr(as + 2), aspecular);
+}
+
+std::string firstColumn(const CsvTable& table, std::initializer_list<std::string_view> names) {
+    for (const auto name : names)
+        if (table.column(name)) return std::string(name);
+    return {};
+}
+
+}  // namespace
+
+Measurement parseMeasurementJson(std::string_view text, const std::string& source) {
+    nlohmann::json document;
+    try {
+        document = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+        throw InputError(source, "", std::string("not valid JSON: ") + e.what());
+    }
+    Measurement m;
+    detail::readMeasurementJson(document, true, m, source);
+    validateMeasurement(m, source);
+    return m;
+}
+
+Measurement parseMeasurementCsv(std::string_view text, const std::string& source,
+                                const Measurement& description) {
+    const CsvTable table = CsvTable::parse(text, source);
+    Measurement m = description;
+    m.readings.clear();
+    m.samples.clear();
+    m.channels.clear();
+    m.wavelengths_nm.clear();
+    if (table.column("theta_i_deg")) {
+        m.kind = MeasurementKind::Brdf;
+        table.requireColumns({"theta_i_deg", "phi_i_deg", "theta_o_deg", "phi_o_deg"});
+        std::vector<std::string> value_columns;
+        for (const auto& column : table.header()) {
+            if (column == "theta_i_deg" || column == "phi_i_deg" || column == "theta_o_deg" ||
+                column == "phi_o_deg")
+                continue;
+            if (column == "R" || column == "G" || column == "B") {
+                m.channels.push_back(column);
+            } else if (const auto wavelength = wavelengthColumn(column)) {
+                m.wavelengths_nm.push_back(*wavelength);
+            } else {
+                throw InputError(source, "line 1",
+                                 "unknown column '" + column +
+                                     "' (R, G, B or a wavelength in nm such as 380 or 380nm)");
+            }
+            value_columns.push_back(column);
+        }
+        if (value_columns.empty())
+            throw InputError(source, "line 1", "no value column (R, G, B or one column per wavelength)");
+        for (const auto& record : table.records()) {
+            BrdfSample sample{table.requiredNumber(record, "theta_i_deg"),
+                              table.requiredNumber(record, "phi_i_deg"),
+                              table.requiredNumber(record, "theta_o_deg"),
+                              table.requiredNumber(record, "phi_o_deg"),
+                              {}};
+            for (const auto& column : value_columns)
+                sample.values.push_back(table.requiredNumber(record, column));
+            m.samples.push_back(std::move(sample));
+        }
+    } else {
+        m.kind = MeasurementKind::MultiAngle;
+        const std::string l = firstColumn(table, {"L", "L*"});
+        const std::string a = firstColumn(table, {"a", "a*"});
+        const std::string b = firstColumn(table, {"b", "b*"});
+        const bool by_geometry = table.column("geometry").has_value();
+        if (!by_geometry) table.requireColumns({"aspecular_deg"});
+        if (l.empty()) table.requireColumns({"L"});
+        if (a.empty()) table.requireColumns({"a"});
+        if (b.empty()) table.requireColumns({"b"});
+        table.allowOnlyColumns(
+            {"geometry", "aspecular_deg", "illumination_deg", "L", "a", "b", "L*", "a*", "b*"});
+        for (const auto& record : table.records()) {
+            MultiAngleReading reading;
+            if (by_geometry && !table.field(record, "geometry").empty()) {
+                if (!parseGeometry(table.field(record, "geometry"), reading.illumination_deg,
+                                   reading.aspecular_deg))
+                    throw InputError(source, CsvTable::where(record, "geometry"),
+                                     "'" + table.field(record, "geometry") +
+                                         "' is not a geometry like 45as15 or 45as-15");
+            } else {
+                reading.aspecular_deg = table.requiredNumber(record, "aspecular_deg");
+                reading.illumination_deg = table.number(record, "illumination_deg").value_or(45.0);
+            }
+            reading.L = table.requiredNumber(record, l);
+            reading.a = table.requiredNumber(record, a);
+            reading.b = table.requiredNumber(record, b);
+            m.readings.push_back(reading);
+        }
+    }
+    validateMeasurement(m, source);
+    return m;
+}
+
+std::string measurementToJson(const Measurement& measurement) {
+    return detail::measurementJson(measurement, true).dump(2) + "\n";
+}
+
+std::string measurementToCsv(const Measurement& m) {
+    std::string out;
+    if (m.kind == MeasurementKind::MultiAngle) {
+        out = detail::csvLine({"illumination_deg", "aspecular_deg", "L", "a", "b"});
+        for (const auto& r : m.readings)
+            out += detail::csvLine({detail::csvNumber(r.illumination_deg), detail::csvNumber(r.aspecular_deg),
+                                    detail::csvNumber(r.L), detail::csvNumber(r.a), detail::csvNumber(r.b)});
+        return out;
+    }
+    std::vector<std::string> header{"theta_i_deg", "phi_i_deg", "theta_o_deg", "phi_o_deg"};
+    for (const auto& c : m.channels) header.push_back(c);
+    for (const double w : m.wavelengths_nm) header.push_back(detail::csvNumber(w) + "nm");
+    out = detail::csvLine(header);
+    for (const auto& s : m.samples) {
+        std::vector<std::string> fields{detail::csvNumber(s.theta_i_deg), detail::csvNumber(s.phi_i_deg),
+                                        detail::csvNumber(s.theta_o_deg), detail::csvNumber(s.phi_o_deg)};
+        for (const double v : s.values) fields.push_back(detail::csvNumber(v));
+        out += detail::csvLine(fields);
+    }
+    return out;
+}
+
+}  // namespace paintlab::db

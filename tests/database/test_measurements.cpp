@@ -1,0 +1,204 @@
+// Measurements and fits: multi-angle CIELAB and BRDF samples imported from
+// instrument-style CSV and from JSON, round trips through the database and
+// back out, fits linking a recipe version to a measurement, and bad files
+// refused naming the file, the record and the field with nothing stored.
+
+#include "db_test_support.h"
+
+#include "paintlab/database/demo.h"
+#include "paintlab/database/exchange.h"
+#include "paintlab/database/measurement_files.h"
+#include "paintlab/database/measurements.h"
+#include "paintlab/database/recipes.h"
+
+#include <gtest/gtest.h>
+
+#include <cctype>
+
+namespace paintlab::db {
+namespace {
+
+using test::TempDir;
+
+// As a BYK-mac exports a silver metallic panel (values made up for the test).
+const std::string kMultiAngleCsv = "geometry,L*,a*,b*\n"
+                                   "45as-15,131.2,-0.8,2.1\n"
+                                   "45as15,112.5,-0.7,1.9\n"
+                                   "45as25,88.4,-0.5,1.2\n"
+                                   "45as45,52.0,-0.2,0.1\n"
+                                   "45as75,34.6,0.1,-0.9\n"
+                                   "45as110,30.2,0.2,-1.4\n";
+
+const std::string kBrdfCsv = "theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,450nm,550nm,650nm\n"
+                             "30,0,30,180,2.5,2.75,3.0\n"
+                             "30,0,0,0,0.05,0.06,0.07\n"
+                             "60,0,45,90,0.01,0.0125,0.015\n";
+
+Measurement description(const std::string& name) {
+    Measurement m;
+    m.name = name;
+    m.instrument = "BYK-mac i";
+    m.sample = "panel 7; \"silver\"";
+    m.measured_at = "2024-06-01";
+    return m;
+}
+
+TEST(Measurements, MultiAngleCsvIsReadAndRoundTrips) {
+    const Measurement m = parseMeasurementCsv(kMultiAngleCsv, "panel.csv", description("silver panel"));
+    EXPECT_EQ(m.kind, MeasurementKind::MultiAngle);
+    ASSERT_EQ(m.readings.size(), 6U);
+    EXPECT_EQ(m.readings[0], (MultiAngleReading{45.0, -15.0, 131.2, -0.8, 2.1}));
+    EXPECT_EQ(m.readings[5].aspecular_deg, 110.0);
+    TempDir dir;
+    Database db = Database::open(dir / "m.db");
+    const auto id = createMeasurement(db, m);
+    auto stored = findMeasurement(db, "silver panel");
+    ASSERT_TRUE(stored.has_value());
+    EXPECT_EQ(stored->id, id);
+    stored->id = 0;
+    EXPECT_TRUE(*stored == m);
+    // Out as JSON and CSV, and back in: the same measurement.
+    EXPECT_TRUE(parseMeasurementJson(measurementToJson(*stored), "m.json") == m);
+    EXPECT_TRUE(parseMeasurementCsv(measurementToCsv(*stored), "m.csv", description("silver panel")) == m);
+}
+
+TEST(Measurements, SpectralBrdfCsvIsReadAndRoundTripsThroughTheDatabase) {
+    TempDir dir;
+    const auto file = dir / "gonio.csv";
+    test::writeBytes(file, kBrdfCsv);
+    Database db = Database::open(dir / "m.db");
+    ImportOptions options;
+    options.measurement.instrument = "gonio";
+    const auto result = importFile(db, file, options);
+    EXPECT_EQ(result.kind, ContentKind::Measurement);
+    ASSERT_EQ(result.names, std::vector<std::string>{"gonio"});  // named after the file
+    const auto m = findMeasurement(db, "gonio");
+    ASSERT_TRUE(m.has_value());
+    EXPECT_EQ(m->kind, MeasurementKind::Brdf);
+    EXPECT_EQ(m->wavelengths_nm, (std::vector<double>{450, 550, 650}));
+    ASSERT_EQ(m->samples.size(), 3U);
+    EXPECT_EQ(m->samples[2], (BrdfSample{60, 0, 45, 90, {0.01, 0.0125, 0.015}}));
+    EXPECT_EQ(m->instrument, "gonio");
+    const auto json_file = dir / "gonio-copy.json";
+    Measurement renamed = *m;
+    renamed.name = "gonio copy";
+    test::writeBytes(json_file, measurementToJson(renamed));
+    importFile(db, json_file);
+    auto copy = findMeasurement(db, "gonio copy");
+    ASSERT_TRUE(copy.has_value());
+    copy->id = renamed.id;
+    EXPECT_TRUE(*copy == renamed);
+    const auto list = listMeasurements(db);
+    ASSERT_EQ(list.size(), 2U);
+    EXPECT_EQ(list[0].points, 3U);
+}
+
+TEST(Measurements, RgbBrdfJsonIsRead) {
+    const auto m = parseMeasurementJson(R"({"format": "paintlab-measurement", "format_version": 1,
+        "name": "rgb gonio", "kind": "brdf", "channels": ["R", "G", "B"],
+        "samples": [{"theta_i_deg": 45, "phi_i_deg": 0, "theta_o_deg": 45, "phi_o_deg": 180, "values": [1, 2, 3]}]})",
+                                        "rgb.json");
+    EXPECT_EQ(m.channels, (std::vector<std::string>{"R", "G", "B"}));
+    EXPECT_EQ(m.samples.at(0).values, (std::vector<double>{1, 2, 3}));
+}
+
+TEST(Measurements, FitsLinkARecipeVersionAndAMeasurement) {
+    TempDir dir;
+    Database db = Database::open(dir / "f.db");
+    initDemoDatabase(db);
+    createMeasurement(db, parseMeasurementCsv(kMultiAngleCsv, "panel.csv", description("silver panel")));
+    const std::string recipe = listRecipes(db).front().name;
+    Fit fit;
+    fit.recipe_name = recipe;
+    fit.recipe_version = 1;
+    fit.measurement_name = "silver panel";
+    fit.method = "dE2000 per angle";
+    fit.residual_rms = 1.25;
+    fit.residuals = {0.5, -1.0, 2.0, 0.25, -0.75, 1.5};
+    fit.parameters = {{"layers[0].thickness_um", 18.5}};
+    fit.note = "first try";
+    const auto id = recordFit(db, fit);
+    const auto fits = fitsOfMeasurement(db, "silver panel");
+    ASSERT_EQ(fits.size(), 1U);
+    EXPECT_EQ(fits[0].id, id);
+    EXPECT_EQ(fits[0].recipe_name, recipe);
+    EXPECT_EQ(fits[0].residuals, fit.residuals);
+    EXPECT_EQ(fits[0].parameters, fit.parameters);
+    EXPECT_EQ(fits[0].residual_rms, 1.25);
+    EXPECT_FALSE(fits[0].created_at.empty());
+    EXPECT_EQ(fitsOfRecipe(db, recipe).size(), 1U);
+    EXPECT_EQ(listMeasurements(db).at(0).fits, 1U);
+
+    Fit unknown = fit;
+    unknown.recipe_version = 99;
+    EXPECT_THROW(recordFit(db, unknown), InputError);
+    unknown = fit;
+    unknown.measurement_name = "nope";
+    EXPECT_THROW(recordFit(db, unknown), InputError);
+    unknown = fit;
+    unknown.residual_rms = -1.0;
+    EXPECT_THROW(recordFit(db, unknown), InputError);
+    EXPECT_EQ(fitsOfMeasurement(db, "silver panel").size(), 1U);
+}
+
+struct BadMeasurement {
+    std::string label;
+    std::string file_name;
+    std::string text;
+    std::string expected;
+};
+
+class BadMeasurementImport : public ::testing::TestWithParam<BadMeasurement> {};
+
+TEST_P(BadMeasurementImport, IsRefusedNamingFileAndFieldAndStoresNothing) {
+    const auto& bad = GetParam();
+    TempDir dir;
+    Database db = Database::open(dir / "m.db");
+    createMeasurement(db, parseMeasurementCsv(kMultiAngleCsv, "panel.csv", description("taken")));
+    const auto file = dir / bad.file_name;
+    test::writeBytes(file, bad.text);
+    ImportOptions options;
+    options.kind = ContentKind::Measurement;
+    try {
+        importFile(db, file, options);
+        FAIL() << bad.label;
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.source(), file.string()) << e.what();
+        EXPECT_NE(std::string(e.what()).find(bad.expected), std::string::npos)
+            << bad.label << ": " << e.what();
+    }
+    EXPECT_EQ(listMeasurements(db).size(), 1U);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Files, BadMeasurementImport,
+    ::testing::Values(
+        BadMeasurement{"NaN", "nan.csv", "aspecular_deg,L,a,b\n15,nan,0,0\n", "line 2, column L"},
+        BadMeasurement{"missing", "missing.csv", "aspecular_deg,L,a\n15,50,0\n", "missing column 'b'"},
+        BadMeasurement{"geometry", "geometry.csv", "geometry,L,a,b\n45x15,50,0,0\n",
+                       "line 2, column geometry"},
+        BadMeasurement{"horizon", "horizon.csv", "aspecular_deg,L,a,b\n140,50,0,0\n",
+                       "readings[0].aspecular_deg"},
+        BadMeasurement{"theta", "theta.csv",
+                       "theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,R,G,B\n95,0,0,0,1,1,1\n",
+                       "samples[0].theta_i_deg"},
+        BadMeasurement{"negative brdf", "neg.csv",
+                       "theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,R,G,B\n45,0,0,0,1,-1,1\n",
+                       "samples[0].values[1]"},
+        BadMeasurement{"truncated", "cut.csv",
+                       "theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,R,G,B\n45,0,0,0,1,1,1\n45,0", "line 3"},
+        BadMeasurement{"taken name", "taken.csv", "aspecular_deg,L,a,b\n15,50,0,0\n", "already exists"},
+        BadMeasurement{
+            "json unknown field", "u.json",
+            R"({"format": "paintlab-measurement", "format_version": 1, "name": "x", "kind": "multiangle",
+                           "readings": [{"aspecular_deg": 15, "L": 50, "a": 0, "b": 0, "c": 1}]})",
+            "readings[0].c"}),
+    [](const auto& test_info) {
+        std::string name = test_info.param.label;
+        for (char& c : name)
+            if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+        return name;
+    });
+
+}  // namespace
+}  // namespace paintlab::db
