@@ -16,6 +16,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <numbers>
 #include <string>
@@ -76,6 +77,56 @@ BENCHMARK(BM_McPearlescentOnePercent)
     ->Args({8, 0})
     ->Args({16, 0})
     ->Args({8, 1})
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->Iterations(1);
+
+// Error budget of the explicit-flake estimate (docs/PERFORMANCE.md, "Full
+// model"): the pearlescent demo, 8 bands, 45 degree incidence, the six
+// multi-angle geometries, 5 degree cone, a fixed number of paths per band
+// (argument 1, thousands). Argument 0 picks the estimator:
+//   0 histogram only, 8 tiles (error over the batches: path + tile spread)
+//   1 histogram only, 1 tile (error over paths only)
+//   2 / 3 / 4 histogram only, 8 tiles, scoring only the path class
+//     BeamFlake / Smooth / Other (mc_connection.h): each class's share
+//   5 connections (the default), 8 tiles;  6 connections, 1 tile.
+// Prints f, its standard error and the relative error per band and geometry
+// (stdout) and reports the worst relative error and the time 1 % would take.
+void BM_McExplicitBudget(benchmark::State& state) {
+    const Recipe recipe = pearlescent();
+    const auto wavelengths = visibleBands(8);
+    const int config = static_cast<int>(state.range(0));
+    mc::McSettings s;
+    s.threads = 2;
+    s.max_paths = state.range(1) * 1000;
+    s.explicit_flakes = true;
+    s.histogram_cone_deg = 5.0;
+    s.connections = config >= 5;
+    s.batches = config == 1 || config == 6 ? 1 : 8;
+    if (config >= 2 && config <= 4) s.histogram_classes = 1U << static_cast<unsigned>(config - 1);
+    double worst = 0.0;
+    double seconds = 0.0;
+    std::int64_t paths = 0;
+    for (auto _ : state) {
+        const mc::McResult r = mc::runMonteCarlo(recipe, wavelengths, multiAngleRequest(), s);
+        seconds += r.seconds;
+        paths += r.total_paths;
+        for (std::size_t b = 0; b < r.bands.size(); ++b) {
+            const auto& inc = r.bands[b][0];
+            std::printf("budget config %d  %5.1f nm  %.3f s ", config, r.wavelengths_nm[b], inc.seconds);
+            for (const auto& e : inc.brdf_per_sr) {
+                std::printf(" %9.4g +- %8.2g (%5.1f %%)", e.mean, e.std_error, 100.0 * e.relError());
+                worst = std::max(worst, e.relError());
+            }
+            std::printf("\n");
+        }
+    }
+    reportPaths(state, paths);
+    state.counters["worst_rel_error"] = worst;
+    state.counters["seconds_to_1pct"] = seconds * std::pow(std::max(worst, 0.01) / 0.01, 2.0);
+}
+BENCHMARK(BM_McExplicitBudget)
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6}, {100}})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);

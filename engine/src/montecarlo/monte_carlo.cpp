@@ -51,6 +51,7 @@ struct Sums {
 constexpr std::size_t kEscaped = 0;
 constexpr std::size_t kTransmitted = 1;
 constexpr std::size_t kFirstExit = 2;
+constexpr std::uint64_t kConnectionStream = 0x636f6e6e656374ULL;  // "connect"
 
 class JobRunner {
 public:
@@ -62,10 +63,10 @@ public:
         if (settings.histogram_cone_deg > 0.0) {
             const double alpha = settings.histogram_cone_deg * std::numbers::pi / 180.0;
             for (const auto& wo : job.wo)
-                m_bins.push_back(
-                    {{wo.x, wo.y, wo.z},
-                     std::cos(alpha),
-                     std::numbers::pi * std::sin(alpha) * std::sin(alpha) * std::max(wo.z, 1e-9)});
+                m_bins.push_back({{wo.x, wo.y, wo.z},
+                                  std::cos(alpha),
+                                  std::numbers::pi * std::sin(alpha) * std::sin(alpha) * std::max(wo.z, 1e-9),
+                                  2.0 * std::numbers::pi * (1.0 - std::cos(alpha))});
         } else {
             for (const auto& wo : job.wo) m_chains.push_back(exitChain(stack, wo));
         }
@@ -95,6 +96,14 @@ public:
             }
             m_projected = m_cells.scale.size() * static_cast<std::size_t>(job.orders);
         }
+        m_connections = settings.connections && settings.explicit_flakes && !m_bins.empty() &&
+                        !band.explicit_flakes.empty() && m_entry_weight > 0.0;
+        m_histogram_classes = settings.histogram_classes;
+        if (m_connections) {
+            m_histogram_classes &= ~(kClassBeamFlake | kClassSmooth);
+            for (const auto& tiles : band.explicit_flakes)
+                m_glints.push_back(glintSets(stack, tiles, m_v_in, m_bins));
+        }
     }
 
     double specular() const { return m_specular; }
@@ -110,19 +119,25 @@ public:
         const std::span<double> f(sample.data() + kFirstExit, sample.size() - kFirstExit);
         const std::span<const LayerFlakes> explicit_flakes =
             m_band.explicit_flakes.empty() ? std::span<const LayerFlakes>{} : m_band.explicit_flakes[batch];
-        const PathContext context{m_band.stack,
-                                  m_chains,
-                                  m_bins,
-                                  explicit_flakes,
-                                  WalkSettings{m_settings.max_events, m_settings.roulette_weight},
-                                  m_projected > 0 ? &m_cells : nullptr};
+        const PathContext context{
+            m_band.stack,
+            m_chains,
+            m_bins,
+            explicit_flakes,
+            WalkSettings{m_settings.max_events, m_settings.roulette_weight, m_histogram_classes, m_connections},
+            m_projected > 0 ? &m_cells : nullptr,
+            m_connections ? std::span<const GlintSet>(m_glints[batch]) : std::span<const GlintSet>{}};
         for (std::int64_t p = first_path; p < first_path + paths; ++p) {
             std::fill(sample.begin(), sample.end(), 0.0);
             if (m_entry_weight > 0.0) {
                 PathRng rng(m_settings.seed, m_band_key, m_incidence_key, static_cast<std::uint64_t>(p));
+                // The connections' own stream: the walk draws the same numbers with or without them.
+                PathRng connection_rng(m_settings.seed ^ kConnectionStream, m_band_key, m_incidence_key,
+                                       static_cast<std::uint64_t>(p));
                 const double x = rng.uniform() * m_tile_side_um;
                 const double y = rng.uniform() * m_tile_side_um;
-                const PathOutcome out = tracePath(context, m_v_in, m_entry_weight, x, y, rng, f);
+                const PathOutcome out = tracePath(context, m_v_in, m_entry_weight, x, y, rng, f,
+                                                  m_connections ? &connection_rng : nullptr);
                 sample[kEscaped] = out.escaped;
                 sample[kTransmitted] = out.transmitted;
             }
@@ -158,6 +173,9 @@ private:
     double m_specular = 0.0;
     double m_entry_weight = 0.0;
     Vec3 m_v_in;
+    bool m_connections = false;
+    unsigned m_histogram_classes = kAllClasses;
+    std::vector<std::vector<GlintSet>> m_glints;  // [batch][bin]
 };
 
 // The estimates of a job from its batches' sums: over the batches' means
