@@ -49,6 +49,7 @@ struct McOptions {
     double cone_deg = 0.0;  // 0: next-event estimator (explicit flakes default to 5)
     bool reject_overlaps = false;
     bool histogram_only = false;  // explicit flakes: no connections (the estimator before 2026-12)
+    int tile_views = 32;          // explicit flakes: azimuths each tile is traced at
     int batches = 8;
     bool table = false;     // mc: tabulate on the fast model's basis (mc_table.h)
     double step_deg = 5.0;  // mc --table: angular step of the written table
@@ -78,6 +79,8 @@ mc::McSettings mcSettings(const McOptions& o) {
         throw InputError("<argument>", "--reject-overlaps", "needs --explicit-flakes");
     if (o.histogram_only && !o.explicit_flakes)
         throw InputError("<argument>", "--histogram-only", "needs --explicit-flakes");
+    if (!(o.tile_views >= 1 && o.tile_views <= 1024))
+        throw InputError("<argument>", "--tile-views", std::to_string(o.tile_views) + " must be in [1, 1024]");
     if (!(o.batches >= 1 && o.batches <= 256))
         throw InputError("<argument>", "--batches", std::to_string(o.batches) + " must be in [1, 256]");
     mc::McSettings s;
@@ -85,6 +88,7 @@ mc::McSettings mcSettings(const McOptions& o) {
     s.explicit_flakes = o.explicit_flakes;
     s.reject_overlaps = o.reject_overlaps;
     s.connections = !o.histogram_only;
+    s.tile_views = o.tile_views;
     s.batches = o.batches;
     s.histogram_cone_deg = o.cone_deg > 0.0 ? o.cone_deg : (o.explicit_flakes ? 5.0 : 0.0);
     s.max_paths = has_samples ? o.samples : kDefaultSamples;
@@ -142,6 +146,7 @@ ordered_json settingsJson(const mc::McSettings& s, const mc::McResult& r) {
             {"reject_overlaps", s.reject_overlaps},
             {"batches", s.batches},
             {"connections", s.explicit_flakes && s.connections},
+            {"tile_views", s.explicit_flakes ? s.tile_views : 1},
             {"max_paths", s.max_paths},
             {"target_rel_error", s.target_rel_error},
             {"max_seconds", s.max_seconds},
@@ -423,6 +428,11 @@ void addStopOptions(CLI::App* command, McOptions& o) {
     command->add_flag("--histogram-only", o.histogram_only,
                       "With --explicit-flakes: score f by the cone histogram alone, without the "
                       "connections through the tile (same mean, larger errors)");
+    command
+        ->add_option("--tile-views", o.tile_views,
+                     "With --explicit-flakes: azimuths of the incidence plane each tile is traced at "
+                     "(flake statistics are isotropic; more views, less spread between tiles)")
+        ->capture_default_str();
     command
         ->add_option("--batches", o.batches,
                      "Batches of paths (each its own flake tile with --explicit-flakes; the standard "

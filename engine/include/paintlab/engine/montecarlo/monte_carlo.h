@@ -113,6 +113,14 @@ struct McSettings {
     // Same expectation (the cone average), far smaller variance; false: the
     // histogram alone (the estimator before 2026-12).
     bool connections = true;
+    // Explicit flakes: every tile is traced at this many azimuths of the
+    // incidence plane (path p at view p mod tile_views; evenly spaced, with
+    // a random offset per batch). The flake statistics are isotropic in
+    // azimuth, so each view is as valid a realisation as the tile itself
+    // (only the periodic lattice turns with it), and the average over views
+    // removes most of the spread between tiles where few flakes glint into
+    // a cone. 1: the tile in its own frame only (the estimator before 2026-12).
+    int tile_views = 32;
     // Diagnostics for error budgets: bit mask of the path classes whose
     // escapes the histogram scores (1 unscattered beam, 2 the beam's first
     // reflection off an explicit flake, 4 last direction change a pigment,
