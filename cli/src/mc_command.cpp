@@ -80,7 +80,8 @@ mc::McSettings mcSettings(const McOptions& o) {
     if (o.histogram_only && !o.explicit_flakes)
         throw InputError("<argument>", "--histogram-only", "needs --explicit-flakes");
     if (!(o.tile_views >= 1 && o.tile_views <= 1024))
-        throw InputError("<argument>", "--tile-views", std::to_string(o.tile_views) + " must be in [1, 1024]");
+        throw InputError("<argument>", "--tile-views",
+                         std::to_string(o.tile_views) + " must be in [1, 1024]");
     if (!(o.batches >= 1 && o.batches <= 256))
         throw InputError("<argument>", "--batches", std::to_string(o.batches) + " must be in [1, 256]");
     mc::McSettings s;

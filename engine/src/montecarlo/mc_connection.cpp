@@ -11,7 +11,7 @@ namespace paintlab::mc {
 
 namespace {
 
-constexpr int kMaxCrossings = 100000;    // safety cap on flakes / wraps along one straight path
+constexpr int kMaxCrossings = 100000;  // safety cap on flakes / wraps along one straight path
 
 // Transmittance along the segment from (x, y, depth) of length `length` in
 // direction u through one layer's tile (wrapping at its sides): the product
@@ -155,15 +155,17 @@ std::vector<GlintSet> glintSets(const PaintStack& stack, std::span<const LayerFl
     return sets;
 }
 
-void scoreGlints(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::span<const GlintSet> glints,
-                 std::span<const HistogramBin> bins, PathRng& rng, std::span<double> f_out) {
+void scoreGlints(const PaintStack& stack, std::span<const LayerFlakes> tiles,
+                 std::span<const GlintSet> glints, std::span<const HistogramBin> bins, PathRng& rng,
+                 std::span<double> f_out) {
     for (std::size_t k = 0; k < glints.size(); ++k) {
         const GlintSet& set = glints[k];
         const double total = set.total();
         if (!(total > 0.0)) continue;
         const double pick = rng.uniform() * total;
         const auto it = std::upper_bound(set.cumulative.begin(), set.cumulative.end(), pick);
-        const auto index = std::min(static_cast<std::size_t>(it - set.cumulative.begin()), set.flakes.size() - 1);
+        const auto index =
+            std::min(static_cast<std::size_t>(it - set.cumulative.begin()), set.flakes.size() - 1);
         const GlintFlake& g = set.flakes[index];
         const LayerFlakes& lf = tiles[static_cast<std::size_t>(g.layer)];
         const double u1 = rng.uniform();
@@ -174,8 +176,9 @@ void scoreGlints(const PaintStack& stack, std::span<const LayerFlakes> tiles, st
         // pokes out of the layer (a flake tilted in a film thinner than it), which
         // the walk cannot hit there either (it traces a tile inside its layer only).
         std::size_t j = 0;
-        while (j < stack.slices.size() && !(stack.slices[j].layer == g.layer &&
-                                             depth >= stack.slices[j].top_um && depth <= stack.slices[j].bottom_um))
+        while (j < stack.slices.size() &&
+               !(stack.slices[j].layer == g.layer && depth >= stack.slices[j].top_um &&
+                 depth <= stack.slices[j].bottom_um))
             ++j;
         if (j == stack.slices.size()) continue;
         const int kind = lf.tile->flakes()[g.flake].kind;

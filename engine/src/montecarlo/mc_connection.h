@@ -111,7 +111,8 @@ std::vector<GlintSet> glintSets(const PaintStack& stack, std::span<const LayerFl
                                 std::span<const HistogramBin> bins);
 
 // One sample of the BeamFlake class's f (1/sr) for every bin (added to f_out[k]).
-void scoreGlints(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::span<const GlintSet> glints,
-                 std::span<const HistogramBin> bins, PathRng& rng, std::span<double> f_out);
+void scoreGlints(const PaintStack& stack, std::span<const LayerFlakes> tiles,
+                 std::span<const GlintSet> glints, std::span<const HistogramBin> bins, PathRng& rng,
+                 std::span<double> f_out);
 
 }  // namespace paintlab::mc

@@ -76,7 +76,8 @@ struct Walker {
     void escape() {
         if ((settings.histogram_classes & path_class) != 0U)
             for (std::size_t k = 0; k < bins.size(); ++k)
-                if (dot(v, bins[k].wo) >= bins[k].cos_cone) brdf_out[k] += weight / bins[k].projected_solid_angle;
+                if (dot(v, bins[k].wo) >= bins[k].cos_cone)
+                    brdf_out[k] += weight / bins[k].projected_solid_angle;
         if (fourier != nullptr) project(*fourier);
     }
 
@@ -122,8 +123,7 @@ struct Walker {
     // a direction uniform in each cone, through the tiles (mc_connection.h);
     // `emitted(u)` is the vertex's scattered weight per sr towards u (in the
     // slice) over the cosine's projection factor.
-    template <class Emitted>
-    void coneNextEvent(const Slice& s, const Emitted& emitted) {
+    template <class Emitted> void coneNextEvent(const Slice& s, const Emitted& emitted) {
         const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
         for (std::size_t k = 0; k < bins.size(); ++k) {
             const HistogramBin& bin = bins[k];
@@ -368,7 +368,8 @@ PathOutcome tracePath(const PathContext& context, Vec3 v, double weight, double 
                   y};
     const double escaped = walker.run();
     if (connect && !context.glints.empty())
-        scoreGlints(context.stack, context.explicit_flakes, context.glints, context.bins, *connection_rng, f_out);
+        scoreGlints(context.stack, context.explicit_flakes, context.glints, context.bins, *connection_rng,
+                    f_out);
     return {escaped, walker.transmitted};
 }
 

@@ -117,12 +117,15 @@ public:
             const std::size_t b = index / m_view_count;
             const std::size_t m = index % m_view_count;
             std::uint64_t key = settings.seed ^ (0x746f726e ^ b);  // "torn"
-            const double offset = m_view_count > 1 ? static_cast<double>(splitMix64(key) >> 11U) * 0x1.0p-53 : 0.0;
+            const double offset =
+                m_view_count > 1 ? static_cast<double>(splitMix64(key) >> 11U) * 0x1.0p-53 : 0.0;
             const double psi = 2.0 * std::numbers::pi * (static_cast<double>(m) + offset) /
                                static_cast<double>(m_view_count);
             const double c = std::cos(psi);
             const double sn = std::sin(psi);
-            const auto turned = [c, sn](const Vec3& a) { return Vec3{c * a.x - sn * a.y, sn * a.x + c * a.y, a.z}; };
+            const auto turned = [c, sn](const Vec3& a) {
+                return Vec3{c * a.x - sn * a.y, sn * a.x + c * a.y, a.z};
+            };
             View& view = m_views[b][m];
             view.v_in = turned(m_v_in);
             view.bins = m_bins;
@@ -131,7 +134,8 @@ public:
             const Vec3 in = turned({m_cells.cos_in, m_cells.sin_in, 0.0});
             view.cells.cos_in = in.x;
             view.cells.sin_in = in.y;
-            if (m_connections) view.glints = glintSets(m_band.stack, m_band.explicit_flakes[b], view.v_in, view.bins);
+            if (m_connections)
+                view.glints = glintSets(m_band.stack, m_band.explicit_flakes[b], view.v_in, view.bins);
         });
     }
 

@@ -44,7 +44,8 @@ mc::McSettings explicitSettings(std::int64_t paths, double cone_deg, std::uint64
     return s;
 }
 
-// Projected solid angle of a cone of half-angle alpha around a direction with cosine mu (exact above the horizon).
+// Projected solid angle of a cone of half-angle alpha around a direction with cosine mu (exact above the
+// horizon).
 double projectedSolidAngle(double cone_deg, double mu) {
     const double s = std::sin(cone_deg * kPi / 180.0);
     return kPi * s * s * mu;
@@ -108,8 +109,11 @@ TEST(MonteCarloConnections, NextEventThroughTheStackMatchesTheClearCoatFormula) 
     const double cone_deg = 10.0;
     const Direction wi = directionFromAnglesDeg(45.0, 0.0);
     const std::vector<mc::IncidenceRequest> req{
-        {wi, {directionFromAnglesDeg(0.0, 0.0), directionFromAnglesDeg(60.0, 180.0), directionFromAnglesDeg(75.0, 90.0)}}};
-    const auto result = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, explicitSettings(4000, cone_deg, 2));
+        {wi,
+         {directionFromAnglesDeg(0.0, 0.0), directionFromAnglesDeg(60.0, 180.0),
+          directionFromAnglesDeg(75.0, 90.0)}}};
+    const auto result =
+        mc::runMonteCarlo(r, std::vector<double>{550.0}, req, explicitSettings(4000, cone_deg, 2));
     const double ti = 1.0 - fresnelDielectric(wi.z, n);
     const double alpha = cone_deg * kPi / 180.0;
     for (std::size_t k = 0; k < req[0].wo.size(); ++k) {
@@ -124,7 +128,8 @@ TEST(MonteCarloConnections, NextEventThroughTheStackMatchesTheClearCoatFormula) 
             const double beta = (i + 0.5) / nb * alpha;
             for (int j = 0; j < np; ++j) {
                 const double psi = (j + 0.5) / np * 2.0 * kPi;
-                const double mu = std::cos(beta) * a.z + std::sin(beta) * (std::cos(psi) * b1z + std::sin(psi) * b2z);
+                const double mu =
+                    std::cos(beta) * a.z + std::sin(beta) * (std::cos(psi) * b1z + std::sin(psi) * b2z);
                 const double w = std::sin(beta) * mu;
                 num += w * (1.0 - fresnelDielectric(mu, n));
                 den += w;
@@ -163,9 +168,10 @@ TEST(MonteCarloConnections, AgreeWithTheHistogramOnAPearlescentPaint) {
     r.layers.push_back(base);
     const double cone_deg = 8.0;
     const Direction wi = directionFromAnglesDeg(45.0, 0.0);
-    const std::vector<mc::IncidenceRequest> req{{wi,
-                                                 {directionFromAnglesDeg(30.0, 180.0), directionFromAnglesDeg(0.0, 0.0),
-                                                  directionFromAnglesDeg(40.0, 0.0)}}};
+    const std::vector<mc::IncidenceRequest> req{
+        {wi,
+         {directionFromAnglesDeg(30.0, 180.0), directionFromAnglesDeg(0.0, 0.0),
+          directionFromAnglesDeg(40.0, 0.0)}}};
     auto s = explicitSettings(48000, cone_deg, 11);
     s.tile_flakes = 1500;
     s.batches = 16;
@@ -191,7 +197,8 @@ TEST(MonteCarloConnections, HistogramClassesAddUpToTheWhole) {
     flake.diameter_um = 8.0;
     r.layers[0].components = {flake, test::pigment(0.01, 2.0, 8.0, 0.2)};
     const std::vector<mc::IncidenceRequest> req{
-        {directionFromAnglesDeg(45.0, 0.0), {directionFromAnglesDeg(30.0, 180.0), directionFromAnglesDeg(10.0, 0.0)}}};
+        {directionFromAnglesDeg(45.0, 0.0),
+         {directionFromAnglesDeg(30.0, 180.0), directionFromAnglesDeg(10.0, 0.0)}}};
     auto s = explicitSettings(4000, 10.0, 4);
     s.tile_flakes = 500;
     s.connections = false;
