@@ -101,7 +101,8 @@ BENCHMARK(BM_McPearlescentOnePercent)
 // Error budget of the explicit-flake estimate (docs/PERFORMANCE.md, "Full
 // model"): the pearlescent demo, 8 bands, 45 degree incidence, the six
 // multi-angle geometries, 5 degree cone, a fixed number of paths per band
-// (argument 1, thousands). Argument 0 picks the estimator:
+// (argument 1, thousands); argument 2: one path in this many runs the
+// connections (McSettings::connection_fraction). Argument 0 picks the estimator:
 //   0 histogram only, 8 tiles (error over the batches: path + tile spread)
 //   1 histogram only, 1 tile (error over paths only)
 //   2 / 3 / 4 histogram only, 8 tiles, scoring only the path class
@@ -121,6 +122,7 @@ void BM_McExplicitBudget(benchmark::State& state) {
     s.connections = config >= 5;
     s.batches = config == 1 || config == 6 ? 1 : 8;
     if (config >= 2 && config <= 4) s.histogram_classes = 1U << static_cast<unsigned>(config - 1);
+    if (state.range(2) > 0) s.connection_fraction = 1.0 / static_cast<double>(state.range(2));
     double worst = 0.0;
     double seconds = 0.0;
     std::int64_t paths = 0;
@@ -143,7 +145,9 @@ void BM_McExplicitBudget(benchmark::State& state) {
     state.counters["seconds_to_1pct"] = seconds * std::pow(std::max(worst, 0.01) / 0.01, 2.0);
 }
 BENCHMARK(BM_McExplicitBudget)
-    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6}, {100}})
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6}, {100}, {1}})
+    ->Args({5, 100, 8})
+    ->Args({5, 800, 8})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);

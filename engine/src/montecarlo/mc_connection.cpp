@@ -156,8 +156,8 @@ std::vector<GlintSet> glintSets(const PaintStack& stack, std::span<const LayerFl
 }
 
 void scoreGlints(const PaintStack& stack, std::span<const LayerFlakes> tiles,
-                 std::span<const GlintSet> glints, std::span<const HistogramBin> bins, PathRng& rng,
-                 std::span<double> f_out) {
+                 std::span<const GlintSet> glints, std::span<const HistogramBin> bins, double weight,
+                 PathRng& rng, std::span<double> f_out) {
     for (std::size_t k = 0; k < glints.size(); ++k) {
         const GlintSet& set = glints[k];
         const double total = set.total();
@@ -187,7 +187,7 @@ void scoreGlints(const PaintStack& stack, std::span<const LayerFlakes> tiles,
         const double t_in = straightToAmbient(stack, tiles, j, depth, p.x, p.y, {-g.v.x, -g.v.y, -g.v.z});
         if (!(t_in > 0.0)) continue;
         const double t_out = straightToAmbient(stack, tiles, j, depth, p.x, p.y, g.r);
-        f_out[k] += total * t_in * R * t_out / bins[k].projected_solid_angle;
+        f_out[k] += weight * total * t_in * R * t_out / bins[k].projected_solid_angle;
     }
 }
 

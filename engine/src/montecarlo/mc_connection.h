@@ -110,9 +110,9 @@ struct GlintSet {
 std::vector<GlintSet> glintSets(const PaintStack& stack, std::span<const LayerFlakes> tiles, const Vec3& v_in,
                                 std::span<const HistogramBin> bins);
 
-// One sample of the BeamFlake class's f (1/sr) for every bin (added to f_out[k]).
+// One sample of the BeamFlake class's f (1/sr) for every bin, times `weight` (added to f_out[k]).
 void scoreGlints(const PaintStack& stack, std::span<const LayerFlakes> tiles,
-                 std::span<const GlintSet> glints, std::span<const HistogramBin> bins, PathRng& rng,
-                 std::span<double> f_out);
+                 std::span<const GlintSet> glints, std::span<const HistogramBin> bins, double weight,
+                 PathRng& rng, std::span<double> f_out);
 
 }  // namespace paintlab::mc

@@ -134,7 +134,8 @@ struct Walker {
             const double value = emitted(u);
             if (!(value > 0.0)) continue;
             const double t = straightToAmbient(stack, explicit_flakes, j, depth, x, y, u);
-            brdf_out[k] += value * t * scale * w.z * bin.solid_angle / bin.projected_solid_angle;
+            brdf_out[k] += settings.connection_weight * value * t * scale * w.z * bin.solid_angle /
+                           bin.projected_solid_angle;
         }
     }
 
@@ -376,8 +377,8 @@ PathOutcome tracePath(const PathContext& context, Vec3 v, double weight, double 
                   y};
     const double escaped = walker.run();
     if (connect && !context.glints.empty())
-        scoreGlints(context.stack, context.explicit_flakes, context.glints, context.bins, *connection_rng,
-                    f_out);
+        scoreGlints(context.stack, context.explicit_flakes, context.glints, context.bins,
+                    context.settings.connection_weight, *connection_rng, f_out);
     return {escaped, walker.transmitted};
 }
 

@@ -19,6 +19,9 @@ struct WalkSettings {
     // Score classes Smooth and BeamFlake by connections (explicit flakes only; the
     // caller then leaves them out of histogram_classes).
     bool connections = false;
+    // Connections run on a random share of the paths (McSettings::connection_fraction);
+    // their scores are divided by it.
+    double connection_weight = 1.0;
 };
 
 // Projection of what escapes on the fast model's basis (mc_table.h): the

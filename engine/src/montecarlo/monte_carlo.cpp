@@ -100,6 +100,7 @@ public:
                         !band.explicit_flakes.empty() && m_entry_weight > 0.0;
         m_histogram_classes = settings.histogram_classes;
         if (m_connections) m_histogram_classes &= ~(kClassBeamFlake | kClassSmooth);
+        m_connection_fraction = std::clamp(settings.connection_fraction, 1e-3, 1.0);
         buildViews(settings);
     }
 
@@ -162,7 +163,8 @@ public:
                                           view.bins,
                                           explicit_flakes,
                                           WalkSettings{m_settings.max_events, m_settings.roulette_weight,
-                                                       m_histogram_classes, m_connections},
+                                                       m_histogram_classes, m_connections,
+                                                       1.0 / m_connection_fraction},
                                           m_projected > 0 ? &view.cells : nullptr,
                                           view.glints};
                 PathRng rng(m_settings.seed, m_band_key, m_incidence_key, static_cast<std::uint64_t>(p));
@@ -171,8 +173,11 @@ public:
                                        static_cast<std::uint64_t>(p));
                 const double x = rng.uniform() * m_tile_side_um;
                 const double y = rng.uniform() * m_tile_side_um;
+                // Connections on a random share of the paths (all when the fraction is 1).
+                const bool connect = m_connections && (m_connection_fraction >= 1.0 ||
+                                                       connection_rng.uniform() < m_connection_fraction);
                 const PathOutcome out = tracePath(context, view.v_in, m_entry_weight, x, y, rng, f,
-                                                  m_connections ? &connection_rng : nullptr);
+                                                  connect ? &connection_rng : nullptr);
                 sample[kEscaped] = out.escaped;
                 sample[kTransmitted] = out.transmitted;
             }
@@ -218,6 +223,7 @@ private:
     };
     std::vector<std::vector<View>> m_views;  // [batch][view]
     std::size_t m_view_count = 1;
+    double m_connection_fraction = 1.0;
 };
 
 // The estimates of a job from its batches' sums: over the batches' means

@@ -121,6 +121,12 @@ struct McSettings {
     // removes most of the spread between tiles where few flakes glint into
     // a cone. 1: the tile in its own frame only (the estimator before 2026-12).
     int tile_views = 32;
+    // Explicit flakes with connections: the share of paths (drawn at random,
+    // in [1e-3, 1]) that run them, their scores divided by it (unbiased). The
+    // connections cost ~10 shadow rays per path and their own noise is small,
+    // while the histogram's share (multiple flake reflections) needs many
+    // paths: fewer connected paths buy more paths per second.
+    double connection_fraction = 0.125;
     // Diagnostics for error budgets: bit mask of the path classes whose
     // escapes the histogram scores (1 unscattered beam, 2 the beam's first
     // reflection off an explicit flake, 4 last direction change a pigment,
