@@ -72,7 +72,8 @@ TEST(MonteCarloConnections, HorizontalMirrorsEverythingLeavesAtTheMirrorDirectio
     for (double theta : {0.0, 45.0, 70.0})
         req.push_back({directionFromAnglesDeg(theta, 0.0), {directionFromAnglesDeg(theta, 180.0)}});
     auto s = explicitSettings(20000, cone_deg, 5);
-    s.tile_flakes = 4000;  // the closed forms hold for any realisation; a small tile builds fast
+    s.tile_flakes = 4000;         // the closed forms hold for any realisation; a small tile builds fast
+    s.connection_fraction = 1.0;  // every path connects: the test is of the connections themselves
     const auto result = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
     for (std::size_t i = 0; i < req.size(); ++i) {
         const double mu = req[i].wi.z;
@@ -114,6 +115,7 @@ TEST(MonteCarloConnections, NextEventThroughTheStackMatchesTheClearCoatFormula) 
           directionFromAnglesDeg(75.0, 90.0)}}};
     auto s = explicitSettings(8000, cone_deg, 2);
     s.batches = 16;  // errors over batches: 15 degrees of freedom
+    s.connection_fraction = 1.0;
     const auto result = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
     const double ti = 1.0 - fresnelDielectric(wi.z, n);
     const double alpha = cone_deg * kPi / 180.0;
