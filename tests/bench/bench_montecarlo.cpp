@@ -108,6 +108,8 @@ BENCHMARK(BM_McPearlescentOnePercent)
 //   2 / 3 / 4 histogram only, 8 tiles, scoring only the path class
 //     BeamFlake / Smooth / Other (mc_connection.h): each class's share
 //   5 connections (the default), 8 tiles;  6 connections, 1 tile.
+// The figures quoted in docs/PERFORMANCE.md: configs 0-6 at 100 (k paths) and
+// 1 (every path connects), 5 at 100 and 800 with 8, 6 at 800 with 8, 3 at 800.
 // Prints f, its standard error and the relative error per band and geometry
 // (stdout) and reports the worst relative error and the time 1 % would take.
 void BM_McExplicitBudget(benchmark::State& state) {
@@ -148,6 +150,8 @@ BENCHMARK(BM_McExplicitBudget)
     ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6}, {100}, {1}})
     ->Args({5, 100, 8})
     ->Args({5, 800, 8})
+    ->Args({6, 800, 8})
+    ->Args({3, 800, 1})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);
