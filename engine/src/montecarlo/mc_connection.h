@@ -31,7 +31,8 @@
 //    mirrors) and Beam (a beam never leaves unscattered except by a mirror):
 //    left to the histogram.
 // The histogram then scores Beam and Other escapes only, so every path class
-// is counted exactly once.
+// is counted exactly once. The connections may run on a random share of the
+// paths only, their scores divided by it (McSettings::connection_fraction).
 //
 // Known limit: the glint weight 1 / L^2 assumes the entry points are uniform
 // over the flake layer's own tile; with tiles of different sides in several
