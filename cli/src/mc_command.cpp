@@ -48,6 +48,8 @@ struct McOptions {
     bool explicit_flakes = false;
     double cone_deg = 0.0;  // 0: next-event estimator (explicit flakes default to 5)
     bool reject_overlaps = false;
+    bool histogram_only = false;  // explicit flakes: no connections (the estimator before 2026-12)
+    int tile_views = 32;          // explicit flakes: azimuths each tile is traced at
     int batches = 8;
     bool table = false;     // mc: tabulate on the fast model's basis (mc_table.h)
     double step_deg = 5.0;  // mc --table: angular step of the written table
@@ -75,12 +77,19 @@ mc::McSettings mcSettings(const McOptions& o) {
         throw InputError("<argument>", "--cone", std::to_string(o.cone_deg) + " must be in [0, 30] degrees");
     if (o.reject_overlaps && !o.explicit_flakes)
         throw InputError("<argument>", "--reject-overlaps", "needs --explicit-flakes");
+    if (o.histogram_only && !o.explicit_flakes)
+        throw InputError("<argument>", "--histogram-only", "needs --explicit-flakes");
+    if (!(o.tile_views >= 1 && o.tile_views <= 1024))
+        throw InputError("<argument>", "--tile-views",
+                         std::to_string(o.tile_views) + " must be in [1, 1024]");
     if (!(o.batches >= 1 && o.batches <= 256))
         throw InputError("<argument>", "--batches", std::to_string(o.batches) + " must be in [1, 256]");
     mc::McSettings s;
     s.seed = o.seed;
     s.explicit_flakes = o.explicit_flakes;
     s.reject_overlaps = o.reject_overlaps;
+    s.connections = !o.histogram_only;
+    s.tile_views = o.tile_views;
     s.batches = o.batches;
     s.histogram_cone_deg = o.cone_deg > 0.0 ? o.cone_deg : (o.explicit_flakes ? 5.0 : 0.0);
     s.max_paths = has_samples ? o.samples : kDefaultSamples;
@@ -137,6 +146,8 @@ ordered_json settingsJson(const mc::McSettings& s, const mc::McResult& r) {
             {"histogram_cone_deg", s.histogram_cone_deg},
             {"reject_overlaps", s.reject_overlaps},
             {"batches", s.batches},
+            {"connections", s.explicit_flakes && s.connections},
+            {"tile_views", s.explicit_flakes ? s.tile_views : 1},
             {"max_paths", s.max_paths},
             {"target_rel_error", s.target_rel_error},
             {"max_seconds", s.max_seconds},
@@ -415,6 +426,14 @@ void addStopOptions(CLI::App* command, McOptions& o) {
                         "--explicit-flakes); f is then the cone average");
     command->add_flag("--reject-overlaps", o.reject_overlaps,
                       "With --explicit-flakes: re-draw flakes that would intersect one already placed");
+    command->add_flag("--histogram-only", o.histogram_only,
+                      "With --explicit-flakes: score f by the cone histogram alone, without the "
+                      "connections through the tile (same mean, larger errors)");
+    command
+        ->add_option("--tile-views", o.tile_views,
+                     "With --explicit-flakes: azimuths of the incidence plane each tile is traced at "
+                     "(flake statistics are isotropic; more views, less spread between tiles)")
+        ->capture_default_str();
     command
         ->add_option("--batches", o.batches,
                      "Batches of paths (each its own flake tile with --explicit-flakes; the standard "

@@ -16,6 +16,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <numbers>
 #include <string>
@@ -42,11 +43,14 @@ void reportPaths(benchmark::State& state, std::int64_t paths) {
         benchmark::Counter(static_cast<double>(paths), benchmark::Counter::kIsRate);
 }
 
-// Arguments: bands, explicit flakes (0 continuum + next-event, 1 explicit + 5 degree cone).
-// Stops every band at 1 % relative standard error of the albedo and all six f; 2 threads.
-// Explicit flakes (the histogram needs ~1e7 paths per band for 1 % in a 5
-// degree cone where f is small) run for a fixed 60 s instead, and report the
-// time 1 % would take from the worst error reached (error ~ 1 / sqrt(time)).
+// Arguments: bands, estimator: 0 continuum flakes + next-event; 1 explicit
+// flakes, 5 degree cone, connections and 32 views per tile (the default,
+// mc_connection.h); 2 explicit flakes, the histogram alone and one view per
+// tile (the estimator before 2026-12). Stops every band at 1 % relative
+// standard error of the albedo and all six f; 2 threads. Explicit flakes
+// run for at most 60 s and report the time 1 % would take from the worst
+// error reached (error ~ 1 / sqrt(time)), over all six geometries and over
+// the four near the specular direction (45as-15 to 45as45).
 void BM_McPearlescentOnePercent(benchmark::State& state) {
     const Recipe recipe = pearlescent();
     const auto wavelengths = visibleBands(static_cast<std::size_t>(state.range(0)));
@@ -56,26 +60,98 @@ void BM_McPearlescentOnePercent(benchmark::State& state) {
     s.target_rel_error = 0.01;
     s.explicit_flakes = state.range(1) != 0;
     s.histogram_cone_deg = s.explicit_flakes ? 5.0 : 0.0;
+    if (state.range(1) == 2) {
+        s.connections = false;
+        s.tile_views = 1;
+    }
     if (s.explicit_flakes) s.max_seconds = 60.0;
     std::int64_t paths = 0;
     double worst = 0.0;
+    double worst_near = 0.0;
     double seconds = 0.0;
     for (auto _ : state) {
         const mc::McResult r = mc::runMonteCarlo(recipe, wavelengths, multiAngleRequest(), s);
         paths += r.total_paths;
         seconds += r.seconds;
         for (const auto& band : r.bands)
-            for (const auto& e : band[0].brdf_per_sr) worst = std::max(worst, e.relError());
+            for (std::size_t k = 0; k < band[0].brdf_per_sr.size(); ++k) {
+                worst = std::max(worst, band[0].brdf_per_sr[k].relError());
+                if (k < 4) worst_near = std::max(worst_near, band[0].brdf_per_sr[k].relError());
+            }
     }
     reportPaths(state, paths);
     state.counters["worst_rel_error"] = worst;
     state.counters["seconds_to_1pct"] = seconds * std::pow(std::max(worst, 0.01) / 0.01, 2.0);
-    state.SetLabel(s.explicit_flakes ? "explicit flakes, 5 deg cone" : "continuum flakes, next-event");
+    state.counters["worst_rel_error_near"] = worst_near;
+    state.counters["seconds_to_1pct_near"] = seconds * std::pow(std::max(worst_near, 0.01) / 0.01, 2.0);
+    static const char* const kLabels[] = {"continuum flakes, next-event",
+                                          "explicit flakes, connections, 32 views",
+                                          "explicit flakes, histogram only"};
+    state.SetLabel(kLabels[state.range(1)]);
 }
 BENCHMARK(BM_McPearlescentOnePercent)
     ->Args({8, 0})
     ->Args({16, 0})
     ->Args({8, 1})
+    ->Args({8, 2})
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->Iterations(1);
+
+// Error budget of the explicit-flake estimate (docs/PERFORMANCE.md, "Full
+// model"): the pearlescent demo, 8 bands, 45 degree incidence, the six
+// multi-angle geometries, 5 degree cone, a fixed number of paths per band
+// (argument 1, thousands); argument 2: one path in this many runs the
+// connections (McSettings::connection_fraction). Argument 0 picks the estimator:
+//   0 histogram only, 8 tiles (error over the batches: path + tile spread)
+//   1 histogram only, 1 tile (error over paths only)
+//   2 / 3 / 4 histogram only, 8 tiles, scoring only the path class
+//     BeamFlake / Smooth / Other (mc_connection.h): each class's share
+//   5 connections (the default), 8 tiles;  6 connections, 1 tile.
+// The figures quoted in docs/PERFORMANCE.md: configs 0-6 at 100 (k paths) and
+// 1 (every path connects), 5 at 100 and 800 with 8, 6 at 800 with 8, 3 at 800.
+// Prints f, its standard error and the relative error per band and geometry
+// (stdout) and reports the worst relative error and the time 1 % would take.
+void BM_McExplicitBudget(benchmark::State& state) {
+    const Recipe recipe = pearlescent();
+    const auto wavelengths = visibleBands(8);
+    const int config = static_cast<int>(state.range(0));
+    mc::McSettings s;
+    s.threads = 2;
+    s.max_paths = state.range(1) * 1000;
+    s.explicit_flakes = true;
+    s.histogram_cone_deg = 5.0;
+    s.connections = config >= 5;
+    s.batches = config == 1 || config == 6 ? 1 : 8;
+    if (config >= 2 && config <= 4) s.histogram_classes = 1U << static_cast<unsigned>(config - 1);
+    if (state.range(2) > 0) s.connection_fraction = 1.0 / static_cast<double>(state.range(2));
+    double worst = 0.0;
+    double seconds = 0.0;
+    std::int64_t paths = 0;
+    for (auto _ : state) {
+        const mc::McResult r = mc::runMonteCarlo(recipe, wavelengths, multiAngleRequest(), s);
+        seconds += r.seconds;
+        paths += r.total_paths;
+        for (std::size_t b = 0; b < r.bands.size(); ++b) {
+            const auto& inc = r.bands[b][0];
+            std::printf("budget config %d  %5.1f nm  %.3f s ", config, r.wavelengths_nm[b], inc.seconds);
+            for (const auto& e : inc.brdf_per_sr) {
+                std::printf(" %9.4g +- %8.2g (%5.1f %%)", e.mean, e.std_error, 100.0 * e.relError());
+                worst = std::max(worst, e.relError());
+            }
+            std::printf("\n");
+        }
+    }
+    reportPaths(state, paths);
+    state.counters["worst_rel_error"] = worst;
+    state.counters["seconds_to_1pct"] = seconds * std::pow(std::max(worst, 0.01) / 0.01, 2.0);
+}
+BENCHMARK(BM_McExplicitBudget)
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6}, {100}, {1}})
+    ->Args({5, 100, 8})
+    ->Args({5, 800, 8})
+    ->Args({6, 800, 8})
+    ->Args({3, 800, 1})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);

@@ -45,6 +45,16 @@ double radicalInverse(std::uint64_t i, std::uint64_t base) {
     return inverse;
 }
 
+// Basis in a flake's plane (Duff et al., JCGT 2017); the polygon's vertices are
+// centre + r (cos phi b1 + sin phi b2).
+void planeBasis(const Vec3& normal, Vec3& b1, Vec3& b2) {
+    const double sign = std::copysign(1.0, normal.z);
+    const double a = -1.0 / (sign + normal.z);
+    const double b = normal.x * normal.y * a;
+    b1 = {1.0 + sign * normal.x * normal.x * a, sign * b, -sign * normal.x};
+    b2 = {b, sign + normal.y * normal.y * a, -normal.y};
+}
+
 Vec3 cross(const Vec3& a, const Vec3& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
@@ -244,15 +254,12 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
                     centre.y = rng.uniform() * L;
                 }
             }
-            grid.add({centre, normal, radius, static_cast<int>(k)}, m_placed.size());
-            m_placed.push_back({centre, normal, radius, static_cast<int>(k)});
-            // Basis in the flake's plane.
-            const double sign = std::copysign(1.0, normal.z);
-            const double a = -1.0 / (sign + normal.z);
-            const double b = normal.x * normal.y * a;
-            const Vec3 b1{1.0 + sign * normal.x * normal.x * a, sign * b, -sign * normal.x};
-            const Vec3 b2{b, sign + normal.y * normal.y * a, -normal.y};
             const double rotation = 2.0 * std::numbers::pi * rng.uniform();
+            grid.add({centre, normal, radius, static_cast<int>(k), rotation}, m_placed.size());
+            m_placed.push_back({centre, normal, radius, static_cast<int>(k), rotation});
+            Vec3 b1;
+            Vec3 b2;
+            planeBasis(normal, b1, b2);
             for (int dx = -1; dx <= 1; ++dx)
                 for (int dy = -1; dy <= 1; ++dy) {
                     const double cx = centre.x + dx * L;
@@ -298,6 +305,31 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
 FlakeTile::~FlakeTile() = default;
 FlakeTile::FlakeTile(FlakeTile&&) noexcept = default;
 FlakeTile& FlakeTile::operator=(FlakeTile&&) noexcept = default;
+
+double FlakeTile::flakeAreaUm2(std::size_t i) const {
+    const double r = m_placed[i].radius_um;
+    return 0.5 * kSides * r * r * std::sin(2.0 * std::numbers::pi / kSides);
+}
+
+Vec3 FlakeTile::pointOnFlake(std::size_t i, double u1, double u2, double u3) const {
+    const PlacedFlake& f = m_placed[i];
+    Vec3 b1;
+    Vec3 b2;
+    planeBasis(f.normal, b1, b2);
+    // The fan's triangles (centre, vertex s, vertex s + 1) have equal areas.
+    const double scaled = std::clamp(u1, 0.0, 1.0) * kSides;
+    const int s = std::min(static_cast<int>(scaled), kSides - 1);
+    const double phi0 = f.rotation + 2.0 * std::numbers::pi * s / kSides;
+    const double phi1 = f.rotation + 2.0 * std::numbers::pi * (s + 1) / kSides;
+    // Uniform in the triangle: sqrt(u2) along the median, u3 across (e.g. pbrt-v4, SampleUniformTriangle).
+    const double a = std::sqrt(u2);
+    const double w0 = a * (1.0 - u3) * f.radius_um;
+    const double w1 = a * u3 * f.radius_um;
+    const double cu = w0 * std::cos(phi0) + w1 * std::cos(phi1);
+    const double cv = w0 * std::sin(phi0) + w1 * std::sin(phi1);
+    return {f.centre.x + cu * b1.x + cv * b2.x, f.centre.y + cu * b1.y + cv * b2.y,
+            f.centre.z + cu * b1.z + cv * b2.z};
+}
 
 FlakeHit FlakeTile::intersect(const Vec3& origin, const Vec3& dir, double t_near, double t_far) const {
     RTCIntersectContext context;

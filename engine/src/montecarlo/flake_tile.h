@@ -15,6 +15,9 @@
 
 namespace paintlab::mc {
 
+// Ray offset from the flake a ray leaves (µm): the geometry is float.
+constexpr double kTileEpsilonUm = 1e-3;
+
 // What the tile needs of one kind of flake (the optics come from FlakeKind per wavelength).
 struct FlakeGeometry {
     double area_density_per_um = 0.0;  // mean over the layer
@@ -34,6 +37,7 @@ struct PlacedFlake {
     Vec3 normal;
     double radius_um = 0.0;
     int kind = 0;
+    double rotation = 0.0;  // of the polygon's first vertex in the flake's plane (radians)
 };
 
 // Whether two thickness-less disks share a point: parallel ones only when
@@ -70,6 +74,11 @@ public:
     std::int64_t flakeCount() const { return m_flakes; }
     // Every flake once (centres inside the tile; the copies over its sides are not listed).
     const std::vector<PlacedFlake>& flakes() const { return m_placed; }
+    // Area of flake i's polygon (µm^2; the disk's area of its diameter).
+    double flakeAreaUm2(std::size_t i) const;
+    // A point of flake i's polygon, uniform over its area for u1, u2, u3
+    // uniform in [0, 1) (a triangle of the fan, then a point in it).
+    Vec3 pointOnFlake(std::size_t i, double u1, double u2, double u3) const;
     // Nearest flake along origin + t dir, t in (t_near, t_far). Thread-safe.
     FlakeHit intersect(const Vec3& origin, const Vec3& dir, double t_near, double t_far) const;
 

@@ -12,7 +12,6 @@ namespace paintlab::mc {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kTileEpsilonUm = 1e-3;  // ray offset from the flake just left (float geometry)
 
 // Orthonormal basis around a unit vector (Duff et al., JCGT 2017).
 void basis(const Vec3& n, Vec3& b1, Vec3& b2) {
@@ -41,12 +40,10 @@ double sampleHgCos(double g, double u) {
     return std::clamp((1.0 + g * g - q * q) / (2.0 * g), -1.0, 1.0);
 }
 
-// Snell at a planar interface: tangential components scale by n_from / n_to.
+// Snell at a planar interface (called when Fresnel let the ray through, so never beyond the critical angle).
 Vec3 refract(const Vec3& v, double n_from, double n_to) {
-    const double ratio = n_from / n_to;
-    Vec3 out{v.x * ratio, v.y * ratio, 0.0};
-    const double z = std::sqrt(std::max(0.0, 1.0 - out.x * out.x - out.y * out.y));
-    out.z = v.z < 0.0 ? -z : z;
+    Vec3 out;
+    if (!refractPlanar(v, n_from, n_to, out)) out = {v.x * n_from / n_to, v.y * n_from / n_to, 0.0};
     return out;
 }
 
@@ -57,6 +54,7 @@ struct Walker {
     std::span<const LayerFlakes> explicit_flakes;
     const FourierCells* fourier;
     PathRng& rng;
+    PathRng* connection_rng;  // non-null: connections on
     const WalkSettings& settings;
     std::span<double> brdf_out;
     Vec3 v;
@@ -66,6 +64,7 @@ struct Walker {
     std::size_t j = 0;   // slice
     double depth = 0.0;  // µm below the top of the paint
     double transmitted = 0.0;
+    unsigned path_class = kClassBeam;  // what the last direction change was (mc_connection.h)
 
     void move(double t) {
         x += v.x * t;
@@ -75,8 +74,10 @@ struct Walker {
     // Left through the top (v already refracted into the ambient): the
     // histogram bins that contain the exit direction.
     void escape() {
-        for (std::size_t k = 0; k < bins.size(); ++k)
-            if (dot(v, bins[k].wo) >= bins[k].cos_cone) brdf_out[k] += weight / bins[k].projected_solid_angle;
+        if ((settings.histogram_classes & path_class) != 0U)
+            for (std::size_t k = 0; k < bins.size(); ++k)
+                if (dot(v, bins[k].wo) >= bins[k].cos_cone)
+                    brdf_out[k] += weight / bins[k].projected_solid_angle;
         if (fourier != nullptr) project(*fourier);
     }
 
@@ -112,9 +113,30 @@ struct Walker {
         const double u = rng.uniform();
         if (u < R) {
             v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
+            path_class = path_class == kClassBeam ? kClassBeamFlake : kClassOther;
             return roulette();
         }
         return u < R + f.T(c);
+    }
+
+    // Connections: next-event estimation from a smooth vertex in slice j into
+    // a direction uniform in each cone, through the tiles (mc_connection.h);
+    // `emitted(u)` is the vertex's scattered weight per sr towards u (in the
+    // slice) over the cosine's projection factor.
+    template <class Emitted> void coneNextEvent(const Slice& s, const Emitted& emitted) {
+        const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
+        for (std::size_t k = 0; k < bins.size(); ++k) {
+            const HistogramBin& bin = bins[k];
+            const double u1 = connection_rng->uniform();
+            const Vec3 w = sampleInCone(bin, u1, connection_rng->uniform());
+            Vec3 u;
+            if (!(w.z > 0.0) || !refractPlanar(w, stack.ambient_n, s.n, u)) continue;
+            const double value = emitted(u);
+            if (!(value > 0.0)) continue;
+            const double t = straightToAmbient(stack, explicit_flakes, j, depth, x, y, u);
+            brdf_out[k] += settings.connection_weight * value * t * scale * w.z * bin.solid_angle /
+                           bin.projected_solid_angle;
+        }
     }
 
     // Explicit flakes of the current layer along the free path t (medium) and
@@ -195,6 +217,8 @@ struct Walker {
         const double u = rng.uniform();
         if (u < R) {
             v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
+            // A continuum flake's normal is drawn from a density (a smooth vertex), unless D is the delta.
+            path_class = f.orientation.isDelta() ? kClassOther : kClassSmooth;
             return true;
         }
         return u < R + T;  // transmitted light goes straight on
@@ -202,6 +226,16 @@ struct Walker {
 
     bool collide(const Slice& s, double sigma, double flake_rate) {
         scoreCollision(s, sigma);
+        // Connections: the kernel of a tiled layer's slice is the pigments' alone
+        // (sigma_s HG), so the next event is drawn with probability q =
+        // sigma_s / sigma and weighted by 1 / q (unbiased). With absorbing
+        // pigments most collisions absorb by weighting and would cost six
+        // shadow rays each for next to nothing (the demo's carbon black: q ~ 1 %).
+        if (connection_rng != nullptr && s.sigma_s_per_um > 0.0) {
+            const double q = std::min(1.0, s.sigma_s_per_um / sigma);
+            if (connection_rng->uniform() < q)
+                coneNextEvent(s, [&](const Vec3& u) { return weight * s.kernel(v, u) / (sigma * q * u.z); });
+        }
         const double scatter = s.sigma_s_per_um + flake_rate;
         if (!(scatter > 0.0)) return false;  // a pure absorber
         weight *= scatter / sigma;           // absorption by weighting
@@ -214,6 +248,7 @@ struct Walker {
                 if ((pick -= lobe.weight) < 0.0) break;
             }
             v = around(v, sampleHgCos(g, rng.uniform()), 2.0 * kPi * rng.uniform());
+            path_class = kClassSmooth;
         } else {
             u -= s.sigma_s_per_um;
             std::size_t k = 0;
@@ -231,6 +266,7 @@ struct Walker {
         if (std::abs(n_from - n_to) < 1e-12) return true;
         if (rng.uniform() < fresnelDielectric(std::abs(v.z), n_to / n_from)) {
             v.z = -v.z;
+            path_class = kClassOther;
             return false;
         }
         v = refract(v, n_from, n_to);
@@ -244,7 +280,12 @@ struct Walker {
         case SubstrateKind::Lambertian: {
             for (std::size_t k = 0; k < chains.size(); ++k)
                 brdf_out[k] += weight * stack.lambert_albedo / kPi * chains[k].lambert;
+            if (connection_rng != nullptr) {
+                const double emitted = weight * stack.lambert_albedo / kPi;
+                coneNextEvent(s, [emitted](const Vec3& /*u*/) { return emitted; });
+            }
             weight *= stack.lambert_albedo;
+            path_class = kClassSmooth;
             const double u1 = rng.uniform();
             const double phi = 2.0 * kPi * rng.uniform();
             const double r = std::sqrt(u1);
@@ -254,10 +295,12 @@ struct Walker {
         case SubstrateKind::Metal:
             weight *= stack.substrateMirrorReflectance(std::abs(v.z));
             v.z = -v.z;
+            path_class = kClassOther;
             return roulette();
         case SubstrateKind::Transparent:
             if (rng.uniform() < fresnelDielectric(std::abs(v.z), stack.below_n / s.n)) {
                 v.z = -v.z;
+                path_class = kClassOther;
                 return true;
             }
             transmitted = weight;
@@ -316,13 +359,16 @@ struct Walker {
 }  // namespace
 
 PathOutcome tracePath(const PathContext& context, Vec3 v, double weight, double x, double y, PathRng& rng,
-                      std::span<double> f_out) {
+                      std::span<double> f_out, PathRng* connection_rng) {
+    const bool connect = context.settings.connections && connection_rng != nullptr &&
+                         !context.explicit_flakes.empty() && !context.bins.empty();
     Walker walker{context.stack,
                   context.chains,
                   context.bins,
                   context.explicit_flakes,
                   context.fourier,
                   rng,
+                  connect ? connection_rng : nullptr,
                   context.settings,
                   f_out,
                   v,
@@ -330,6 +376,9 @@ PathOutcome tracePath(const PathContext& context, Vec3 v, double weight, double 
                   x,
                   y};
     const double escaped = walker.run();
+    if (connect && !context.glints.empty())
+        scoreGlints(context.stack, context.explicit_flakes, context.glints, context.bins,
+                    context.settings.connection_weight, *connection_rng, f_out);
     return {escaped, walker.transmitted};
 }
 

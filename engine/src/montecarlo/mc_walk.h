@@ -2,6 +2,7 @@
 // One Monte Carlo path through the paint at one wavelength (mc_walk.cpp).
 
 #include "flake_tile.h"
+#include "mc_connection.h"
 #include "mc_random.h"
 #include "mc_stack.h"
 
@@ -13,23 +14,14 @@ namespace paintlab::mc {
 struct WalkSettings {
     int max_events = 1000000;
     double roulette_weight = 0.1;
-};
-
-// Histogram estimator of f around an exit direction: escaping weight inside
-// the cone of half-angle alpha, divided by the cone's projected solid angle
-// pi sin^2(alpha) cos(theta_o), estimates the cone average of f cos / the
-// cone average of cos.
-struct HistogramBin {
-    Vec3 wo;
-    double cos_cone = 1.0;
-    double projected_solid_angle = 0.0;
-};
-
-// Explicit flakes of one layer: its tile and the optics of its kinds at this
-// wavelength, in the tile's kind order.
-struct LayerFlakes {
-    const FlakeTile* tile = nullptr;
-    std::vector<FlakeKind> kinds;
+    // Histogram estimator: the path classes (mc_connection.h) whose escapes it scores.
+    unsigned histogram_classes = kAllClasses;
+    // Score classes Smooth and BeamFlake by connections (explicit flakes only; the
+    // caller then leaves them out of histogram_classes).
+    bool connections = false;
+    // Connections run on a random share of the paths (McSettings::connection_fraction);
+    // their scores are divided by it.
+    double connection_weight = 1.0;
 };
 
 // Projection of what escapes on the fast model's basis (mc_table.h): the
@@ -57,6 +49,7 @@ struct PathContext {
     std::span<const LayerFlakes> explicit_flakes;  // per layer (empty: flakes are a continuum)
     WalkSettings settings;
     const FourierCells* fourier = nullptr;  // projection (null: off)
+    std::span<const GlintSet> glints;       // per bin, this path's tile realisation (connections)
 };
 
 // What one path carries out of the paint (power per unit incident power).
@@ -70,8 +63,10 @@ struct PathOutcome {
 // `weight`, starting at lateral position (x, y). Adds to f_out[k] the
 // estimate of f for chains[k] or bins[k] (and the projection's entries) and
 // returns the weight that leaves through the top and through a transparent
-// substrate. Never throws.
+// substrate. With connections, their random numbers come from
+// connection_rng, so that the walk itself draws the same numbers with and
+// without them. Never throws.
 PathOutcome tracePath(const PathContext& context, Vec3 v, double weight, double x, double y, PathRng& rng,
-                      std::span<double> f_out);
+                      std::span<double> f_out, PathRng* connection_rng = nullptr);
 
 }  // namespace paintlab::mc

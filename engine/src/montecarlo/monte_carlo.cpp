@@ -51,6 +51,7 @@ struct Sums {
 constexpr std::size_t kEscaped = 0;
 constexpr std::size_t kTransmitted = 1;
 constexpr std::size_t kFirstExit = 2;
+constexpr std::uint64_t kConnectionStream = 0x636f6e6e656374ULL;  // "connect"
 
 class JobRunner {
 public:
@@ -62,10 +63,10 @@ public:
         if (settings.histogram_cone_deg > 0.0) {
             const double alpha = settings.histogram_cone_deg * std::numbers::pi / 180.0;
             for (const auto& wo : job.wo)
-                m_bins.push_back(
-                    {{wo.x, wo.y, wo.z},
-                     std::cos(alpha),
-                     std::numbers::pi * std::sin(alpha) * std::sin(alpha) * std::max(wo.z, 1e-9)});
+                m_bins.push_back({{wo.x, wo.y, wo.z},
+                                  std::cos(alpha),
+                                  std::numbers::pi * std::sin(alpha) * std::sin(alpha) * std::max(wo.z, 1e-9),
+                                  2.0 * std::numbers::pi * (1.0 - std::cos(alpha))});
         } else {
             for (const auto& wo : job.wo) m_chains.push_back(exitChain(stack, wo));
         }
@@ -95,6 +96,48 @@ public:
             }
             m_projected = m_cells.scale.size() * static_cast<std::size_t>(job.orders);
         }
+        m_connections = settings.connections && settings.explicit_flakes && !m_bins.empty() &&
+                        !band.explicit_flakes.empty() && m_entry_weight > 0.0;
+        m_histogram_classes = settings.histogram_classes;
+        if (m_connections) m_histogram_classes &= ~(kClassBeamFlake | kClassSmooth);
+        m_connection_fraction = std::clamp(settings.connection_fraction, 1e-3, 1.0);
+        buildViews(settings);
+    }
+
+    // Explicit flakes: every tile is traced at tile_views azimuths of the
+    // incidence plane (McSettings): view m of batch b turns the beam, the
+    // exit cones and the projection's azimuth origin by psi = 2 pi (m + o_b) / M
+    // about the normal (o_b a fixed random offset per batch), so the tile is
+    // seen as if turned by -psi. Otherwise one view, not turned.
+    void buildViews(const McSettings& settings) {
+        const bool turn = settings.explicit_flakes && !m_band.explicit_flakes.empty();
+        m_view_count = turn ? static_cast<std::size_t>(std::max(1, settings.tile_views)) : 1;
+        const std::size_t batch_count = turn ? m_band.explicit_flakes.size() : 1;
+        m_views.assign(batch_count, std::vector<View>(m_view_count));
+        tbb::parallel_for(std::size_t{0}, batch_count * m_view_count, [&](std::size_t index) {
+            const std::size_t b = index / m_view_count;
+            const std::size_t m = index % m_view_count;
+            std::uint64_t key = settings.seed ^ (0x746f726e ^ b);  // "torn"
+            const double offset =
+                m_view_count > 1 ? static_cast<double>(splitMix64(key) >> 11U) * 0x1.0p-53 : 0.0;
+            const double psi = 2.0 * std::numbers::pi * (static_cast<double>(m) + offset) /
+                               static_cast<double>(m_view_count);
+            const double c = std::cos(psi);
+            const double sn = std::sin(psi);
+            const auto turned = [c, sn](const Vec3& a) {
+                return Vec3{c * a.x - sn * a.y, sn * a.x + c * a.y, a.z};
+            };
+            View& view = m_views[b][m];
+            view.v_in = turned(m_v_in);
+            view.bins = m_bins;
+            for (auto& bin : view.bins) bin.wo = turned(bin.wo);
+            view.cells = m_cells;
+            const Vec3 in = turned({m_cells.cos_in, m_cells.sin_in, 0.0});
+            view.cells.cos_in = in.x;
+            view.cells.sin_in = in.y;
+            if (m_connections)
+                view.glints = glintSets(m_band.stack, m_band.explicit_flakes[b], view.v_in, view.bins);
+        });
     }
 
     double specular() const { return m_specular; }
@@ -110,19 +153,31 @@ public:
         const std::span<double> f(sample.data() + kFirstExit, sample.size() - kFirstExit);
         const std::span<const LayerFlakes> explicit_flakes =
             m_band.explicit_flakes.empty() ? std::span<const LayerFlakes>{} : m_band.explicit_flakes[batch];
-        const PathContext context{m_band.stack,
-                                  m_chains,
-                                  m_bins,
-                                  explicit_flakes,
-                                  WalkSettings{m_settings.max_events, m_settings.roulette_weight},
-                                  m_projected > 0 ? &m_cells : nullptr};
+        const std::vector<View>& views = m_views[std::min(batch, m_views.size() - 1)];
         for (std::int64_t p = first_path; p < first_path + paths; ++p) {
             std::fill(sample.begin(), sample.end(), 0.0);
             if (m_entry_weight > 0.0) {
+                const View& view = views[static_cast<std::size_t>(p) % m_view_count];
+                const PathContext context{m_band.stack,
+                                          m_chains,
+                                          view.bins,
+                                          explicit_flakes,
+                                          WalkSettings{m_settings.max_events, m_settings.roulette_weight,
+                                                       m_histogram_classes, m_connections,
+                                                       1.0 / m_connection_fraction},
+                                          m_projected > 0 ? &view.cells : nullptr,
+                                          view.glints};
                 PathRng rng(m_settings.seed, m_band_key, m_incidence_key, static_cast<std::uint64_t>(p));
+                // The connections' own stream: the walk draws the same numbers with or without them.
+                PathRng connection_rng(m_settings.seed ^ kConnectionStream, m_band_key, m_incidence_key,
+                                       static_cast<std::uint64_t>(p));
                 const double x = rng.uniform() * m_tile_side_um;
                 const double y = rng.uniform() * m_tile_side_um;
-                const PathOutcome out = tracePath(context, m_v_in, m_entry_weight, x, y, rng, f);
+                // Connections on a random share of the paths (all when the fraction is 1).
+                const bool connect = m_connections && (m_connection_fraction >= 1.0 ||
+                                                       connection_rng.uniform() < m_connection_fraction);
+                const PathOutcome out = tracePath(context, view.v_in, m_entry_weight, x, y, rng, f,
+                                                  connect ? &connection_rng : nullptr);
                 sample[kEscaped] = out.escaped;
                 sample[kTransmitted] = out.transmitted;
             }
@@ -158,6 +213,17 @@ private:
     double m_specular = 0.0;
     double m_entry_weight = 0.0;
     Vec3 m_v_in;
+    bool m_connections = false;
+    unsigned m_histogram_classes = kAllClasses;
+    struct View {
+        Vec3 v_in;
+        std::vector<HistogramBin> bins;
+        FourierCells cells;
+        std::vector<GlintSet> glints;  // per bin (connections)
+    };
+    std::vector<std::vector<View>> m_views;  // [batch][view]
+    std::size_t m_view_count = 1;
+    double m_connection_fraction = 1.0;
 };
 
 // The estimates of a job from its batches' sums: over the batches' means

@@ -36,6 +36,10 @@
 //    mirror reflections are deltas that next-event estimation cannot reach),
 //    the escaping weight in a cone of that half-angle around wo over the
 //    cone's projected solid angle: the cone average of f cos over that of cos;
+//    with explicit flakes and `connections` (default) the paths whose last
+//    direction change was a pigment or the Lambertian substrate, and the
+//    beam's single flake reflections, are scored by exact connections to the
+//    cone through the real tiles instead (mc_connection.h), same mean;
 //  - a whole table on the fast model's basis: mc_table.h.
 //
 // Standard errors: over independent paths, except with explicit flakes,
@@ -54,10 +58,10 @@
 // Known limits: the tile is periodic (its side is set by tile_flakes, at
 // least two flake diameters), so arrangements longer-ranged than the tile are
 // not represented; its geometry is float (Embree); flakes are thickness-less
-// 16-gons and overlap unless reject_overlaps. The histogram estimator that
-// explicit flakes need costs ~1e7 paths per band for 1 % in a 5 degree cone
-// where f is small (docs/PERFORMANCE.md). Settings.threads sets TBB's
-// process-wide parallelism for the duration of the call.
+// 16-gons and overlap unless reject_overlaps. What the connections leave to
+// the histogram (several flake reflections, internal reflections) and the
+// tile-to-tile spread set the cost of explicit flakes (docs/PERFORMANCE.md).
+// Settings.threads sets TBB's process-wide parallelism for the duration of the call.
 
 #include "paintlab/engine/brdf.h"
 #include "paintlab/engine/layered_brdf.h"
@@ -102,6 +106,33 @@ struct McSettings {
     // include the randomness of the flake arrangement; otherwise they are over
     // paths. tabulateMonteCarlo (mc_table.h) also keeps one table per batch.
     int batches = 8;
+    // Explicit flakes: score the path classes that allow it by connections
+    // instead of the histogram (mc_connection.h): next-event estimation from
+    // pigment and Lambertian vertices through the tiles into each cone, and
+    // the beam's single reflections off the tile's flakes listed per cone.
+    // Same expectation (the cone average), far smaller variance; false: the
+    // histogram alone (the estimator before 2026-12).
+    bool connections = true;
+    // Explicit flakes: every tile is traced at this many azimuths of the
+    // incidence plane (path p at view p mod tile_views; evenly spaced, with
+    // a random offset per batch). The flake statistics are isotropic in
+    // azimuth, so each view is as valid a realisation as the tile itself
+    // (only the periodic lattice turns with it), and the average over views
+    // removes most of the spread between tiles where few flakes glint into
+    // a cone. 1: the tile in its own frame only (the estimator before 2026-12).
+    int tile_views = 32;
+    // Explicit flakes with connections: the share of paths (drawn at random,
+    // in [1e-3, 1]) that run them, their scores divided by it (unbiased). The
+    // connections cost ~10 shadow rays per path and their own noise is small,
+    // while the histogram's share (multiple flake reflections) needs many
+    // paths: fewer connected paths buy more paths per second.
+    double connection_fraction = 0.125;
+    // Diagnostics for error budgets: bit mask of the path classes whose
+    // escapes the histogram scores (1 unscattered beam, 2 the beam's first
+    // reflection off an explicit flake, 4 last direction change a pigment,
+    // the Lambertian substrate or a continuum flake, 8 anything else); with
+    // connections, classes 2 and 4 are scored by them and never by the histogram.
+    unsigned histogram_classes = 15;
 };
 
 struct Estimate {

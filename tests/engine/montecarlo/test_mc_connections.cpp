@@ -1,0 +1,222 @@
+// Connections of the explicit-flake estimator (mc_connection.h): next-event
+// estimation from smooth vertices through the tiles and the beam's single
+// flake reflections, against closed forms and against the histogram alone.
+//
+// Statistical tolerance as in test_monte_carlo.cpp: |x - y| <= kZ s with
+// kZ = 4 (two-sided ~6e-5 per comparison under a normal error; with errors
+// over 16 batches, Student t with 15 degrees of freedom, ~1e-3), so the ~20
+// comparisons of this file fail by chance with probability ~2e-2 at worst.
+
+#include "paintlab/engine/fresnel.h"
+#include "paintlab/engine/montecarlo/monte_carlo.h"
+#include "paintlab/engine/thin_film.h"
+
+#include "test_recipes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <numbers>
+#include <string>
+
+namespace paintlab {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kZ = 4.0;
+
+void expectClose(double x, double se, double y, double se_y, const std::string& what) {
+    const double sigma = std::sqrt(se * se + se_y * se_y);
+    if (std::getenv("PAINTLAB_MC_VERBOSE") != nullptr)
+        std::printf("  %-40s %.6g +- %.2g  vs %.6g +- %.2g  z = %+.2f\n", what.c_str(), x, se, y, se_y,
+                    sigma > 0.0 ? (x - y) / sigma : 0.0);
+    EXPECT_NEAR(x, y, kZ * sigma) << what;
+}
+
+mc::McSettings explicitSettings(std::int64_t paths, double cone_deg, std::uint64_t seed) {
+    mc::McSettings s;
+    s.seed = seed;
+    s.max_paths = paths;
+    s.explicit_flakes = true;
+    s.histogram_cone_deg = cone_deg;
+    return s;
+}
+
+// Projected solid angle of a cone of half-angle alpha around a direction with cosine mu (exact above the
+// horizon).
+double projectedSolidAngle(double cone_deg, double mu) {
+    const double s = std::sin(cone_deg * kPi / 180.0);
+    return kPi * s * s * mu;
+}
+
+TEST(MonteCarloConnections, HorizontalMirrorsEverythingLeavesAtTheMirrorDirection) {
+    // Horizontal mirrors (2 µm, index-matched, over black): every reflection,
+    // single or multiple, leaves at the mirror direction of the beam, so f
+    // averaged over a cone around it times the cone's projected solid angle
+    // is the albedo: the two-stream value at oblique incidence and
+    // R_f (1 - exp(-A X)) at normal incidence (test_explicit_flakes.cpp has
+    // both derivations). The single reflections come from the glint
+    // connection, the multiple ones from the histogram: a class counted
+    // twice or missed would show here.
+    const double c = 0.02, t_um = 0.5, X = 20.0, rho_f = 0.8;
+    MirrorFlake flake = test::mirrorFlake(c, 0.0, rho_f);
+    flake.thickness_um = t_um;
+    flake.diameter_um = 2.0;
+    Recipe r = test::oneLayerRecipe(1.0, X, BlackSubstrate{});
+    r.layers[0].components = {flake};
+    const double A = c / t_um;
+    const double cone_deg = 3.0;
+    std::vector<mc::IncidenceRequest> req;
+    for (double theta : {0.0, 45.0, 70.0})
+        req.push_back({directionFromAnglesDeg(theta, 0.0), {directionFromAnglesDeg(theta, 180.0)}});
+    auto s = explicitSettings(20000, cone_deg, 5);
+    s.tile_flakes = 4000;         // the closed forms hold for any realisation; a small tile builds fast
+    s.connection_fraction = 1.0;  // every path connects: the test is of the connections themselves
+    const auto result = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
+    for (std::size_t i = 0; i < req.size(); ++i) {
+        const double mu = req[i].wi.z;
+        const double R_f = mirrorFlakeReflectanceFromNormal(mu, rho_f);
+        double expected = R_f * (1.0 - std::exp(-A * X));
+        if (i > 0) {
+            const double S = A * R_f, K = A * (1.0 - R_f);
+            const double ka = (S + K) / S, kb = std::sqrt(ka * ka - 1.0);
+            expected = std::sinh(kb * S * X) / (ka * std::sinh(kb * S * X) + kb * std::cosh(kb * S * X));
+        }
+        const auto& f = result.bands[0][i].brdf_per_sr[0];
+        const double omega = projectedSolidAngle(cone_deg, mu);
+        // 1e-3 absolute: the tile's rounded flake count and float geometry (as the albedo test).
+        expectClose(f.mean * omega, f.std_error * omega, expected, 1e-3,
+                    "f x cone at mu " + std::to_string(mu));
+    }
+}
+
+TEST(MonteCarloConnections, NextEventThroughTheStackMatchesTheClearCoatFormula) {
+    // No flakes, explicit-flake mode: everything is scored by next-event
+    // estimation from the Lambertian base into the cone. Exact f =
+    // (1 - r(mu_i)) (1 - r(mu_o)) rho / (pi n^2 (1 - rho r_i))
+    // (test_monte_carlo.cpp), averaged over the cone like the estimator
+    // (midpoint rule in the cone angle and azimuth; its error < 1e-5 relative).
+    const double n = 1.5;
+    const double rho = 0.6;
+    const Recipe r = test::oneLayerRecipe(n, 40.0, LambertianSubstrate{Spectrum(rho)});
+    double r_i = 0.0;
+    const int steps = 200000;
+    for (int i = 0; i < steps; ++i) {
+        const double mu = (i + 0.5) / steps;
+        r_i += 2.0 * mu * fresnelDielectric(mu, 1.0 / n) / steps;
+    }
+    const double cone_deg = 10.0;
+    const Direction wi = directionFromAnglesDeg(45.0, 0.0);
+    const std::vector<mc::IncidenceRequest> req{
+        {wi,
+         {directionFromAnglesDeg(0.0, 0.0), directionFromAnglesDeg(60.0, 180.0),
+          directionFromAnglesDeg(75.0, 90.0)}}};
+    auto s = explicitSettings(8000, cone_deg, 2);
+    s.batches = 16;  // errors over batches: 15 degrees of freedom
+    s.connection_fraction = 1.0;
+    const auto result = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
+    const double ti = 1.0 - fresnelDielectric(wi.z, n);
+    const double alpha = cone_deg * kPi / 180.0;
+    for (std::size_t k = 0; k < req[0].wo.size(); ++k) {
+        const Direction& a = req[0].wo[k];
+        // Cone average of (1 - r(mu)) cos over that of cos; only mu matters.
+        // z components of the basis around the axis that sampleInCone uses (Duff et al. 2017).
+        const double b1z = -std::copysign(1.0, a.z) * a.x;
+        const double b2z = -a.y;
+        double num = 0.0, den = 0.0;
+        const int nb = 200, np = 200;
+        for (int i = 0; i < nb; ++i) {
+            const double beta = (i + 0.5) / nb * alpha;
+            for (int j = 0; j < np; ++j) {
+                const double psi = (j + 0.5) / np * 2.0 * kPi;
+                const double mu =
+                    std::cos(beta) * a.z + std::sin(beta) * (std::cos(psi) * b1z + std::sin(psi) * b2z);
+                const double w = std::sin(beta) * mu;
+                num += w * (1.0 - fresnelDielectric(mu, n));
+                den += w;
+            }
+        }
+        const double expected = ti * (num / den) * rho / (kPi * n * n * (1.0 - rho * r_i));
+        const auto& f = result.bands[0][0].brdf_per_sr[k];
+        expectClose(f.mean, f.std_error, expected, 0.0, "f exit " + std::to_string(k));
+    }
+}
+
+TEST(MonteCarloConnections, AgreeWithTheHistogramOnAPearlescentPaint) {
+    // A small pearlescent: 20 µm clear coat (n 1.55) over a 10 µm basecoat
+    // (n 1.5: an index step between the layers) with blue interference
+    // flakes (12 µm, 12 deg), a scattering and absorbing pigment, over a grey
+    // base: every path class and every connection factor occurs (pigment and
+    // Lambertian vertices, shadowing by flakes that transmit, two refractions).
+    // The histogram alone and the connections estimate the same cone average;
+    // independent seeds (so different tiles too), errors over 16 batches each
+    // (tile spread included), so their difference is tested in combined errors.
+    Recipe r = test::oneLayerRecipe(1.55, 20.0, LambertianSubstrate{Spectrum(0.5)});
+    Layer base;
+    base.name = "basecoat";
+    base.thickness_um = 10.0;
+    base.binder.refractive_index = Spectrum(1.5);
+    InterferenceFlake pearl;
+    pearl.name = "pearl";
+    pearl.volume_fraction = 0.04;
+    pearl.diameter_um = 12.0;
+    pearl.orientation_spread_deg = 12.0;
+    pearl.mica_thickness_nm = 350.0;
+    pearl.mica_thickness_spread_nm = 40.0;
+    pearl.tio2_thickness_nm = 120.0;
+    pearl.tio2_thickness_spread_nm = 8.0;
+    base.components = {pearl, test::pigment(0.01, 5.0, 10.0, 0.3)};
+    r.layers.push_back(base);
+    const double cone_deg = 8.0;
+    const Direction wi = directionFromAnglesDeg(45.0, 0.0);
+    const std::vector<mc::IncidenceRequest> req{
+        {wi,
+         {directionFromAnglesDeg(30.0, 180.0), directionFromAnglesDeg(0.0, 0.0),
+          directionFromAnglesDeg(40.0, 0.0)}}};
+    auto s = explicitSettings(48000, cone_deg, 11);
+    s.tile_flakes = 1500;
+    s.batches = 16;
+    const auto connected = mc::runMonteCarlo(r, std::vector<double>{450.0}, req, s);
+    s.seed = 12;
+    s.connections = false;
+    const auto histogram = mc::runMonteCarlo(r, std::vector<double>{450.0}, req, s);
+    const auto& a = connected.bands[0][0];
+    const auto& b = histogram.bands[0][0];
+    expectClose(a.albedo.mean, a.albedo.std_error, b.albedo.mean, b.albedo.std_error, "albedo");
+    for (std::size_t k = 0; k < req[0].wo.size(); ++k) {
+        expectClose(a.brdf_per_sr[k].mean, a.brdf_per_sr[k].std_error, b.brdf_per_sr[k].mean,
+                    b.brdf_per_sr[k].std_error, "f exit " + std::to_string(k));
+    }
+}
+
+TEST(MonteCarloConnections, HistogramClassesAddUpToTheWhole) {
+    // Same paths (same seed), the histogram restricted to each path class in
+    // turn: the classes partition the escapes, so their means add up to the
+    // unrestricted histogram's to rounding.
+    Recipe r = test::oneLayerRecipe(1.5, 15.0, LambertianSubstrate{Spectrum(0.4)});
+    MirrorFlake flake = test::mirrorFlake(0.03, 15.0, 0.7);
+    flake.diameter_um = 8.0;
+    r.layers[0].components = {flake, test::pigment(0.01, 2.0, 8.0, 0.2)};
+    const std::vector<mc::IncidenceRequest> req{
+        {directionFromAnglesDeg(45.0, 0.0),
+         {directionFromAnglesDeg(30.0, 180.0), directionFromAnglesDeg(10.0, 0.0)}}};
+    auto s = explicitSettings(4000, 10.0, 4);
+    s.tile_flakes = 500;
+    s.connections = false;
+    const auto all = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
+    std::vector<double> sum(req[0].wo.size(), 0.0);
+    for (unsigned c : {1U, 2U, 4U, 8U}) {
+        s.histogram_classes = c;
+        const auto part = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
+        for (std::size_t k = 0; k < sum.size(); ++k) sum[k] += part.bands[0][0].brdf_per_sr[k].mean;
+    }
+    for (std::size_t k = 0; k < sum.size(); ++k) {
+        EXPECT_GT(sum[k], 0.0);
+        EXPECT_NEAR(sum[k], all.bands[0][0].brdf_per_sr[k].mean, 1e-12 * sum[k]) << "exit " << k;
+    }
+}
+
+}  // namespace
+}  // namespace paintlab
