@@ -256,7 +256,11 @@ void MainWindow::saveVersion() {
     bool ok = false;
     const QString note = QInputDialog::getText(this, tr("Save version"), tr("What changed and why:"),
                                                QLineEdit::Normal, {}, &ok);
-    if (!ok) return;
+    if (ok) saveVersionAs(note);
+}
+
+bool MainWindow::saveVersionAs(const QString& note) {
+    if (!m_db || !m_document.hasRecipe()) return false;
     try {
         db::SaveOptions options;
         options.author = qEnvironmentVariable("USER", "paintlab").toStdString();
@@ -268,8 +272,10 @@ void MainWindow::saveVersion() {
             saved.created
                 ? tr("Saved %1 version %2").arg(QString::fromStdString(saved.recipe_name)).arg(saved.version)
                 : tr("Unchanged: identical to version %1").arg(saved.version));
+        return true;
     } catch (const std::exception& e) {
         showError(tr("Cannot save the version"), QString::fromUtf8(e.what()));
+        return false;
     }
 }
 

@@ -47,6 +47,9 @@ public:
     bool selectRecipe(const QString& name);
     // Loads a recipe file; false (and a message box naming the file and the field) if it is bad.
     bool openRecipeFile(const QString& path);
+    // Saves the edited recipe as the next version in the database (author: $USER);
+    // false (and a message box) if the database refuses it.
+    bool saveVersionAs(const QString& note);
 
     RecipeDocument* document() { return &m_document; }
     RenderScheduler* scheduler() { return &m_scheduler; }
