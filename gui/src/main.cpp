@@ -28,10 +28,12 @@ bool displayAvailable() {
 
 int main(int argc, char** argv) {
     if (!displayAvailable()) {
-        std::fputs("paintlab: no display (neither DISPLAY nor WAYLAND_DISPLAY is set).\n"
-                   "Run it headless with QT_QPA_PLATFORM=offscreen paintlab, or in a virtual X server\n"
-                   "with xvfb-run -a paintlab; paintlab-cli offers every computation without a display.\n",
-                   stderr);
+        std::fputs(
+            "paintlab: no display (neither DISPLAY nor WAYLAND_DISPLAY is set).\n"
+            "Run it in a virtual X server: xvfb-run -a paintlab (add --screenshot FILE.png to save\n"
+            "the window once it shows its first image); Qt's offscreen platform (QT_QPA_PLATFORM=offscreen)\n"
+            "has no OpenGL for the plots. paintlab-cli offers every computation without a display.\n",
+            stderr);
         return 2;
     }
     // VTK's OpenGL2 backend needs a 3.2 core profile, set before the application

@@ -36,11 +36,11 @@ QSlider* RecipeEditorDock::sliderFor(std::string_view key) const {
 }
 
 void RecipeEditorDock::rebuild() {
-    m_rows.clear();
     while (QLayoutItem* item = m_layout->takeAt(0)) {
         delete item->widget();
         delete item;
     }
+    m_rows.clear();
     const Recipe& recipe = m_document->recipe();
     // One group per layer / component, in recipe order.
     std::map<std::pair<int, int>, QGridLayout*> groups;
@@ -83,20 +83,18 @@ void RecipeEditorDock::rebuild() {
         m_rows.push_back(row);
     }
     m_layout->addStretch(1);
-    // Connections after the rows exist (the vector no longer moves).
-    for (std::size_t i = 0; i < m_rows.size(); ++i) {
-        const Row& row = m_rows[i];
-        connect(row.slider, &QSlider::valueChanged, this, [this, i](int step) {
-            const Row& r = m_rows[i];
-            const double v = r.range.lo + (r.range.hi - r.range.lo) * step / kSliderSteps;
-            edit(r, v, r.slider->isSliderDown());
+    // Connections after the rows exist: the vector no longer moves until the
+    // next rebuild, which deletes these widgets (and their connections) first.
+    for (const Row& row : m_rows) {
+        const Row* r = &row;
+        connect(row.slider, &QSlider::valueChanged, this, [this, r](int step) {
+            const double v = r->range.lo + (r->range.hi - r->range.lo) * step / kSliderSteps;
+            edit(*r, v, r->slider->isSliderDown());
         });
         // The drag is over: the final, full-quality render of what it left.
         connect(row.slider, &QSlider::sliderReleased, m_document, &RecipeDocument::settle);
-        connect(row.spin, &QDoubleSpinBox::editingFinished, this, [this, i]() {
-            const Row& r = m_rows[i];
-            edit(r, r.spin->value(), false);
-        });
+        connect(row.spin, &QDoubleSpinBox::editingFinished, this,
+                [this, r]() { edit(*r, r->spin->value(), false); });
     }
     refreshValues();
 }
