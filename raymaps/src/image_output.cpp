@@ -2,6 +2,7 @@
 
 #include "paintlab/engine/colour.h"
 #include "paintlab/engine/error.h"
+#include "paintlab/raymaps/display_image.h"
 #include "paintlab/raymaps/relight.h"
 
 #include <OpenImageIO/imageio.h>
@@ -23,6 +24,17 @@ double toneMap(double x) {
 
 }  // namespace
 
+std::vector<std::uint8_t> toDisplayRgb8(const RgbImage& image, double exposure_ev) {
+    const double scale = std::exp2(exposure_ev);
+    std::vector<std::uint8_t> bytes(image.rgb.size());
+    for (std::size_t i = 0; i < bytes.size(); ++i) {
+        const double x = std::max(0.0, static_cast<double>(image.rgb[i]) * scale);
+        const double encoded = srgbEncode(std::min(1.0, toneMap(x)));
+        bytes[i] = static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(encoded, 0.0, 1.0)));
+    }
+    return bytes;
+}
+
 void writeImage(const RgbImage& image, const std::filesystem::path& path, double exposure_ev) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -39,12 +51,7 @@ void writeImage(const RgbImage& image, const std::filesystem::path& path, double
     if (!out->open(name, spec)) throw Error(name + ": cannot open for writing: " + out->geterror());
     bool ok = false;
     if (png) {
-        std::vector<std::uint8_t> bytes(n);
-        for (std::size_t i = 0; i < n; ++i) {
-            const double x = std::max(0.0, static_cast<double>(image.rgb[i]) * scale);
-            const double encoded = srgbEncode(std::min(1.0, toneMap(x)));
-            bytes[i] = static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(encoded, 0.0, 1.0)));
-        }
+        const std::vector<std::uint8_t> bytes = toDisplayRgb8(image, exposure_ev);
         ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
     } else {
         std::vector<float> scaled(n);

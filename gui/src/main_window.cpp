@@ -1,0 +1,319 @@
+#include "main_window.h"
+
+#include "accuracy_dock.h"
+#include "inplane_plot.h"
+#include "recipe_editor_dock.h"
+#include "render_dock.h"
+#include "workstation_paths.h"
+
+#include "paintlab/database/demo.h"
+#include "paintlab/database/recipes.h"
+#include "paintlab/engine/error.h"
+#include "paintlab/engine/recipe_json.h"
+#include "paintlab/raymaps/raymap.h"
+#include "paintlab/raymaps/scene.h"
+
+#include <QAction>
+#include <QCloseEvent>
+#include <QDockWidget>
+#include <QFileDialog>
+#include <QInputDialog>
+#include <QListWidget>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QProgressDialog>
+#include <QSettings>
+#include <QStatusBar>
+#include <QThread>
+#include <QTimer>
+#include <QUndoStack>
+
+#include <exception>
+
+namespace paintlab::gui {
+
+MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMainWindow(parent) {
+    setWindowTitle(tr("PaintLab"));
+    setObjectName("main_window");
+    m_plot = new InplanePlot(this);
+    setCentralWidget(m_plot);
+
+    auto* list_dock = new QDockWidget(tr("Recipes"), this);
+    list_dock->setObjectName("recipes");
+    m_recipes = new QListWidget(list_dock);
+    m_recipes->setObjectName("recipe_list");
+    list_dock->setWidget(m_recipes);
+    addDockWidget(Qt::LeftDockWidgetArea, list_dock);
+    m_editor = new RecipeEditorDock(&m_document, this);
+    addDockWidget(Qt::LeftDockWidgetArea, m_editor);
+    m_render = new RenderDock(this);
+    addDockWidget(Qt::RightDockWidgetArea, m_render);
+    m_accuracy = new AccuracyDock(this);
+    addDockWidget(Qt::RightDockWidgetArea, m_accuracy);
+    buildMenus();
+
+    connect(m_recipes, &QListWidget::itemActivated, this,
+            [this](QListWidgetItem* item) { selectRecipe(item->data(Qt::UserRole).toString()); });
+    connect(m_recipes, &QListWidget::currentItemChanged, this, [this](QListWidgetItem* item) {
+        if (item != nullptr) selectRecipe(item->data(Qt::UserRole).toString());
+    });
+    connect(&m_document, &RecipeDocument::recipeChanged, this, &MainWindow::requestRender);
+    connect(&m_scheduler, &RenderScheduler::finished, this, [this](const RenderResult& result) {
+        m_render->showResult(result);
+        m_accuracy->showResult(result);
+        if (result.brdf) m_plot->setBrdf(*result.brdf);
+    });
+    connect(&m_scheduler, &RenderScheduler::failed, this,
+            [this](quint64 /*generation*/, const QString& message) {
+                showError(tr("Recompute failed"), message);
+            });
+    connect(m_render, &RenderDock::exposureChanged, this, [this](double ev) {
+        m_scheduler.setExposure(ev);
+        requestRender(false);
+    });
+    connect(m_render, &RenderDock::saveImageRequested, this, &MainWindow::saveImage);
+    connect(m_accuracy, &AccuracyDock::policyChanged, this, [this]() { requestRender(false); });
+
+    // First start: a layout that shows every dock; later the one the user left.
+    resize(1500, 950);
+    resizeDocks({list_dock, m_editor}, {220, 700}, Qt::Vertical);
+    resizeDocks({m_editor, m_render}, {420, 640}, Qt::Horizontal);
+    QSettings settings;
+    restoreGeometry(settings.value("window/geometry").toByteArray());
+    restoreState(settings.value("window/state").toByteArray());
+
+    openDatabase(options.database);
+    if (options.open_scene)
+        openScene(options.scene.empty() ? demoScenePath() : options.scene, options.raymap);
+}
+
+MainWindow::~MainWindow() {
+    if (m_trace != nullptr) {
+        m_trace_cancel->store(true);
+        m_trace->wait();
+    }
+}
+
+void MainWindow::buildMenus() {
+    QMenu* file = menuBar()->addMenu(tr("&File"));
+    file->addAction(tr("&Open recipe file..."), QKeySequence::Open, this, [this]() {
+        const QString path =
+            QFileDialog::getOpenFileName(this, tr("Open recipe"), {}, tr("Recipes (*.json)"));
+        if (!path.isEmpty()) openRecipeFile(path);
+    });
+    file->addAction(tr("&Save version..."), QKeySequence::Save, this, &MainWindow::saveVersion);
+    file->addAction(tr("Open &scene..."), this, [this]() {
+        const QString path = QFileDialog::getOpenFileName(this, tr("Open scene"), {}, tr("Scenes (*.json)"));
+        if (!path.isEmpty()) openScene(path.toStdString(), {});
+    });
+    file->addAction(tr("Save &image..."), this, &MainWindow::saveImage);
+    file->addAction(tr("Export plot data (CSV)..."), this, &MainWindow::exportPlotCsv);
+    file->addSeparator();
+    file->addAction(tr("&Quit"), QKeySequence::Quit, this, &QWidget::close);
+
+    QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+    QAction* undo = m_document.undoStack()->createUndoAction(this, tr("&Undo"));
+    undo->setShortcut(QKeySequence::Undo);
+    QAction* redo = m_document.undoStack()->createRedoAction(this, tr("&Redo"));
+    redo->setShortcut(QKeySequence::Redo);
+    edit->addAction(undo);
+    edit->addAction(redo);
+
+    QMenu* view = menuBar()->addMenu(tr("&View"));
+    for (QDockWidget* dock : findChildren<QDockWidget*>()) view->addAction(dock->toggleViewAction());
+    QAction* log = view->addAction(tr("Logarithmic BRDF axis"));
+    log->setCheckable(true);
+    connect(log, &QAction::toggled, this, [this](bool on) { m_plot->setLogScale(on); });
+}
+
+void MainWindow::openDatabase(const std::filesystem::path& file) {
+    try {
+        m_db.emplace(db::Database::open(file.empty() ? db::defaultDatabasePath() : file));
+        db::initDemoDatabase(*m_db);  // fills an empty database with the demo data, else nothing
+        fillRecipeList();
+        statusBar()->showMessage(tr("Database %1").arg(QString::fromStdString(m_db->file().string())));
+    } catch (const std::exception& e) {
+        m_db.reset();
+        showError(tr("Cannot open the database"), QString::fromUtf8(e.what()));
+    }
+}
+
+void MainWindow::fillRecipeList() {
+    const QSignalBlocker block(m_recipes);
+    m_recipes->clear();
+    if (!m_db) return;
+    for (const db::RecipeSummary& r : db::listRecipes(*m_db)) {
+        auto* item = new QListWidgetItem(
+            tr("%1 (v%2)").arg(QString::fromStdString(r.name)).arg(r.latest_version), m_recipes);
+        item->setData(Qt::UserRole, QString::fromStdString(r.name));
+    }
+}
+
+bool MainWindow::selectRecipe(const QString& name) {
+    if (!m_db) return false;
+    try {
+        const db::StoredRecipeVersion stored = db::loadRecipeVersion(*m_db, name.toStdString());
+        m_document.load(stored.recipe, tr("%1, version %2").arg(name).arg(stored.info.version),
+                        stored.info.version);
+        setWindowTitle(tr("PaintLab - %1").arg(m_document.origin()));
+        return true;
+    } catch (const std::exception& e) {
+        showError(tr("Cannot load the recipe"), QString::fromUtf8(e.what()));
+        return false;
+    }
+}
+
+bool MainWindow::openRecipeFile(const QString& path) {
+    try {
+        const Recipe recipe = loadRecipeFile(path.toStdString());
+        m_document.load(recipe, path, 0);
+        setWindowTitle(tr("PaintLab - %1").arg(path));
+        addRecentFile(path);
+        return true;
+    } catch (const std::exception& e) {
+        // InputError's text names the file, the field and the allowed range.
+        showError(tr("Cannot open the recipe"), QString::fromUtf8(e.what()));
+        return false;
+    }
+}
+
+void MainWindow::openScene(const std::filesystem::path& scene, const std::filesystem::path& raymap) {
+    const std::filesystem::path map_file = raymap.empty() ? cachedRayMapPath(scene) : raymap;
+    const auto openMap = [this, map_file]() {
+        try {
+            m_scheduler.setRayMap(std::shared_ptr<const raymaps::RayMap>(raymaps::RayMap::open(map_file)));
+            m_render->showMessage(tr("Ray map %1").arg(QString::fromStdString(map_file.string())));
+            requestRender(false);
+        } catch (const std::exception& e) {
+            showError(tr("Cannot open the ray map"), QString::fromUtf8(e.what()));
+        }
+    };
+    if (std::filesystem::exists(map_file)) {
+        openMap();
+        return;
+    }
+    if (m_trace != nullptr) return;  // one trace at a time
+    raymaps::Scene loaded;
+    try {
+        loaded = raymaps::loadSceneFile(scene);
+    } catch (const std::exception& e) {
+        showError(tr("Cannot open the scene"), QString::fromUtf8(e.what()));
+        return;
+    }
+    // Tracing takes seconds: a worker thread, a progress dialog, and cancel.
+    auto* progress = new QProgressDialog(tr("Tracing the scene once (only the paint is re-shaded later)..."),
+                                         tr("Cancel"), 0, 1000, this);
+    progress->setWindowModality(Qt::NonModal);
+    progress->setMinimumDuration(500);
+    progress->setObjectName("trace_progress");
+    m_trace_cancel = std::make_shared<std::atomic<bool>>(false);
+    auto fraction = std::make_shared<std::atomic<int>>(0);
+    connect(progress, &QProgressDialog::canceled, this, [cancel = m_trace_cancel]() { cancel->store(true); });
+    auto* poll = new QTimer(progress);
+    connect(poll, &QTimer::timeout, progress,
+            [progress, fraction]() { progress->setValue(fraction->load()); });
+    poll->start(100);
+    const auto cancel = m_trace_cancel;
+    m_trace = QThread::create([this, loaded, map_file, cancel, fraction, progress, openMap]() {
+        QString error;
+        try {
+            raymaps::buildRayMap(loaded, raymaps::RayMapSettings{}, map_file, [&](double f) {
+                fraction->store(static_cast<int>(f * 1000.0));
+                return !cancel->load();
+            });
+        } catch (const std::exception& e) {
+            error = cancel->load() ? QString() : QString::fromUtf8(e.what());
+        }
+        const bool cancelled = cancel->load();
+        QMetaObject::invokeMethod(
+            this,
+            [this, error, cancelled, progress, openMap]() {
+                progress->deleteLater();
+                m_trace->wait();
+                m_trace->deleteLater();
+                m_trace = nullptr;
+                if (!error.isEmpty()) {
+                    showError(tr("Cannot trace the scene"), error);
+                } else if (cancelled) {
+                    m_render->showMessage(tr("Tracing cancelled: no scene open"));
+                } else {
+                    openMap();
+                }
+            },
+            Qt::QueuedConnection);
+    });
+    m_trace->start();
+}
+
+void MainWindow::requestRender(bool interactive) {
+    if (!m_document.hasRecipe()) return;
+    m_last_interactive = interactive;
+    m_scheduler.request(m_document.recipe(), m_accuracy->presetFor(interactive));
+}
+
+void MainWindow::saveVersion() {
+    if (!m_db || !m_document.hasRecipe()) return;
+    bool ok = false;
+    const QString note = QInputDialog::getText(this, tr("Save version"), tr("What changed and why:"),
+                                               QLineEdit::Normal, {}, &ok);
+    if (ok) saveVersionAs(note);
+}
+
+bool MainWindow::saveVersionAs(const QString& note) {
+    if (!m_db || !m_document.hasRecipe()) return false;
+    try {
+        db::SaveOptions options;
+        options.author = qEnvironmentVariable("USER", "paintlab").toStdString();
+        options.note = note.toStdString();
+        options.source = m_document.origin().toStdString();
+        const db::SavedVersion saved = db::saveRecipeVersion(*m_db, m_document.recipe(), options);
+        fillRecipeList();
+        statusBar()->showMessage(
+            saved.created
+                ? tr("Saved %1 version %2").arg(QString::fromStdString(saved.recipe_name)).arg(saved.version)
+                : tr("Unchanged: identical to version %1").arg(saved.version));
+        return true;
+    } catch (const std::exception& e) {
+        showError(tr("Cannot save the version"), QString::fromUtf8(e.what()));
+        return false;
+    }
+}
+
+void MainWindow::saveImage() {
+    if (m_render->image().isNull()) return;
+    const QString path = QFileDialog::getSaveFileName(this, tr("Save image"), {}, tr("Images (*.png)"));
+    if (!path.isEmpty() && !m_render->image().save(path))
+        showError(tr("Cannot save the image"), tr("%1: cannot be written").arg(path));
+}
+
+void MainWindow::exportPlotCsv() {
+    const QString path = QFileDialog::getSaveFileName(this, tr("Export plot data"), {}, tr("CSV (*.csv)"));
+    if (!path.isEmpty() && !m_plot->exportCsv(path))
+        showError(tr("Cannot export the plot"), tr("%1: cannot be written").arg(path));
+}
+
+void MainWindow::showError(const QString& title, const QString& message) {
+    statusBar()->showMessage(message);
+    auto* box = new QMessageBox(QMessageBox::Warning, title, message, QMessageBox::Ok, this);
+    box->setObjectName("error_dialog");
+    box->setAttribute(Qt::WA_DeleteOnClose);
+    box->open();  // not exec(): the GUI thread never blocks on a dialog's own event loop
+}
+
+void MainWindow::addRecentFile(const QString& path) {
+    QSettings settings;
+    QStringList recent = settings.value("recentFiles").toStringList();
+    recent.removeAll(path);
+    recent.prepend(path);
+    while (recent.size() > 10) recent.removeLast();
+    settings.setValue("recentFiles", recent);
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+    QSettings settings;
+    settings.setValue("window/geometry", saveGeometry());
+    settings.setValue("window/state", saveState());
+    QMainWindow::closeEvent(event);
+}
+
+}  // namespace paintlab::gui

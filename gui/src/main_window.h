@@ -1,0 +1,90 @@
+#pragma once
+// The workstation's main window: the recipe list of the database, the recipe
+// editor, the in-plane BRDF plot, the render and accuracy docks. Dock layout,
+// window geometry and recent files are kept with QSettings.
+
+#include "recipe_document.h"
+#include "render_scheduler.h"
+
+#include "paintlab/database/database.h"
+
+#include <QMainWindow>
+
+#include <atomic>
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+class QListWidget;
+class QThread;
+
+namespace paintlab::gui {
+
+class AccuracyDock;
+class InplanePlot;
+class RecipeEditorDock;
+class RenderDock;
+
+struct WorkstationOptions {
+    std::filesystem::path database;  // empty: the user's database (created from the demo)
+    std::filesystem::path scene;     // empty: the demo scene
+    std::filesystem::path raymap;    // empty: traced from the scene into the cache when missing
+    bool open_scene = true;
+};
+
+class MainWindow : public QMainWindow {
+    Q_OBJECT
+public:
+    explicit MainWindow(const WorkstationOptions& options, QWidget* parent = nullptr);
+    ~MainWindow() override;
+    MainWindow(const MainWindow&) = delete;
+    MainWindow& operator=(const MainWindow&) = delete;
+    MainWindow(MainWindow&&) = delete;
+    MainWindow& operator=(MainWindow&&) = delete;
+
+    // Loads the latest saved version of a recipe of the database; false (and a
+    // message box) if there is none of that name.
+    bool selectRecipe(const QString& name);
+    // Loads a recipe file; false (and a message box naming the file and the field) if it is bad.
+    bool openRecipeFile(const QString& path);
+    // Saves the edited recipe as the next version in the database (author: $USER);
+    // false (and a message box) if the database refuses it.
+    bool saveVersionAs(const QString& note);
+
+    RecipeDocument* document() { return &m_document; }
+    RenderScheduler* scheduler() { return &m_scheduler; }
+    RenderDock* renderDock() { return m_render; }
+    RecipeEditorDock* editorDock() { return m_editor; }
+    InplanePlot* plot() { return m_plot; }
+    QListWidget* recipeList() { return m_recipes; }
+
+protected:
+    void closeEvent(QCloseEvent* event) override;
+
+private:
+    void buildMenus();
+    void openDatabase(const std::filesystem::path& file);
+    void fillRecipeList();
+    void openScene(const std::filesystem::path& scene, const std::filesystem::path& raymap);
+    void requestRender(bool interactive);
+    void saveVersion();
+    void saveImage();
+    void exportPlotCsv();
+    void showError(const QString& title, const QString& message);
+    void addRecentFile(const QString& path);
+
+    RecipeDocument m_document;
+    RenderScheduler m_scheduler;
+    std::optional<db::Database> m_db;
+    QListWidget* m_recipes = nullptr;
+    RecipeEditorDock* m_editor = nullptr;
+    RenderDock* m_render = nullptr;
+    AccuracyDock* m_accuracy = nullptr;
+    InplanePlot* m_plot = nullptr;
+    bool m_last_interactive = false;
+    // The scene being traced into a ray map, if any (cancelled and joined on close).
+    QThread* m_trace = nullptr;
+    std::shared_ptr<std::atomic<bool>> m_trace_cancel;
+};
+
+}  // namespace paintlab::gui

@@ -1,0 +1,24 @@
+#include "recipe_document.h"
+
+namespace paintlab::gui {
+
+RecipeDocument::RecipeDocument(QObject* parent) : QObject(parent) {}
+
+void RecipeDocument::load(const Recipe& recipe, const QString& origin, int version) {
+    m_recipe = recipe;
+    m_has_recipe = true;
+    m_origin = origin;
+    m_version = version;
+    m_undo.clear();
+    emit recipeLoaded();
+    emit recipeChanged(false);
+}
+
+void RecipeDocument::applyEdit(const Recipe& recipe, bool interactive) {
+    m_recipe = recipe;
+    emit recipeChanged(interactive);
+}
+
+void RecipeDocument::settle() { emit recipeChanged(false); }
+
+}  // namespace paintlab::gui

@@ -1,0 +1,48 @@
+#pragma once
+// The recipe being edited: its current value, where it came from (a saved
+// version in the database or a file) and the undo stack of every edit.
+// Edits go through undo commands (set_parameter_command.h), never around
+// them, so that undo restores exactly what was there.
+
+#include "paintlab/engine/recipe.h"
+
+#include <QObject>
+#include <QString>
+#include <QUndoStack>
+
+namespace paintlab::gui {
+
+class RecipeDocument : public QObject {
+    Q_OBJECT
+public:
+    explicit RecipeDocument(QObject* parent = nullptr);
+
+    const Recipe& recipe() const { return m_recipe; }
+    bool hasRecipe() const { return m_has_recipe; }
+    // Where it came from: "Blue pearl over black (two layers), version 3" or a file name.
+    const QString& origin() const { return m_origin; }
+    int version() const { return m_version; }  // 0: not a saved version
+    QUndoStack* undoStack() { return &m_undo; }
+
+    // A new recipe to edit: clears the undo history.
+    void load(const Recipe& recipe, const QString& origin, int version);
+    // For undo commands only: replaces the recipe without touching the history.
+    void applyEdit(const Recipe& recipe, bool interactive);
+    // An interactive edit (a slider drag) ended: announces the recipe again as final.
+    void settle();
+
+signals:
+    // interactive: the edit comes from a slider being dragged (the renderer
+    // may use the preview preset and refine when it settles).
+    void recipeChanged(bool interactive);
+    void recipeLoaded();
+
+private:
+    Recipe m_recipe;
+    bool m_has_recipe = false;
+    QString m_origin;
+    int m_version = 0;
+    QUndoStack m_undo;
+};
+
+}  // namespace paintlab::gui

@@ -1,0 +1,123 @@
+#include "recipe_editor_dock.h"
+
+#include "set_parameter_command.h"
+
+#include <QDoubleSpinBox>
+#include <QGridLayout>
+#include <QGroupBox>
+#include <QLabel>
+#include <QScrollArea>
+#include <QSignalBlocker>
+#include <QSlider>
+#include <QVBoxLayout>
+
+#include <cmath>
+#include <map>
+
+namespace paintlab::gui {
+
+RecipeEditorDock::RecipeEditorDock(RecipeDocument* document, QWidget* parent)
+    : QDockWidget(tr("Recipe editor"), parent), m_document(document) {
+    setObjectName("recipe_editor");
+    auto* scroll = new QScrollArea(this);
+    scroll->setWidgetResizable(true);
+    m_form = new QWidget(scroll);
+    m_layout = new QVBoxLayout(m_form);
+    scroll->setWidget(m_form);
+    setWidget(scroll);
+    connect(document, &RecipeDocument::recipeLoaded, this, &RecipeEditorDock::rebuild);
+    connect(document, &RecipeDocument::recipeChanged, this, &RecipeEditorDock::refreshValues);
+}
+
+QSlider* RecipeEditorDock::sliderFor(std::string_view key) const {
+    for (const Row& row : m_rows)
+        if (row.ref.decl->key == key) return row.slider;
+    return nullptr;
+}
+
+void RecipeEditorDock::rebuild() {
+    while (QLayoutItem* item = m_layout->takeAt(0)) {
+        delete item->widget();
+        delete item;
+    }
+    m_rows.clear();
+    const Recipe& recipe = m_document->recipe();
+    // One group per layer / component, in recipe order.
+    std::map<std::pair<int, int>, QGridLayout*> groups;
+    for (const ParameterRef& ref : editableParameters(recipe)) {
+        QGridLayout*& grid = groups[{ref.layer, ref.component}];
+        if (grid == nullptr) {
+            const Layer& layer = recipe.layers[static_cast<std::size_t>(ref.layer)];
+            QString title = QString::fromStdString(layer.name);
+            if (ref.component >= 0) {
+                const Component& c = layer.components[static_cast<std::size_t>(ref.component)];
+                title +=
+                    QString::fromUtf8(" \u203a ") + QString::fromStdString(componentName(c)) + " (" +
+                    QString::fromUtf8(componentKind(c).data(), static_cast<int>(componentKind(c).size())) +
+                    ")";
+            }
+            auto* box = new QGroupBox(title, m_form);
+            grid = new QGridLayout(box);
+            m_layout->addWidget(box);
+        }
+        const ParameterDecl& d = *ref.decl;
+        const double value = *scalarField(recipe, ref);
+        Row row{ref, sliderRange(d, value), nullptr, nullptr};
+        const int line = grid->rowCount();
+        auto* label = new QLabel(QString::fromUtf8(d.label.data(), static_cast<int>(d.label.size())), m_form);
+        label->setToolTip(QString::fromUtf8(d.help.data(), static_cast<int>(d.help.size())));
+        row.spin = new QDoubleSpinBox(m_form);
+        row.spin->setDecimals(4);
+        row.spin->setRange(d.min, d.max);
+        row.spin->setSingleStep((row.range.hi - row.range.lo) / 100.0);
+        if (d.unit != "1")
+            row.spin->setSuffix(" " + QString::fromUtf8(d.unit.data(), static_cast<int>(d.unit.size())));
+        row.spin->setValue(value);
+        row.spin->setObjectName(QString::fromUtf8(d.key.data(), static_cast<int>(d.key.size())));
+        row.slider = new QSlider(Qt::Horizontal, m_form);
+        row.slider->setRange(0, kSliderSteps);
+        row.slider->setObjectName(row.spin->objectName() + "_slider");
+        grid->addWidget(label, line, 0);
+        grid->addWidget(row.spin, line, 1);
+        grid->addWidget(row.slider, line, 2);
+        m_rows.push_back(row);
+    }
+    m_layout->addStretch(1);
+    // Connections after the rows exist: the vector no longer moves until the
+    // next rebuild, which deletes these widgets (and their connections) first.
+    for (const Row& row : m_rows) {
+        const Row* r = &row;
+        connect(row.slider, &QSlider::valueChanged, this, [this, r](int step) {
+            const double v = r->range.lo + (r->range.hi - r->range.lo) * step / kSliderSteps;
+            edit(*r, v, r->slider->isSliderDown());
+        });
+        // The drag is over: the final, full-quality render of what it left.
+        connect(row.slider, &QSlider::sliderReleased, m_document, &RecipeDocument::settle);
+        connect(row.spin, &QDoubleSpinBox::editingFinished, this,
+                [this, r]() { edit(*r, r->spin->value(), false); });
+    }
+    refreshValues();
+}
+
+void RecipeEditorDock::refreshValues() {
+    const Recipe& recipe = m_document->recipe();
+    for (Row& row : m_rows) {
+        const double* field = scalarField(recipe, row.ref);
+        if (field == nullptr) continue;
+        const QSignalBlocker block_spin(row.spin);
+        const QSignalBlocker block_slider(row.slider);
+        row.spin->setValue(*field);
+        if (*field < row.range.lo || *field > row.range.hi) row.range = sliderRange(*row.ref.decl, *field);
+        const double t = (*field - row.range.lo) / (row.range.hi - row.range.lo);
+        row.slider->setValue(static_cast<int>(std::lround(t * kSliderSteps)));
+    }
+}
+
+void RecipeEditorDock::edit(const Row& row, double value, bool interactive) {
+    const double* current = scalarField(m_document->recipe(), row.ref);
+    if (current == nullptr) return;
+    if (*current == value) return;  // nothing moved: no empty undo step
+    m_document->undoStack()->push(new SetParameterCommand(m_document, row.ref, value, interactive));
+}
+
+}  // namespace paintlab::gui

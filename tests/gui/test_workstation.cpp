@@ -1,0 +1,187 @@
+// The workstation under a virtual X server (tests/gui/CMakeLists.txt runs it
+// in xvfb-run): it starts on the demo database, shows plots and a relit image
+// of the pearlescent demo, follows a flake-concentration slider, undoes
+// exactly, saves a version, reports a malformed recipe file in a dialog, and
+// survives 200 rapid edits with a final image equal to a fresh render.
+//
+// The scene is the demo car scene at 64 x 36 pixels (written by the test) so
+// that tracing and relighting take well under a second even under ASan.
+// Times are not asserted (speed is measured in benchmarks, docs/PERFORMANCE.md);
+// every wait has a generous timeout so a loaded CI machine does not fail it.
+
+#include "inplane_plot.h"
+#include "main_window.h"
+#include "recipe_editor_dock.h"
+#include "render_dock.h"
+
+#include "paintlab/database/database.h"
+#include "paintlab/database/recipes.h"
+
+#include <QApplication>
+#include <QFile>
+#include <QListWidget>
+#include <QMessageBox>
+#include <QRandomGenerator>
+#include <QSignalSpy>
+#include <QSlider>
+#include <QSurfaceFormat>
+#include <QTemporaryDir>
+#include <QTest>
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <memory>
+
+using paintlab::gui::MainWindow;
+
+namespace {
+
+constexpr int kWaitMs = 120000;  // ASan + llvmpipe on a loaded 2-core machine
+const QString kPearl = QStringLiteral("Blue pearl over black (two layers)");
+
+}  // namespace
+
+class WorkstationTest : public QObject {
+    Q_OBJECT
+
+private slots:
+    void initTestCase();
+    void startsOnTheDemoDatabase();
+    void pearlescentShowsPlotAndImage();
+    void sliderChangesPlotAndRenderAndUndoRestoresExactly();
+    void savingCreatesANewVersion();
+    void malformedRecipeFileGivesAnErrorDialog();
+    void rapidEditsEndOnTheFinalRecipe();
+    void cleanupTestCase();
+
+private:
+    void waitIdle();
+    QTemporaryDir m_dir;
+    std::unique_ptr<MainWindow> m_window;
+};
+
+void WorkstationTest::waitIdle() {
+    // Idle and not tracing: the scheduler has nothing computing or pending.
+    QTRY_VERIFY_WITH_TIMEOUT(m_window->scheduler()->idle() && m_window->scheduler()->rayMap() != nullptr,
+                             kWaitMs);
+}
+
+void WorkstationTest::initTestCase() {
+    QVERIFY(m_dir.isValid());
+    qputenv("XDG_CACHE_HOME", (m_dir.path() + "/cache").toUtf8());
+    qputenv("XDG_CONFIG_HOME", (m_dir.path() + "/config").toUtf8());
+    // The demo scene, made tiny.
+    std::ifstream in(std::string(PAINTLAB_DEMO_DIR) + "/scenes/car_body_sky.json");
+    nlohmann::json scene = nlohmann::json::parse(in);
+    scene["camera"]["width"] = 64;
+    scene["camera"]["height"] = 36;
+    const QString scene_file = m_dir.path() + "/scenes/car.json";
+    QDir().mkpath(m_dir.path() + "/scenes");
+    std::ofstream(scene_file.toStdString()) << scene.dump(2);
+    paintlab::gui::WorkstationOptions options;
+    options.database = (m_dir.path() + "/lab.db").toStdString();
+    options.scene = scene_file.toStdString();
+    m_window = std::make_unique<MainWindow>(options);
+    m_window->show();
+    QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
+}
+
+void WorkstationTest::startsOnTheDemoDatabase() {
+    // The five demo recipes of packaging/demo/recipes, created on first use.
+    QCOMPARE(m_window->recipeList()->count(), 5);
+}
+
+void WorkstationTest::pearlescentShowsPlotAndImage() {
+    QVERIFY(m_window->selectRecipe(kPearl));
+    QTRY_VERIFY_WITH_TIMEOUT(!m_window->renderDock()->image().isNull(), kWaitMs);
+    waitIdle();
+    QCOMPARE(m_window->renderDock()->image().width(), 64);
+    const auto& curve = m_window->plot()->curve();
+    QVERIFY(!curve.view_deg.empty());
+    // A blue pearl: blue above red at the specular peak (view +45 degrees).
+    const auto peak = static_cast<std::size_t>(
+        std::distance(curve.view_deg.begin(), std::find(curve.view_deg.begin(), curve.view_deg.end(), 45.0)));
+    QVERIFY(peak < curve.view_deg.size());
+    QVERIFY(curve.b[peak] > curve.r[peak]);
+}
+
+void WorkstationTest::sliderChangesPlotAndRenderAndUndoRestoresExactly() {
+    waitIdle();
+    const QImage before = m_window->renderDock()->image();
+    const auto curve_before = m_window->plot()->curve().y;
+    QSlider* slider = m_window->editorDock()->sliderFor("volume_fraction");  // the pearl flakes
+    QVERIFY(slider != nullptr);
+    QSignalSpy rendered(m_window->scheduler(), &paintlab::gui::RenderScheduler::finished);
+    slider->setValue(slider->value() / 2 + 10);
+    QTRY_VERIFY_WITH_TIMEOUT(rendered.count() >= 1, kWaitMs);
+    waitIdle();
+    QVERIFY(m_window->renderDock()->image() != before);
+    QVERIFY(m_window->plot()->curve().y != curve_before);
+
+    m_window->document()->undoStack()->undo();
+    waitIdle();
+    // Same recipe, same deterministic fast model and relight: the same pixels.
+    QVERIFY(m_window->renderDock()->image() == before);
+    QVERIFY(m_window->plot()->curve().y == curve_before);
+}
+
+void WorkstationTest::savingCreatesANewVersion() {
+    waitIdle();
+    QSlider* slider = m_window->editorDock()->sliderFor("thickness_um");
+    QVERIFY(slider != nullptr);
+    slider->setValue(slider->value() + 50);
+    QVERIFY(m_window->saveVersionAs(QStringLiteral("thicker clear coat (GUI test)")));
+    auto db = paintlab::db::Database::open((m_dir.path() + "/lab.db").toStdString());
+    const auto history = paintlab::db::recipeHistory(db, kPearl.toStdString());
+    QCOMPARE(static_cast<int>(history.size()), 2);
+    QCOMPARE(QString::fromStdString(history.back().note), QStringLiteral("thicker clear coat (GUI test)"));
+}
+
+void WorkstationTest::malformedRecipeFileGivesAnErrorDialog() {
+    const QString bad = m_dir.path() + "/negative.json";
+    QFile::copy(QStringLiteral(PAINTLAB_TEST_DATA_DIR) + "/bad_recipes/negative_thickness.json", bad);
+    const paintlab::Recipe kept = m_window->document()->recipe();
+    QVERIFY(!m_window->openRecipeFile(bad));
+    auto* dialog = m_window->findChild<QMessageBox*>(QStringLiteral("error_dialog"));
+    QVERIFY(dialog != nullptr);
+    QVERIFY2(dialog->text().contains(QStringLiteral("negative.json")), qPrintable(dialog->text()));
+    QVERIFY2(dialog->text().contains(QStringLiteral("thickness")), qPrintable(dialog->text()));
+    QVERIFY(m_window->document()->recipe() == kept);  // the recipe being edited is untouched
+    dialog->close();
+}
+
+void WorkstationTest::rapidEditsEndOnTheFinalRecipe() {
+    waitIdle();
+    QSlider* slider = m_window->editorDock()->sliderFor("volume_fraction");
+    QVERIFY(slider != nullptr);
+    QRandomGenerator random(7);
+    for (int i = 0; i < 200; ++i) {
+        slider->setValue(random.bounded(slider->minimum(), slider->maximum() + 1));
+        if (i % 10 == 0) QCoreApplication::processEvents();
+    }
+    waitIdle();
+    const QImage last = m_window->renderDock()->image();
+    // A fresh render of the final recipe gives the same image.
+    QSignalSpy rendered(m_window->scheduler(), &paintlab::gui::RenderScheduler::finished);
+    m_window->scheduler()->request(m_window->document()->recipe(), paintlab::Preset::Standard);
+    QTRY_VERIFY_WITH_TIMEOUT(rendered.count() == 1, kWaitMs);
+    const auto result = rendered.takeFirst().at(0).value<paintlab::gui::RenderResult>();
+    QVERIFY(result.image == last);
+}
+
+void WorkstationTest::cleanupTestCase() { m_window.reset(); }
+
+int main(int argc, char** argv) {
+    QSurfaceFormat format;  // as the application's main(): VTK needs a 3.2 core profile
+    format.setVersion(3, 2);
+    format.setProfile(QSurfaceFormat::CoreProfile);
+    QSurfaceFormat::setDefaultFormat(format);
+    QApplication app(argc, argv);
+    QApplication::setOrganizationName("PaintLab-test");
+    QApplication::setApplicationName("PaintLab-test");
+    WorkstationTest test;
+    return QTest::qExec(&test, argc, argv);
+}
+
+#include "test_workstation.moc"
