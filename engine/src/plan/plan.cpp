@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <numbers>
 #include <string>
@@ -28,9 +29,13 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
+// printf into a string; the attribute lets the compiler check every call's arguments.
+__attribute__((format(printf, 1, 2))) std::string format(const char* fmt, ...) {
     char text[256];
-    std::snprintf(text, sizeof text, fmt, a, b, c);
+    va_list args;
+    va_start(args, fmt);
+    std::vsnprintf(text, sizeof text, fmt, args);
+    va_end(args);
     return text;
 }
 
@@ -57,7 +62,8 @@ double relativeChangeFor(double de) { return std::pow(1.0 + de / 116.0, 3.0) - 1
 // --- interference -----------------------------------------------------------
 
 PlanDecision interferenceDecision(const Recipe& recipe, EffectPlan& p) {
-    PlanDecision d{.effect = "interference"};
+    PlanDecision d;
+    d.effect = "interference";
     int count = 0;
     for (const Layer& layer : recipe.layers)
         for (const Component& c : layer.components)
@@ -96,7 +102,8 @@ double texturePercentile99(const SparkleStats& stats) {
 }
 
 PlanDecision sparkleDecision(const Recipe& recipe, const PlanScene& scene, EffectPlan& p) {
-    PlanDecision d{.effect = "sparkle"};
+    PlanDecision d;
+    d.effect = "sparkle";
     const SparkleModel model(recipe, {.bands = 3});
     if (!model.hasFlakes()) {
         d.simulate = false;
@@ -168,83 +175,110 @@ PlanDecision sparkleDecision(const Recipe& recipe, const PlanScene& scene, Effec
 
 // --- angular resolution -----------------------------------------------------
 
-// Relative error at the peak of a lobe of azimuthal Gaussian width s (rad)
-// when its Fourier series stops after `orders` terms: the coefficients of a
-// (wrapped) Gaussian fall as exp(-m^2 s^2 / 2).
-double truncationError(double s, int orders) {
-    double all = 1.0;
-    double tail = 0.0;
-    for (int m = 1; m < 2000; ++m) {
-        const double c = 2.0 * std::exp(-0.5 * m * m * s * s);
-        all += c;
-        if (m >= orders) tail += c;
-        if (c < 1e-18) break;
+// The truncation error of the azimuthal Fourier series, measured on a probe
+// of the paint (the preview grid at the preset's orders, 4 bands): for
+// directions every 20 deg, sum_{m >= M} |f^m| s_m against the lobe's peak
+// max(|sum f^m s_m|, |sum (-1)^m f^m s_m|) (Delta phi = 0 or pi). s_m =
+// exp(-m^2 sigma^2 / 2) is what a light of angular standard deviation sigma
+// leaves of order m (a Gaussian's Fourier coefficients; in the azimuth the
+// light is sigma / sin(theta) wide, wider than sigma, so this bounds it).
+class TruncationProbe {
+public:
+    TruncationProbe(const Recipe& recipe, int orders, double sigma_rad) {
+        FastModelSettings s = presetSettings(Preset::Preview);
+        s.orders = orders;
+        s.bands = 4;
+        s.output_bands = 0;
+        s.order_tolerance = 1e-9;
+        const LayeredBrdf probe = computeLayeredBrdf(recipe, s);
+        m_orders = probe.orders();
+        const auto bands = probe.wavelengthsNm().size();
+        std::vector<double> c(static_cast<std::size_t>(m_orders) * bands);
+        for (int o = 0; o < 4; ++o)
+            for (int i = 0; i < 4; ++i) {
+                const double mu_o = std::cos((10.0 + 20.0 * o) * kPi / 180.0);
+                const double mu_i = std::cos((10.0 + 20.0 * i) * kPi / 180.0);
+                probe.fourierCoefficients(mu_o, mu_i, c);
+                for (std::size_t b = 0; b < bands; ++b) {
+                    std::vector<double> series(static_cast<std::size_t>(m_orders));
+                    for (int m = 0; m < m_orders; ++m)
+                        series[static_cast<std::size_t>(m)] =
+                            c[static_cast<std::size_t>(m) * bands + b] * std::exp(-0.5 * m * m * sigma_rad * sigma_rad);
+                    m_series.push_back(std::move(series));
+                }
+            }
     }
-    return tail / all;
-}
+    // Largest relative error over the probe's directions and bands when only orders < M are kept.
+    double error(int M) const {
+        double worst = 0.0;
+        for (const auto& series : m_series) {
+            double tail = 0.0;
+            double even = 0.0;
+            double odd = 0.0;
+            for (int m = 0; m < m_orders; ++m) {
+                const double v = series[static_cast<std::size_t>(m)];
+                if (m >= M) tail += std::abs(v);
+                even += v;
+                odd += (m % 2 == 0 ? v : -v);
+            }
+            const double peak = std::max({std::abs(even), std::abs(odd), std::abs(series[0])});
+            if (peak > 1e-12) worst = std::max(worst, tail / peak);
+        }
+        return worst;
+    }
+
+private:
+    int m_orders = 0;
+    std::vector<std::vector<double>> m_series;
+};
 
 PlanDecision angularDecision(const Recipe& recipe, const PlanScene& scene, EffectPlan& p) {
-    PlanDecision d{.effect = "angular"};
-    // The paint's narrowest lobe: flakes of spread sigma reflect into 2 sigma
-    // inside the binder, ~2 n sigma in air (small angles, Snell).
-    double lobe = 1e9;
-    std::string lobe_text = "no flakes: every lobe is broad";
-    for (const Layer& layer : recipe.layers) {
-        const double n = layer.binder.refractive_index(560.0);
-        for (const Component& c : layer.components) {
-            double spread = -1.0;
-            if (const auto* m = std::get_if<MirrorFlake>(&c); m != nullptr && m->volume_fraction > 0.0)
-                spread = m->orientation_spread_deg;
-            if (const auto* f = std::get_if<InterferenceFlake>(&c); f != nullptr && f->volume_fraction > 0.0)
-                spread = f->orientation_spread_deg;
-            if (spread < 0.0) continue;
-            const double w = 2.0 * n * std::max(spread, 0.5) * kPi / 180.0;
-            if (w < lobe) {
-                lobe = w;
-                lobe_text = "flake lobe ~" + format("%.3g deg", w * 180.0 / kPi) + " ('" + componentName(c) + "')";
-            }
-        }
-    }
-    // The sharpest light: a compact light's angular radius, else the environment's features.
-    double light = scene.environment_sharpness_deg * kPi / 180.0 / 2.0;
+    PlanDecision d;
+    d.effect = "angular";
+    // The sharpest light, as an angular standard deviation: a disk of radius
+    // r has r / 2 per axis; the environment's feature width is ~1.65 of its
+    // standard deviation (plan_scene.h's definition).
+    double sigma = scene.environment_sharpness_deg / 1.65 * kPi / 180.0;
     std::string light_text = format("environment features %.3g deg", scene.environment_sharpness_deg);
     for (const PlanLight& l : scene.lights) {
         const double r = std::sqrt(l.solid_angle_sr / kPi);
-        if (l.irradiance_w_m2 > 0.0 && r < light) {
-            light = r;
+        if (l.irradiance_w_m2 > 0.0 && 0.5 * r < sigma) {
+            sigma = 0.5 * r;
             light_text = "light '" + l.name + "'" + format(" %.3g deg across", 2.0 * r * 180.0 / kPi);
         }
     }
-    const double width = std::sqrt(lobe * lobe + light * light);  // what the image can show
     const int preset_orders = p.fast.orders;
+    const TruncationProbe probe(recipe, preset_orders, sigma);
     int orders = preset_orders;
     const double budget = relativeChangeFor(0.5 * p.tolerance_de);
     for (int m : {2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64}) {
         if (m >= preset_orders) break;
-        if (truncationError(width, m) <= budget) {
+        if (probe.error(m) <= budget) {
             orders = m;
             break;
         }
     }
-    const double error = orders < preset_orders ? truncationError(width, orders) : 0.0;
+    const double error = orders < preset_orders ? probe.error(orders) : 0.0;
     p.fast.orders = orders;
     // The polar nodes stay the preset's: their error is not what the
-    // truncation estimate measures (and the order count is the fast model's
+    // truncation probe measures (and the order count is the fast model's
     // cost per band: one adding-doubling per order).
     d.simulate = true;
     d.setting = "orders " + std::to_string(p.fast.orders) + ", nodes " + std::to_string(p.fast.nodes);
     d.accepted_error_de = deltaEForRelativeChange(error);
-    d.reason = "sharpest visible lobe " + format("%.3g deg", width * 180.0 / kPi) + " = " + lobe_text + " with " +
-               light_text +
-               (orders < preset_orders ? format("; truncation at the peak %.2g %%", 100.0 * error)
-                                       : std::string("; the preset's orders are needed"));
+    d.reason = "sharpest light: " + light_text +
+               (orders < preset_orders
+                    ? format("; the paint's orders >= %.0f seen through it: %.2g %% of the lobe's peak",
+                             static_cast<double>(orders), 100.0 * error)
+                    : std::string("; the preset's orders are needed"));
     return d;
 }
 
 // --- spectral bands ---------------------------------------------------------
 
 PlanDecision bandsDecision(const Recipe& recipe, const PlanScene& scene, EffectPlan& p) {
-    PlanDecision d{.effect = "bands"};
+    PlanDecision d;
+    d.effect = "bands";
     d.simulate = true;
     const int preset_bands = p.fast.bands;
     if (p.interference || scene.spectral_lighting) {
@@ -270,14 +304,15 @@ PlanDecision bandsDecision(const Recipe& recipe, const PlanScene& scene, EffectP
                    ? "every spectrum of the recipe is constant: any band count gives the same BRDF"
                    : format("ingredient spectra sampled at %.0f bands are within %.2g %% of their values "
                             "(RGB lighting)",
-                            bands, 100.0 * error);
+                            static_cast<double>(bands), 100.0 * error);
     return d;
 }
 
 // --- depth slices -----------------------------------------------------------
 
 PlanDecision slicesDecision(const Recipe& recipe, EffectPlan& p) {
-    PlanDecision d{.effect = "slices"};
+    PlanDecision d;
+    d.effect = "slices";
     if (!plan_detail::hasDepthProfiles(recipe)) {
         d.simulate = false;
         d.setting = "none";
@@ -300,14 +335,15 @@ PlanDecision slicesDecision(const Recipe& recipe, EffectPlan& p) {
     d.simulate = true;
     d.setting = std::to_string(slices) + " slices per profiled layer";
     d.accepted_error_de = deltaEForRelativeChange(error);
-    d.reason = format("the concentration varies with depth; %.0f slices hold it within %.2g %%", slices, 100.0 * error);
+    d.reason = format("the concentration varies with depth; %.0f slices hold it within %.2g %%", static_cast<double>(slices), 100.0 * error);
     return d;
 }
 
 // --- full model ---------------------------------------------------------------
 
 PlanDecision fullModelDecision(const Recipe& recipe, EffectPlan& p) {
-    PlanDecision d{.effect = "full_model"};
+    PlanDecision d;
+    d.effect = "full_model";
     const double tolerance = p.preset == Preset::Preview   ? 0.2
                              : p.preset == Preset::Standard ? kDefaultFastModelTolerance
                                                             : 0.05;

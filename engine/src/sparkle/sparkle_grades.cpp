@@ -4,18 +4,24 @@
 
 #include "paintlab/engine/error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace paintlab {
 
 namespace {
 
-double coefficientOfVariation(double sum, double sum_sq, double count) {
-    const double mean = sum / count;
+// std / mean, two-pass (a one-pass sum of squares cancels badly for a flat texture).
+double coefficientOfVariation(const std::vector<double>& v) {
+    double sum = 0.0;
+    for (double x : v) sum += x;
+    const double mean = sum / static_cast<double>(v.size());
     if (!(mean > 0.0)) return 0.0;
-    const double variance = std::max(0.0, sum_sq / count - mean * mean);
-    return std::sqrt(variance) / mean;
+    double sq = 0.0;
+    for (double x : v) sq += (x - mean) * (x - mean);
+    return std::sqrt(sq / static_cast<double>(v.size())) / mean;
 }
 
 }  // namespace
@@ -31,21 +37,19 @@ SparkleGrades sparkleGrades(std::span<const double> values, int width, int heigh
     if (!(threshold_contrast > 0.0))
         throw InputError("<argument>", "threshold_contrast", std::to_string(threshold_contrast) + " must be > 0");
     double sum = 0.0;
-    double sum_sq = 0.0;
     for (std::size_t i = 0; i < values.size(); ++i) {
         const double v = values[i];
         if (!std::isfinite(v) || v < 0.0)
             throw InputError("<argument>", "texture values",
                              "element " + std::to_string(i) + " is " + std::to_string(v) + " (must be >= 0)");
         sum += v;
-        sum_sq += v * v;
     }
     SparkleGrades g;
     g.elements = static_cast<int>(values.size());
     const auto count = static_cast<double>(values.size());
     g.mean = sum / count;
     if (!(g.mean > 0.0)) return g;
-    g.contrast_cv = coefficientOfVariation(sum, sum_sq, count);
+    g.contrast_cv = coefficientOfVariation(std::vector<double>(values.begin(), values.end()));
 
     const double threshold = (1.0 + threshold_contrast) * g.mean;
     double above = 0.0;
@@ -59,9 +63,7 @@ SparkleGrades sparkleGrades(std::span<const double> values, int width, int heigh
     g.sparkle_intensity = above > 0.0 ? contrast_sum / above : 0.0;
     g.sparkle_grade = std::sqrt(g.sparkle_area_percent * g.sparkle_intensity);
 
-    double block_sum = 0.0;
-    double block_sq = 0.0;
-    double blocks = 0.0;
+    std::vector<double> blocks;
     for (int y = 0; y + 1 < height; y += 2)
         for (int x = 0; x + 1 < width; x += 2) {
             const auto at = [&](int xx, int yy) {
@@ -69,11 +71,9 @@ SparkleGrades sparkleGrades(std::span<const double> values, int width, int heigh
                               static_cast<std::size_t>(xx)];
             };
             const double b = 0.25 * (at(x, y) + at(x + 1, y) + at(x, y + 1) + at(x + 1, y + 1));
-            block_sum += b;
-            block_sq += b * b;
-            blocks += 1.0;
+            blocks.push_back(b);
         }
-    g.graininess = 100.0 * coefficientOfVariation(block_sum, block_sq, blocks);
+    g.graininess = 100.0 * coefficientOfVariation(blocks);
     return g;
 }
 

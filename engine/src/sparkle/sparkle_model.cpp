@@ -122,6 +122,9 @@ SparkleModel::SparkleModel(const Recipe& recipe, const SparkleSettings& settings
     if (settings.slices_per_profiled_layer < 1 || settings.slices_per_profiled_layer > 64)
         throw InputError("<argument>", "sparkle slices_per_profiled_layer",
                          std::to_string(settings.slices_per_profiled_layer) + " is not in [1, 64]");
+    if (!(settings.flake_lobe_deg >= 0.0 && settings.flake_lobe_deg <= 10.0))
+        throw InputError("<argument>", "sparkle flake_lobe_deg",
+                         std::to_string(settings.flake_lobe_deg) + " is not in [0, 10]");
     if (settings.chain_nodes < 3 || settings.chain_nodes > 1025)
         throw InputError("<argument>", "sparkle chain_nodes",
                          std::to_string(settings.chain_nodes) + " is not in [3, 1025]");
@@ -221,7 +224,7 @@ SparkleStats SparkleModel::evaluate(const SparkleGeometry& g) const {
         for (std::size_t j = 0; j < m.slices.size(); ++j) {
             const mc::Slice& slice = band.stack.slices[j];
             std::size_t active = 0;
-            for (const auto& kind : slice.flakes) active += kind.orientation.isDelta() ? 0 : 1;
+            for (const auto& kind : slice.flakes) if (!kind.orientation.isDelta()) ++active;
             if (active == 0) continue;
             const std::size_t first_term = t;
             t += active;
@@ -248,8 +251,9 @@ SparkleStats SparkleModel::evaluate(const SparkleGeometry& g) const {
             // int_0^H w dz and int_0^H w^2 dz (expm1 keeps them exact as sigma_e -> 0).
             const double I1 = x > 1e-12 ? -std::expm1(-x) / sigma_e : H;
             const double I2 = x > 1e-12 ? -std::expm1(-2.0 * x) / (2.0 * sigma_e) : H;
+            const double beta = m.settings.flake_lobe_deg * kPi / 180.0;
             const double omega_w = g.light_solid_angle_sr * g.wi.z * n0 * n0 / (n * n * mu_i) +
-                                   g.view_solid_angle_sr * g.wo.z * n0 * n0 / (n * n * mu_o);
+                                   g.view_solid_angle_sr * g.wo.z * n0 * n0 / (n * n * mu_o) + kPi * 4.0 * beta * beta;
             std::size_t local = 0;
             for (std::size_t k = 0; k < slice.flakes.size(); ++k) {
                 const mc::FlakeKind& kind = slice.flakes[k];

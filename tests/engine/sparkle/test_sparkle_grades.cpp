@@ -16,17 +16,16 @@ namespace {
 TEST(SparkleGrades, UniformTextureHasNoSparkleAndNoGrain) {
     const std::vector<double> v(64, 0.3);
     const SparkleGrades g = sparkleGrades(v, 8, 8);
-    EXPECT_DOUBLE_EQ(g.mean, 0.3);
+    EXPECT_NEAR(g.mean, 0.3, 1e-15);
     EXPECT_EQ(g.sparkle_area_percent, 0.0);
     EXPECT_EQ(g.sparkle_intensity, 0.0);
     EXPECT_EQ(g.sparkle_grade, 0.0);
     EXPECT_NEAR(g.graininess, 0.0, 1e-12);
-    EXPECT_NEAR(g.contrast_cv, 0.0, 1e-7);
+    EXPECT_NEAR(g.contrast_cv, 0.0, 1e-12);
 }
 
 TEST(SparkleGrades, OneGlintPerBlockByHand) {
-    // 8 x 8, one element of 2x2 block (0,0) is 1 + 63 = 64 times... : values 1,
-    // one element 65: mean 2, threshold 4 -> 1 element above (1/64 = 1.5625 %),
+    // 8 x 8 elements of 1 but one of 65: mean 2, threshold 4 -> 1 element above (1/64 = 1.5625 %),
     // contrast (65 - 2) / 2 = 31.5. Blocks: one of 16 has mean 17, the rest 1:
     // block mean 2, std sqrt((15^2 + 15 * 1^2) / 16) = sqrt(15), G = 100 sqrt(15) / 2.
     std::vector<double> v(64, 1.0);

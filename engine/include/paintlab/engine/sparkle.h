@@ -16,12 +16,16 @@
 //                              unit volume (one face, layer_optics.h), a_f = pi d^2 / 4
 //   h'    = (wi' + wo') / |.|  half vector of the refracted light and view
 //   c_d   = wi' . h'           local cosine on the flake
-//   Omega_w' = Omega_L mu_i / (n_r^2 mu_i') + Omega_V mu_o / (n_r^2 mu_o')
+//   Omega_w' = Omega_L mu_i / (n_r^2 mu_i') + Omega_V mu_o / (n_r^2 mu_o') + pi (2 beta)^2
 //                              the angular resolution (solid angle) of light +
 //                              eye refracted into the binder (dw' = dw mu / (n_r^2 mu'),
-//                              n_r = n / n0; radiance invariance L / n^2). Adding the
-//                              two solid angles is exact for Gaussian angular
-//                              profiles (their variances add under convolution).
+//                              n_r = n / n0; radiance invariance L / n^2), widened by
+//                              each flake's own reflection lobe: a real flake is not
+//                              flat (waviness, edges; "cornflake" aluminium most), its
+//                              normals spread by beta (SparkleSettings::flake_lobe_deg)
+//                              and its reflection by 2 beta. Adding solid angles is
+//                              exact for Gaussian angular profiles (their variances
+//                              add under convolution).
 //   Omega_h' = Omega_w' / (4 c_d)  the window of normals that reflect the light
 //                              into the view: dw_h = dw_o / (4 |wi . h|) (Walter et al.,
 //                              EGSR 2007, eq. 14)
@@ -82,6 +86,11 @@ struct SparkleSettings {
     int bands = 16;                     // wavelengths, evenly over 380-780 nm
     int slices_per_profiled_layer = 4;  // depth slices of a layer whose flakes vary in depth
     int chain_nodes = 91;               // ambient polar angles of the exit-chain table (uniform in theta)
+    // beta: the spread of one flake's own normals (degrees, in the binder). It
+    // leaves the mean (the BRDF) alone and sets how many flakes share a glint.
+    // 1 deg is our assumption for wavy milled aluminium, not a measured value;
+    // 0 makes every flake a perfect plane mirror.
+    double flake_lobe_deg = 1.0;
 };
 
 // What the viewer and the light resolve at one surface element. Directions in
