@@ -4,6 +4,7 @@
 
 #include "record_layout.h"
 #include "sampling.h"
+#include "scene_tracer.h"
 
 #include "paintlab/engine/error.h"
 #include "paintlab/raymaps/environment_map.h"
@@ -28,10 +29,6 @@ constexpr double kEnvThreshold = 50.0;
 void checkOptions(const PlanSceneOptions& o) {
     if (!(o.scene_unit_m > 0.0) || !std::isfinite(o.scene_unit_m))
         throw InputError("<argument>", "scene_unit_m", std::to_string(o.scene_unit_m) + " must be > 0");
-}
-
-double pixelAngle(const Camera& c) {
-    return 2.0 * std::tan(0.5 * c.vertical_fov_deg * kPi / 180.0) / std::max(1, c.height);
 }
 
 void summariseEnvironment(const EnvironmentMap& residual, PlanScene& s) {
@@ -79,35 +76,33 @@ PlanScene summariseScene(const Scene& scene, const PlanSceneOptions& options) {
     PlanScene s;
     s.source = scene.file.empty() ? "<scene>" : scene.file.string();
 
-    // Footprints: distances from the camera to the paint's vertices in view.
+    // Footprints: distances along a 32 x 18 grid of camera rays to the paint
+    // they meet first (paint seen in mirrors or through glass is not followed).
     const SceneGeometry geometry = buildSceneGeometry(scene);
-    const Camera& cam = scene.camera;
-    const Vec3 forward = (cam.look_at - cam.position).normalized();
-    const double half_v = 0.5 * cam.vertical_fov_deg * kPi / 180.0;
-    const double aspect = static_cast<double>(cam.width) / std::max(1, cam.height);
-    const double cos_view = std::cos(std::atan(std::tan(half_v) * std::sqrt(1.0 + aspect * aspect)));
+    const SceneTracer tracer(geometry);
+    const PinholeCamera camera(scene.camera);
     double near = 1e300;
     double far = 0.0;
     Vec3 centre = Vec3::Zero();
-    double paint_vertices = 0.0;
-    const TriangleMesh& mesh = geometry.mesh;
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-        const auto m = static_cast<std::size_t>(mesh.material[t]);
-        if (m >= scene.materials.size() || scene.materials[m].kind != MaterialKind::Paint) continue;
-        for (std::uint32_t i : mesh.triangles[t]) {
-            const Vec3 p = mesh.positions[i].cast<double>();
-            centre += p;
-            paint_vertices += 1.0;
-            const Vec3 d = p - cam.position;
-            const double dist = d.norm();
-            if (!(dist > 0.0) || d.dot(forward) < cos_view * dist) continue;  // outside the view cone
-            near = std::min(near, dist);
-            far = std::max(far, dist);
+    double paint_hits = 0.0;
+    constexpr int kRaysX = 32;
+    constexpr int kRaysY = 18;
+    for (int y = 0; y < kRaysY; ++y)
+        for (int x = 0; x < kRaysX; ++x) {
+            const Vec3 dir = camera.direction((x + 0.5) * scene.camera.width / kRaysX,
+                                              (y + 0.5) * scene.camera.height / kRaysY);
+            const Hit hit = tracer.intersect(camera.origin(), dir);
+            if (!hit.found || hit.material < 0 || static_cast<std::size_t>(hit.material) >= scene.materials.size() ||
+                scene.materials[static_cast<std::size_t>(hit.material)].kind != MaterialKind::Paint)
+                continue;
+            near = std::min(near, hit.t);
+            far = std::max(far, hit.t);
+            centre += hit.position;
+            paint_hits += 1.0;
         }
-    }
-    if (paint_vertices > 0.0) centre /= paint_vertices;
-    const double angle = pixelAngle(cam);
-    if (far > 0.0) {
+    if (paint_hits > 0.0) {
+        centre /= paint_hits;
+        const double angle = camera.pixelAngle();
         s.footprint_min_um = near * angle * options.scene_unit_m * 1e6;
         s.footprint_max_um = far * angle * options.scene_unit_m * 1e6;
         s.viewing_distance_m = near * options.scene_unit_m;

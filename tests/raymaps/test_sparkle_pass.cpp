@@ -82,12 +82,13 @@ TEST_F(SparklePass, AddsZeroMeanGlintsDeterministically) {
     double sum = 0.0;
     double sum_sq = 0.0;
     double base_sum = 0.0;
-    const std::size_t n = base.rgb.size() / 3;
-    for (std::size_t i = 0; i < n; ++i) {
-        const double d = a.rgb[3 * i + 1] - base.rgb[3 * i + 1];
+    const std::size_t pixels = base.rgb.size() / 3;
+    const auto n = static_cast<double>(pixels);
+    for (std::size_t i = 0; i < pixels; ++i) {
+        const double d = static_cast<double>(a.rgb[3 * i + 1]) - static_cast<double>(base.rgb[3 * i + 1]);
         sum += d;
         sum_sq += d * d;
-        base_sum += base.rgb[3 * i + 1];
+        base_sum += static_cast<double>(base.rgb[3 * i + 1]);
     }
     const double mean = sum / n;
     const double se = std::sqrt((sum_sq / n - mean * mean) / n);

@@ -11,9 +11,9 @@
 //   - environment_radiance: mean luminance of the rest of the environment;
 //   - environment_sharpness_deg: the width over which its brightest feature
 //     rises, (L_max - L_mean) / max |dL / dangle| on a 128 x 64 grid of directions;
-//   - footprints: camera distance to the paint's vertices in view (nearest,
-//     farthest) times the pixel angle 2 tan(fov / 2) / height, in µm via
-//     scene_unit_m (occlusion is not considered: the range is a bound);
+//   - footprints: the distance to the paint along a 32 x 18 grid of camera
+//     rays (nearest, farthest hit) times the camera's pixel angle, in µm via
+//     scene_unit_m (paint seen only in mirrors or through glass is not found);
 //   - viewing_distance_m: the nearest paint distance.
 // The RayMap overload reads the same from a traced map: the header's lights
 // and the records' footprints (1st and 99th percentile).
