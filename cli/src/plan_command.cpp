@@ -34,7 +34,8 @@ struct PlanOptions {
 ordered_json sceneJson(const PlanScene& s) {
     ordered_json lights = ordered_json::array();
     for (const auto& l : s.lights)
-        lights.push_back({{"name", l.name}, {"irradiance_w_m2", l.irradiance_w_m2}, {"solid_angle_sr", l.solid_angle_sr}});
+        lights.push_back(
+            {{"name", l.name}, {"irradiance_w_m2", l.irradiance_w_m2}, {"solid_angle_sr", l.solid_angle_sr}});
     return {{"lights", lights},
             {"environment_radiance", s.environment_radiance},
             {"environment_sharpness_deg", s.environment_sharpness_deg},
@@ -76,12 +77,14 @@ int runPlan(const PlanOptions& o) {
         return 0;
     }
     std::printf("plan for '%s' in %s (preset %s, tolerance dE00 %.2g per pixel, 99th percentile)\n",
-                recipe.name.c_str(), o.scene.c_str(), std::string(presetName(preset)).c_str(), p.tolerance_de);
-    std::printf("fast model: nodes %d, orders %d, bands %d (output %d), slices %d\n", p.fast.nodes, p.fast.orders,
-                p.fast.bands, p.fast.output_bands, p.fast.slices);
+                recipe.name.c_str(), o.scene.c_str(), std::string(presetName(preset)).c_str(),
+                p.tolerance_de);
+    std::printf("fast model: nodes %d, orders %d, bands %d (output %d), slices %d\n", p.fast.nodes,
+                p.fast.orders, p.fast.bands, p.fast.output_bands, p.fast.slices);
     for (const auto& d : p.decisions)
         std::printf("  %-12s %-8s %-40s accepted dE00 %.3g\n               %s\n", d.effect.c_str(),
-                    d.simulate ? "simulate" : "skip", d.setting.c_str(), d.accepted_error_de, d.reason.c_str());
+                    d.simulate ? "simulate" : "skip", d.setting.c_str(), d.accepted_error_de,
+                    d.reason.c_str());
     return 0;
 }
 
@@ -89,10 +92,12 @@ int runPlan(const PlanOptions& o) {
 
 void addPlanCommand(CLI::App& app, CommandAction& action) {
     auto o = std::make_shared<PlanOptions>();
-    CLI::App* cmd = app.add_subcommand("plan", "What to simulate for a recipe in a scene, with reasons and accepted errors");
+    CLI::App* cmd = app.add_subcommand(
+        "plan", "What to simulate for a recipe in a scene, with reasons and accepted errors");
     cmd->add_option("scene", o->scene, "Scene JSON file")->required();
     cmd->add_option("recipe", o->recipe, "Recipe JSON file")->required();
-    cmd->add_option("--preset", o->preset, "Accuracy preset: preview, standard or reference")->capture_default_str();
+    cmd->add_option("--preset", o->preset, "Accuracy preset: preview, standard or reference")
+        ->capture_default_str();
     cmd->add_option("--scene-unit", o->scene_unit_m, "One scene unit in metres (pixel footprints)")
         ->capture_default_str();
     cmd->add_flag("--json", o->json, "JSON output");

@@ -28,7 +28,7 @@ void addSparkleOptions(CLI::App* command, SparkleOption& o);
 
 // Runs the sparkle pass on `image` if the mode says so; returns the line to
 // print ("" for off). Throws InputError for a bad setting.
-std::string applySparkle(const SparkleOption& o, const raymaps::RayMap& map, const Recipe& recipe, Preset preset,
-                         raymaps::RgbImage& image);
+std::string applySparkle(const SparkleOption& o, const raymaps::RayMap& map, const Recipe& recipe,
+                         Preset preset, raymaps::RgbImage& image);
 
 }  // namespace paintlab::cli

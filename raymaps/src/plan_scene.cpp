@@ -62,7 +62,8 @@ void summariseEnvironment(const EnvironmentMap& residual, PlanScene& s) {
             const double right = lum[static_cast<std::size_t>(v * kW + (u + 1) % kW)];
             gradient = std::max(gradient, std::abs(right - l) / dphi_arc);
             if (v + 1 < kH)
-                gradient = std::max(gradient, std::abs(lum[static_cast<std::size_t>((v + 1) * kW + u)] - l) / dtheta);
+                gradient = std::max(gradient,
+                                    std::abs(lum[static_cast<std::size_t>((v + 1) * kW + u)] - l) / dtheta);
         }
     }
     const double width_deg = gradient > 0.0 ? (peak - mean) / gradient * 180.0 / kPi : 180.0;
@@ -92,7 +93,8 @@ PlanScene summariseScene(const Scene& scene, const PlanSceneOptions& options) {
             const Vec3 dir = camera.direction((x + 0.5) * scene.camera.width / kRaysX,
                                               (y + 0.5) * scene.camera.height / kRaysY);
             const Hit hit = tracer.intersect(camera.origin(), dir);
-            if (!hit.found || hit.material < 0 || static_cast<std::size_t>(hit.material) >= scene.materials.size() ||
+            if (!hit.found || hit.material < 0 ||
+                static_cast<std::size_t>(hit.material) >= scene.materials.size() ||
                 scene.materials[static_cast<std::size_t>(hit.material)].kind != MaterialKind::Paint)
                 continue;
             near = std::min(near, hit.t);
@@ -112,7 +114,8 @@ PlanScene summariseScene(const Scene& scene, const PlanSceneOptions& options) {
         const std::string name = "light " + std::to_string(i + 1);
         if (const auto* sun = std::get_if<SunLight>(&scene.lights[i])) {
             const double r = 0.5 * sun->angular_diameter_deg * kPi / 180.0;
-            s.lights.push_back({name + " (sun)", luminance(sun->irradiance), 2.0 * kPi * (1.0 - std::cos(r))});
+            s.lights.push_back(
+                {name + " (sun)", luminance(sun->irradiance), 2.0 * kPi * (1.0 - std::cos(r))});
         } else if (const auto* point = std::get_if<PointLight>(&scene.lights[i])) {
             const double r2 = std::max((point->position - centre).squaredNorm(), 1e-12);
             s.lights.push_back({name + " (point)", luminance(point->intensity) / r2, 0.0});

@@ -39,7 +39,8 @@ Vec3 decode(const std::byte* at) {
 
 void checkSetting(double value, bool zero_ok, const char* name) {
     if (!std::isfinite(value) || value < 0.0 || (!zero_ok && value == 0.0))
-        throw InputError("<argument>", name, std::to_string(value) + (zero_ok ? " must be >= 0" : " must be > 0"));
+        throw InputError("<argument>", name,
+                         std::to_string(value) + (zero_ok ? " must be >= 0" : " must be > 0"));
 }
 
 }  // namespace
@@ -54,8 +55,9 @@ SparklePassStats addSparkle(const RayMap& map, const SparkleModel& model, RgbIma
     if (image.width != h.width || image.height != h.height ||
         image.rgb.size() != static_cast<std::size_t>(h.width) * static_cast<std::size_t>(h.height) * 3)
         throw InputError(map.path().string(), "image",
-                         "the image is " + std::to_string(image.width) + " x " + std::to_string(image.height) +
-                             ", the map " + std::to_string(h.width) + " x " + std::to_string(h.height));
+                         "the image is " + std::to_string(image.width) + " x " +
+                             std::to_string(image.height) + ", the map " + std::to_string(h.width) + " x " +
+                             std::to_string(h.height));
     const auto start = std::chrono::steady_clock::now();
     SparklePassStats stats;
     if (!model.hasFlakes() || h.lights.empty()) return stats;
@@ -105,7 +107,8 @@ SparklePassStats addSparkle(const RayMap& map, const SparkleModel& model, RgbIma
                                         get<float>(rec + RecordLayout::kPosition + 8));
                     const double footprint_um = halfAt(rec + RecordLayout::kFootprint) * unit_um;
                     if (!(footprint_um > 0.0)) continue;
-                    const Rgb3 weight(halfAt(rec + RecordLayout::kWeight), halfAt(rec + RecordLayout::kWeight + 2),
+                    const Rgb3 weight(halfAt(rec + RecordLayout::kWeight),
+                                      halfAt(rec + RecordLayout::kWeight + 2),
                                       halfAt(rec + RecordLayout::kWeight + 4));
                     // The texture's frame from the normal alone: it must not turn with the view.
                     const Frame frame = Frame::fromNormal(n);
@@ -165,7 +168,8 @@ SparklePassStats addSparkle(const RayMap& map, const SparkleModel& model, RgbIma
     stats.pixels = pixels.load();
     stats.glint_pixels = glint_pixels.load();
     const auto visits = light_visits.load();
-    stats.mean_glints = visits > 0 ? static_cast<double>(glints_micro.load()) * 1e-6 / static_cast<double>(visits) : 0.0;
+    stats.mean_glints =
+        visits > 0 ? static_cast<double>(glints_micro.load()) * 1e-6 / static_cast<double>(visits) : 0.0;
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return stats;
 }

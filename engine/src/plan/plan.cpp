@@ -67,7 +67,8 @@ PlanDecision interferenceDecision(const Recipe& recipe, EffectPlan& p) {
     int count = 0;
     for (const Layer& layer : recipe.layers)
         for (const Component& c : layer.components)
-            if (const auto* f = std::get_if<InterferenceFlake>(&c); f != nullptr && f->volume_fraction > 0.0) ++count;
+            if (const auto* f = std::get_if<InterferenceFlake>(&c); f != nullptr && f->volume_fraction > 0.0)
+                ++count;
     p.interference = count > 0;
     d.simulate = p.interference;
     d.setting = p.interference ? "thin-film optics of every interference flake, per band" : "none";
@@ -133,7 +134,8 @@ PlanDecision sparkleDecision(const Recipe& recipe, const PlanScene& scene, Effec
     }
     // Geometries of a multi-angle sparkle instrument (light at 15, 45 and 75
     // deg from a camera on the normal) and the mirror geometry at 30 deg.
-    const std::array<std::array<double, 2>, 4> geometries{{{15.0, 0.0}, {45.0, 0.0}, {75.0, 0.0}, {30.0, 30.0}}};
+    const std::array<std::array<double, 2>, 4> geometries{
+        {{15.0, 0.0}, {45.0, 0.0}, {75.0, 0.0}, {30.0, 30.0}}};
     double worst = 0.0;
     std::string worst_text;
     for (const PlanLight& light : scene.lights) {
@@ -146,7 +148,8 @@ PlanDecision sparkleDecision(const Recipe& recipe, const PlanScene& scene, Effec
             g.view_solid_angle_sr = viewApertureSr(distance);
             const SparkleStats stats = model.evaluate(g);
             double f = 0.0;
-            for (double v : stats.flake_brdf_per_sr) f += v / static_cast<double>(stats.flake_brdf_per_sr.size());
+            for (double v : stats.flake_brdf_per_sr)
+                f += v / static_cast<double>(stats.flake_brdf_per_sr.size());
             // The flakes' light from this light against everything else the
             // pixel shows: the environment on a dark paint (albedo 0.05: the
             // clear coat's 4 % mirror reflection plus a little diffuse light).
@@ -157,18 +160,20 @@ PlanDecision sparkleDecision(const Recipe& recipe, const PlanScene& scene, Effec
             const double delta = share * texturePercentile99(stats);
             if (delta > worst) {
                 worst = delta;
-                worst_text = format("light at %.0f deg, view at %.0f deg: %.3g glinting flakes per element", theta_i,
-                                    theta_o, stats.expected_glints);
+                worst_text = format("light at %.0f deg, view at %.0f deg: %.3g glinting flakes per element",
+                                    theta_i, theta_o, stats.expected_glints);
                 worst_text.append(" from '" + light.name + "'");
             }
         }
     }
-    d.accepted_error_de = deltaEForRelativeChange(worst);
-    p.sparkle = d.accepted_error_de > 0.5 * p.tolerance_de;
+    const double skip_error = deltaEForRelativeChange(worst);
+    p.sparkle = skip_error > 0.5 * p.tolerance_de;
     d.simulate = p.sparkle;
+    d.accepted_error_de = p.sparkle ? 0.0 : skip_error;
     d.setting = p.sparkle ? "sparkle texture on the paint pixels" : "none";
-    d.reason = (p.sparkle ? "resolvable glints: " : "glints average out: ") + worst_text + " at " + element_text +
-               format(" (99th percentile |change| %.3g of the pixel)", worst);
+    d.reason = (p.sparkle ? "resolvable glints: " : "glints average out: ") + worst_text + " at " +
+               element_text +
+               format(" (99th percentile |change| %.3g of the pixel, dE00 %.3g)", worst, skip_error);
     if (!p.sparkle) d.reason.append(": the plan accepts that difference");
     return d;
 }
@@ -202,8 +207,8 @@ public:
                 for (std::size_t b = 0; b < bands; ++b) {
                     std::vector<double> series(static_cast<std::size_t>(m_orders));
                     for (int m = 0; m < m_orders; ++m)
-                        series[static_cast<std::size_t>(m)] =
-                            c[static_cast<std::size_t>(m) * bands + b] * std::exp(-0.5 * m * m * sigma_rad * sigma_rad);
+                        series[static_cast<std::size_t>(m)] = c[static_cast<std::size_t>(m) * bands + b] *
+                                                              std::exp(-0.5 * m * m * sigma_rad * sigma_rad);
                     m_series.push_back(std::move(series));
                 }
             }
@@ -335,7 +340,8 @@ PlanDecision slicesDecision(const Recipe& recipe, EffectPlan& p) {
     d.simulate = true;
     d.setting = std::to_string(slices) + " slices per profiled layer";
     d.accepted_error_de = deltaEForRelativeChange(error);
-    d.reason = format("the concentration varies with depth; %.0f slices hold it within %.2g %%", static_cast<double>(slices), 100.0 * error);
+    d.reason = format("the concentration varies with depth; %.0f slices hold it within %.2g %%",
+                      static_cast<double>(slices), 100.0 * error);
     return d;
 }
 
@@ -344,7 +350,7 @@ PlanDecision slicesDecision(const Recipe& recipe, EffectPlan& p) {
 PlanDecision fullModelDecision(const Recipe& recipe, EffectPlan& p) {
     PlanDecision d;
     d.effect = "full_model";
-    const double tolerance = p.preset == Preset::Preview   ? 0.2
+    const double tolerance = p.preset == Preset::Preview    ? 0.2
                              : p.preset == Preset::Standard ? kDefaultFastModelTolerance
                                                             : 0.05;
     const FastModelValidity v = fastModelValidity(recipe, tolerance);

@@ -26,7 +26,8 @@ double coefficientOfVariation(const std::vector<double>& v) {
 
 }  // namespace
 
-SparkleGrades sparkleGrades(std::span<const double> values, int width, int height, double threshold_contrast) {
+SparkleGrades sparkleGrades(std::span<const double> values, int width, int height,
+                            double threshold_contrast) {
     if (width < 2 || height < 2)
         throw InputError("<argument>", "texture size",
                          std::to_string(width) + " x " + std::to_string(height) + ": each side must be >= 2");
@@ -35,7 +36,8 @@ SparkleGrades sparkleGrades(std::span<const double> values, int width, int heigh
                          std::to_string(values.size()) + " values for " + std::to_string(width) + " x " +
                              std::to_string(height) + " elements");
     if (!(threshold_contrast > 0.0))
-        throw InputError("<argument>", "threshold_contrast", std::to_string(threshold_contrast) + " must be > 0");
+        throw InputError("<argument>", "threshold_contrast",
+                         std::to_string(threshold_contrast) + " must be > 0");
     double sum = 0.0;
     for (std::size_t i = 0; i < values.size(); ++i) {
         const double v = values[i];

@@ -50,11 +50,13 @@ std::vector<SliceFlake> presentFlakes(const Layer& layer, double z0, double z1) 
         const Component& component = layer.components[c];
         // The same presence test as layer_optics.cpp's SlabBuilder (area density > 0).
         if (const auto* m = std::get_if<MirrorFlake>(&component)) {
-            if (m->volume_fraction * meanRelativeConcentration(m->depth_profile, z0, z1) / m->thickness_um > 0.0)
+            if (m->volume_fraction * meanRelativeConcentration(m->depth_profile, z0, z1) / m->thickness_um >
+                0.0)
                 mirrors.push_back({static_cast<int>(c), m->diameter_um});
         } else if (const auto* p = std::get_if<InterferenceFlake>(&component)) {
             const double t_um = (p->mica_thickness_nm + 2.0 * p->tio2_thickness_nm) * 1e-3;
-            if (t_um > 0.0 && p->volume_fraction * meanRelativeConcentration(p->depth_profile, z0, z1) / t_um > 0.0)
+            if (t_um > 0.0 &&
+                p->volume_fraction * meanRelativeConcentration(p->depth_profile, z0, z1) / t_um > 0.0)
                 pearls.push_back({static_cast<int>(c), p->diameter_um});
         }
     }
@@ -81,15 +83,22 @@ struct SparkleModel::Impl {
     std::size_t reference_band = 0;
     bool has_flakes = false;
 
-    // Linear interpolation of a chain table in the ambient polar angle.
-    double chainAt(const std::vector<double>& table, double mu_ambient, std::size_t slice) const {
+    // Where an ambient cosine falls on the chain tables' polar grid.
+    struct ChainPoint {
+        std::size_t k = 0;
+        double t = 0.0;
+    };
+    ChainPoint chainPoint(double mu_ambient) const {
         const int nodes = settings.chain_nodes;
         const double x = std::clamp(std::acos(std::clamp(mu_ambient, 0.0, 1.0)) / (0.5 * kPi), 0.0, 1.0) *
                          static_cast<double>(nodes - 1);
         const auto k = std::min(static_cast<std::size_t>(x), static_cast<std::size_t>(nodes - 2));
-        const double t = x - static_cast<double>(k);
+        return {k, x - static_cast<double>(k)};
+    }
+    // Linear interpolation of a chain table in the ambient polar angle.
+    double chainAt(const std::vector<double>& table, const ChainPoint& p, std::size_t slice) const {
         const std::size_t count = slices.size();
-        return (1.0 - t) * table[k * count + slice] + t * table[(k + 1) * count + slice];
+        return (1.0 - p.t) * table[p.k * count + slice] + p.t * table[(p.k + 1) * count + slice];
     }
 };
 
@@ -109,8 +118,8 @@ double viewApertureSr(double distance_m, double aperture_mm) {
     return kPi * r_m * r_m / (distance_m * distance_m);
 }
 
-double expectedGlints(double flakes_per_um3, double element_area_um2, double height_um, double normal_pdf_per_sr,
-                      double window_sr) {
+double expectedGlints(double flakes_per_um3, double element_area_um2, double height_um,
+                      double normal_pdf_per_sr, double window_sr) {
     return flakes_per_um3 * element_area_um2 * height_um * normal_pdf_per_sr * window_sr;
 }
 
@@ -118,7 +127,8 @@ SparkleModel::SparkleModel(const Recipe& recipe, const SparkleSettings& settings
     : m_impl(std::make_unique<Impl>()) {
     validateRecipe(recipe, recipe.name);
     if (settings.bands < 1 || settings.bands > 81)
-        throw InputError("<argument>", "sparkle bands", std::to_string(settings.bands) + " is not in [1, 81]");
+        throw InputError("<argument>", "sparkle bands",
+                         std::to_string(settings.bands) + " is not in [1, 81]");
     if (settings.slices_per_profiled_layer < 1 || settings.slices_per_profiled_layer > 64)
         throw InputError("<argument>", "sparkle slices_per_profiled_layer",
                          std::to_string(settings.slices_per_profiled_layer) + " is not in [1, 64]");
@@ -217,6 +227,8 @@ SparkleStats SparkleModel::evaluate(const SparkleGeometry& g) const {
         }
     }
 
+    const Impl::ChainPoint at_i = m.chainPoint(g.wi.z);
+    const Impl::ChainPoint at_o = m.chainPoint(g.wo.z);
     for (std::size_t b = 0; b < band_count; ++b) {
         const Band& band = m.bands[b];
         const double n0 = band.stack.ambient_n;
@@ -224,7 +236,8 @@ SparkleStats SparkleModel::evaluate(const SparkleGeometry& g) const {
         for (std::size_t j = 0; j < m.slices.size(); ++j) {
             const mc::Slice& slice = band.stack.slices[j];
             std::size_t active = 0;
-            for (const auto& kind : slice.flakes) if (!kind.orientation.isDelta()) ++active;
+            for (const auto& kind : slice.flakes)
+                if (!kind.orientation.isDelta()) ++active;
             if (active == 0) continue;
             const std::size_t first_term = t;
             t += active;
@@ -235,10 +248,10 @@ SparkleStats SparkleModel::evaluate(const SparkleGeometry& g) const {
             const double mu_i = std::sqrt(1.0 - sin2_i);
             const double mu_o = std::sqrt(1.0 - sin2_o);
             const double scale = (n0 / n) * (n0 / n);
-            const double U_i = m.chainAt(band.up, g.wi.z, j) / scale;  // flux from the ambient into the slice
-            const double U_o = m.chainAt(band.up, g.wo.z, j);          // radiance out, (n0/n)^2 included
+            const double U_i = m.chainAt(band.up, at_i, j) / scale;  // flux from the ambient into the slice
+            const double U_o = m.chainAt(band.up, at_o, j);          // radiance out, (n0/n)^2 included
             const double sigma_e =
-                m.chainAt(band.extinction, g.wi.z, j) / mu_i + m.chainAt(band.extinction, g.wo.z, j) / mu_o;
+                m.chainAt(band.extinction, at_i, j) / mu_i + m.chainAt(band.extinction, at_o, j) / mu_o;
             // Refracted directions (Snell: the tangential part scales by n0 / n) and their half vector.
             const double hx = n0 * (g.wi.x + g.wo.x) / n;
             const double hy = n0 * (g.wi.y + g.wo.y) / n;
@@ -253,7 +266,8 @@ SparkleStats SparkleModel::evaluate(const SparkleGeometry& g) const {
             const double I2 = x > 1e-12 ? -std::expm1(-2.0 * x) / (2.0 * sigma_e) : H;
             const double beta = m.settings.flake_lobe_deg * kPi / 180.0;
             const double omega_w = g.light_solid_angle_sr * g.wi.z * n0 * n0 / (n * n * mu_i) +
-                                   g.view_solid_angle_sr * g.wo.z * n0 * n0 / (n * n * mu_o) + kPi * 4.0 * beta * beta;
+                                   g.view_solid_angle_sr * g.wo.z * n0 * n0 / (n * n * mu_o) +
+                                   kPi * 4.0 * beta * beta;
             std::size_t local = 0;
             for (std::size_t k = 0; k < slice.flakes.size(); ++k) {
                 const mc::FlakeKind& kind = slice.flakes[k];

@@ -59,8 +59,9 @@ double drawTerm(const SparkleTerm& term, mc::PathRng& rng) {
         const double shape = 1.0 / rel_var;
         // Shape < 1 cannot happen here (rel_var <= E[w^2]/E[w]^2 / 256 < 1 unless
         // the slice is > 500 free paths deep); Gamma(k < 1) = Gamma(k + 1) U^(1/k).
-        const double x = shape >= 1.0 ? gammaDraw(shape, rng)
-                                      : gammaDraw(shape + 1.0, rng) * std::pow(1.0 - rng.uniform(), 1.0 / shape);
+        const double x = shape >= 1.0
+                             ? gammaDraw(shape, rng)
+                             : gammaDraw(shape + 1.0, rng) * std::pow(1.0 - rng.uniform(), 1.0 / shape);
         return x * rel_var - 1.0;
     }
     // Poisson by inversion (sequential search; lambda <= 256 keeps exp(-lambda) > 1e-112).
@@ -81,7 +82,8 @@ double drawTerm(const SparkleTerm& term, mc::PathRng& rng) {
 
 }  // namespace
 
-std::uint64_t sparkleCellKey(double x_um, double y_um, double z_um, double element_side_um, std::uint64_t seed) {
+std::uint64_t sparkleCellKey(double x_um, double y_um, double z_um, double element_side_um,
+                             std::uint64_t seed) {
     const double side = element_side_um > 0.0 && std::isfinite(element_side_um)
                             ? std::exp2(std::floor(std::log2(element_side_um)))
                             : 1.0;

@@ -77,10 +77,12 @@ TEST(Plan, SolidPaintSkipsEverythingFlakes) {
 }
 
 TEST(Plan, InterferenceOnlyWithInterferenceFlakes) {
-    const EffectPlan pearl = plan(loadRecipeFile(kDemo / "pearlescent-two-layer.json"), sunScene(30.0), Preset::Standard);
+    const EffectPlan pearl =
+        plan(loadRecipeFile(kDemo / "pearlescent-two-layer.json"), sunScene(30.0), Preset::Standard);
     EXPECT_TRUE(pearl.interference);
     EXPECT_EQ(pearl.fast.bands, presetSettings(Preset::Standard).bands);  // interference colours need them
-    const EffectPlan silver = plan(loadRecipeFile(kDemo / "silver-metallic.json"), sunScene(30.0), Preset::Standard);
+    const EffectPlan silver =
+        plan(loadRecipeFile(kDemo / "silver-metallic.json"), sunScene(30.0), Preset::Standard);
     EXPECT_FALSE(silver.interference);
 }
 
@@ -101,7 +103,8 @@ TEST(Plan, SparkleWhereFlakesAreResolvedAndALightIsBright) {
     Recipe fine = silver;
     std::get<MirrorFlake>(fine.layers[1].components[0]).diameter_um = 4.0;
     const double fine_fp = fadeFootprint(fine);
-    std::printf("sparkle fades at %.3g um pixels for 18 um flakes, %.3g um for 4 um flakes\n", coarse, fine_fp);
+    std::printf("sparkle fades at %.3g um pixels for 18 um flakes, %.3g um for 4 um flakes\n", coarse,
+                fine_fp);
     ASSERT_GT(coarse, 0.0);
     ASSERT_GT(fine_fp, 0.0);
     EXPECT_LT(fine_fp, coarse);
@@ -122,7 +125,8 @@ TEST(Plan, OrdersFollowTheSharpestLobeTheLightingReveals) {
     // Sharply aligned flakes in the sun need every order of the preset.
     Recipe aligned = silver;
     std::get<MirrorFlake>(aligned.layers[1].components[0]).orientation_spread_deg = 3.0;
-    EXPECT_EQ(plan(aligned, sunScene(8000.0), Preset::Standard).fast.orders, presetSettings(Preset::Standard).orders);
+    EXPECT_EQ(plan(aligned, sunScene(8000.0), Preset::Standard).fast.orders,
+              presetSettings(Preset::Standard).orders);
 }
 
 TEST(Plan, FullModelOnlyOutsideTheFastModelsValidity) {
@@ -132,7 +136,8 @@ TEST(Plan, FullModelOnlyOutsideTheFastModelsValidity) {
     flake.volume_fraction = 0.2;
     flake.diameter_um = 40.0;
     EXPECT_TRUE(plan(dense, sunScene(8000.0), Preset::Standard).full_model);
-    EXPECT_FALSE(plan(loadRecipeFile(kDemo / "solid-red.json"), sunScene(8000.0), Preset::Standard).full_model);
+    EXPECT_FALSE(
+        plan(loadRecipeFile(kDemo / "solid-red.json"), sunScene(8000.0), Preset::Standard).full_model);
 }
 
 TEST(Plan, BadSceneSummaryIsAnInputError) {
@@ -149,8 +154,8 @@ TEST(Plan, BadSceneSummaryIsAnInputError) {
 // Pixels -> Lab relative to the brightest pixel's luminance (every pixel
 // no brighter than white, as the planner's bound assumes); returns the 99th
 // percentile of Delta E_00 between two images of the same pixels.
-double percentile99DeltaE(const std::vector<std::vector<double>>& a, const std::vector<std::vector<double>>& b,
-                          std::span<const double> wavelengths) {
+double percentile99DeltaE(const std::vector<std::vector<double>>& a,
+                          const std::vector<std::vector<double>>& b, std::span<const double> wavelengths) {
     std::vector<Xyz> xa;
     std::vector<Xyz> xb;
     double y_max = 0.0;
@@ -209,7 +214,8 @@ TEST(PlanHonesty, FewerOrdersUnderABlurredSkyChangeTheImageLessThanClaimed) {
         const LayeredBrdf b = computeLayeredBrdf(r, reduced);
         const double measured = percentile99DeltaE(blobImage(a, s), blobImage(b, s), a.wavelengthsNm());
         const double claimed = decision(p, "angular").accepted_error_de;
-        std::printf("honesty angular %s: orders %d -> %d, claimed dE %.3g, measured %.3g, fast model %.0f -> %.0f ms\n",
+        std::printf("honesty angular %s: orders %d -> %d, claimed dE %.3g, measured %.3g, fast model %.0f -> "
+                    "%.0f ms\n",
                     name, full.orders, reduced.orders, claimed, measured, 1e3 * a.computeSeconds(),
                     1e3 * b.computeSeconds());
         EXPECT_LE(measured, std::max(claimed, 1e-3)) << name;
@@ -217,28 +223,31 @@ TEST(PlanHonesty, FewerOrdersUnderABlurredSkyChangeTheImageLessThanClaimed) {
 }
 
 TEST(PlanHonesty, FewerBandsForSmoothSpectraChangeTheImageLessThanClaimed) {
-    const Recipe r = loadRecipeFile(kDemo / "solid-red.json");
-    const EffectPlan p = plan(r, sunScene(8000.0), Preset::Standard);
-    FastModelSettings full = presetSettings(Preset::Standard);
-    full.orders = p.fast.orders;  // the angular decision's setting: only the bands differ
-    FastModelSettings reduced = full;
-    reduced.bands = p.fast.bands;
-    const LayeredBrdf a = computeLayeredBrdf(r, full);
-    const LayeredBrdf b = computeLayeredBrdf(r, reduced);
-    std::vector<std::vector<double>> ia;
-    std::vector<std::vector<double>> ib;
-    for (int t = 0; t < 8; ++t)
-        for (int ph = 0; ph < 12; ++ph) {
-            const Direction wi = directionFromAnglesDeg(45.0, 0.0);
-            const Direction wo = directionFromAnglesDeg(5.0 + 70.0 * t / 7.0, 30.0 * ph);
-            ia.push_back(a.eval(wi, wo));
-            ib.push_back(b.eval(wi, wo));
-        }
-    const double measured = percentile99DeltaE(ia, ib, a.wavelengthsNm());
-    const double claimed = decision(p, "bands").accepted_error_de;
-    std::printf("honesty bands solid-red: %d -> %d bands, claimed dE %.3g, measured %.3g, %.0f -> %.0f ms\n",
-                full.bands, reduced.bands, claimed, measured, 1e3 * a.computeSeconds(), 1e3 * b.computeSeconds());
-    EXPECT_LE(measured, std::max(claimed, 1e-3));
+    for (const char* name : {"silver-metallic.json", "solid-red.json"}) {
+        const Recipe r = loadRecipeFile(kDemo / name);
+        const EffectPlan p = plan(r, sunScene(8000.0), Preset::Standard);
+        FastModelSettings full = presetSettings(Preset::Standard);
+        full.orders = p.fast.orders;  // the angular decision's setting: only the bands differ
+        FastModelSettings reduced = full;
+        reduced.bands = p.fast.bands;
+        const LayeredBrdf a = computeLayeredBrdf(r, full);
+        const LayeredBrdf b = computeLayeredBrdf(r, reduced);
+        std::vector<std::vector<double>> ia;
+        std::vector<std::vector<double>> ib;
+        for (int t = 0; t < 8; ++t)
+            for (int ph = 0; ph < 12; ++ph) {
+                const Direction wi = directionFromAnglesDeg(45.0, 0.0);
+                const Direction wo = directionFromAnglesDeg(5.0 + 70.0 * t / 7.0, 30.0 * ph);
+                ia.push_back(a.eval(wi, wo));
+                ib.push_back(b.eval(wi, wo));
+            }
+        const double measured = percentile99DeltaE(ia, ib, a.wavelengthsNm());
+        const double claimed = decision(p, "bands").accepted_error_de;
+        std::printf("honesty bands %s: %d -> %d bands, claimed dE %.3g, measured %.3g, %.0f -> %.0f ms\n",
+                    name, full.bands, reduced.bands, claimed, measured, 1e3 * a.computeSeconds(),
+                    1e3 * b.computeSeconds());
+        EXPECT_LE(measured, std::max(claimed, 1e-3)) << name;
+    }
 }
 
 // Sparkle skipped at the footprint where it fades in the sun: the texture,
@@ -259,8 +268,8 @@ TEST(PlanHonesty, SkippedSparkleChangesTheImageLessThanClaimed) {
     fs.output_bands = 0;  // the same 16 wavelengths as the sparkle model
     const LayeredBrdf brdf = computeLayeredBrdf(r, fs);
     double worst = 0.0;
-    for (const auto& [ti, to] : {std::array<double, 2>{15, 0}, std::array<double, 2>{45, 0}, std::array<double, 2>{75, 0},
-                                 std::array<double, 2>{30, 30}}) {
+    for (const auto& [ti, to] : {std::array<double, 2>{15, 0}, std::array<double, 2>{45, 0},
+                                 std::array<double, 2>{75, 0}, std::array<double, 2>{30, 30}}) {
         SparkleGeometry g;
         g.wi = directionFromAnglesDeg(ti, 0.0);
         g.wo = directionFromAnglesDeg(to, 180.0);
@@ -272,7 +281,8 @@ TEST(PlanHonesty, SkippedSparkleChangesTheImageLessThanClaimed) {
         const auto albedo = brdf.albedo(g.wo);
         std::vector<double> base(f.size());
         for (std::size_t k = 0; k < f.size(); ++k)
-            base[k] = f[k] * scene.lights[0].irradiance_w_m2 * g.wi.z + albedo[k] * scene.environment_radiance;
+            base[k] =
+                f[k] * scene.lights[0].irradiance_w_m2 * g.wi.z + albedo[k] * scene.environment_radiance;
         std::vector<std::vector<double>> without;
         std::vector<std::vector<double>> with;
         for (int i = 0; i < 64; ++i)
@@ -286,7 +296,8 @@ TEST(PlanHonesty, SkippedSparkleChangesTheImageLessThanClaimed) {
             }
         worst = std::max(worst, percentile99DeltaE(without, with, brdf.wavelengthsNm()));
     }
-    std::printf("honesty sparkle silver at %.3g um pixels: claimed dE %.3g, measured %.3g\n", fp, claimed, worst);
+    std::printf("honesty sparkle silver at %.3g um pixels: claimed dE %.3g, measured %.3g\n", fp, claimed,
+                worst);
     EXPECT_LE(worst, claimed);
 }
 

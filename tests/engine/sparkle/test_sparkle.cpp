@@ -57,8 +57,9 @@ TEST(Sparkle, FlakeBrdfIsTheFastModelsFlakeLight) {
     s.order_tolerance = 1e-8;
     const LayeredBrdf brdf = computeLayeredBrdf(r, s);
     // Near the mirror direction and 25 deg off it: the lobe of a 20 deg spread.
-    for (const auto& [ti, pi, to, po] : {std::array<double, 4>{45, 0, 40, 180}, std::array<double, 4>{30, 0, 20, 180},
-                                         std::array<double, 4>{45, 0, 20, 180}, std::array<double, 4>{20, 0, 15, 90}}) {
+    for (const auto& [ti, pi, to, po] :
+         {std::array<double, 4>{45, 0, 40, 180}, std::array<double, 4>{30, 0, 20, 180},
+          std::array<double, 4>{45, 0, 20, 180}, std::array<double, 4>{20, 0, 15, 90}}) {
         const SparkleStats stats = model.evaluate(geometry(ti, pi, to, po, 1e4));
         const auto f = brdf.eval(directionFromAnglesDeg(ti, pi), directionFromAnglesDeg(to, po));
         // 3 %: multiple flake-flake scattering (~ coverage^2 / 2 of the flakes'
@@ -82,8 +83,8 @@ TEST(Sparkle, GlintRadianceTimesCountIsTheMean) {
     const SparkleTerm& t = stats.terms[0];
     EXPECT_GT(t.mean_glints, 0.0);
     const std::size_t ref = 1;  // 580 nm of 380, 580, 780: the reference band
-    EXPECT_NEAR(t.mean_glints * t.mean_weight * t.glint_radiance_per_irradiance[ref], t.flake_brdf_per_sr[ref] * g.wi.z,
-                1e-9 * t.flake_brdf_per_sr[ref]);
+    EXPECT_NEAR(t.mean_glints * t.mean_weight * t.glint_radiance_per_irradiance[ref],
+                t.flake_brdf_per_sr[ref] * g.wi.z, 1e-9 * t.flake_brdf_per_sr[ref]);
     EXPECT_EQ(t.layer, 1);
     EXPECT_EQ(t.component, 0);
 }
@@ -141,7 +142,8 @@ Moments textureMoments(const SparkleStats& stats, int n, double side_um, std::ui
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
             double v = 0.0;
-            drawSparkle(stats, sparkleCellKey((i + 0.5) * side_um, (j + 0.5) * side_um, 0.0, side_um, seed), {&v, 1});
+            drawSparkle(stats, sparkleCellKey((i + 0.5) * side_um, (j + 0.5) * side_um, 0.0, side_um, seed),
+                        {&v, 1});
             x.push_back(v);
             m += v;
         }
@@ -173,12 +175,13 @@ TEST(Sparkle, TextureMeanIsTheBrdfAndVarianceIsEq4) {
         const Moments mo = textureMoments(stats, 300, std::sqrt(area));
         const double z_mean = mo.mean / std::sqrt(mo.variance / mo.n);
         EXPECT_LT(std::abs(z_mean), 3.0) << "Lambda " << t.mean_glints;
-        std::printf("Lambda %.3g: mean(X - 1) z = %+.2f, variance %.4g vs eq. (4) %.4g\n", t.mean_glints, z_mean,
-                    mo.variance, t.relativeVariance());
+        std::printf("Lambda %.3g: mean(X - 1) z = %+.2f, variance %.4g vs eq. (4) %.4g\n", t.mean_glints,
+                    z_mean, mo.variance, t.relativeVariance());
         // The sample variance's standard error from the sample fourth moment.
         const double se_var = std::sqrt(std::max(mo.m4 - mo.variance * mo.variance, 0.0) / mo.n);
         EXPECT_LT(std::abs(mo.variance - t.relativeVariance()) / se_var, 3.0)
-            << "Lambda " << t.mean_glints << ": variance " << mo.variance << ", eq. (4) " << t.relativeVariance();
+            << "Lambda " << t.mean_glints << ": variance " << mo.variance << ", eq. (4) "
+            << t.relativeVariance();
     }
 }
 
@@ -213,8 +216,10 @@ TEST(Sparkle, SpectralModulationHasZeroMeanInEveryBand) {
 // proportionally less contrast.
 TEST(Sparkle, FadesForSmallFlakesDenseFlakesAndLargeElements) {
     const SparkleGeometry g = geometry(45, 0, 38, 175, 1e4);
-    const double big = SparkleModel(sparseFlakes(0.002, 20.0, 30.0), {.bands = 1}).evaluate(g).relative_variance;
-    const double tiny = SparkleModel(sparseFlakes(0.002, 20.0, 1.0), {.bands = 1}).evaluate(g).relative_variance;
+    const double big =
+        SparkleModel(sparseFlakes(0.002, 20.0, 30.0), {.bands = 1}).evaluate(g).relative_variance;
+    const double tiny =
+        SparkleModel(sparseFlakes(0.002, 20.0, 1.0), {.bands = 1}).evaluate(g).relative_variance;
     EXPECT_NEAR(tiny / big, 1.0 / 900.0, 1e-9);
     // Ten times the flakes, little extinction (coverage 0.008 -> 0.08): ~1/10.
     const double sparse = SparkleModel(sparseFlakes(0.0002), {.bands = 1}).evaluate(g).relative_variance;

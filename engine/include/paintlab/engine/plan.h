@@ -56,9 +56,9 @@ struct PlanScene {
 };
 
 struct PlanDecision {
-    std::string effect;   // "interference", "sparkle", "angular", "bands", "slices", "full_model"
+    std::string effect;    // "interference", "sparkle", "angular", "bands", "slices", "full_model"
     bool simulate = true;  // computed (fully or at the chosen setting) or skipped
-    std::string setting;  // what the engine runs, e.g. "orders 8, nodes 16"
+    std::string setting;   // what the engine runs, e.g. "orders 8, nodes 16"
     std::string reason;
     double accepted_error_de = 0.0;  // claimed Delta E_00 (99th percentile) of what is skipped or reduced
 };

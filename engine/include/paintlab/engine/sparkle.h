@@ -97,9 +97,9 @@ struct SparkleSettings {
 // the paint's local frame (z = normal); for a texture that stays put when the
 // view turns, the frame's tangent must depend on the surface only (not on the view).
 struct SparkleGeometry {
-    Direction wi;                       // towards the light (unit, z > 0)
-    Direction wo;                       // towards the viewer (unit, z > 0)
-    double element_area_um2 = 0.0;      // surface element: pixel footprint on the surface, or eyeElementAreaUm2
+    Direction wi;                   // towards the light (unit, z > 0)
+    Direction wo;                   // towards the viewer (unit, z > 0)
+    double element_area_um2 = 0.0;  // surface element: pixel footprint on the surface, or eyeElementAreaUm2
     double light_solid_angle_sr = 0.0;  // the light's angular size (sun: 6.8e-5 sr); 0 for a point
     double view_solid_angle_sr = 0.0;   // the viewer's aperture seen from the surface (viewApertureSr)
 };
@@ -117,13 +117,13 @@ struct SparkleTerm {
     int slice = 0;      // depth slice within the layer (0 = top)
     double top_um = 0.0, bottom_um = 0.0;
     double diameter_um = 0.0;
-    double mean_glints = 0.0;      // Lambda, eq. (1), at the reference band (~560 nm)
-    double mean_weight = 1.0;      // E[w] over the slice, eq. (2)
-    double mean_weight_sq = 1.0;   // E[w^2]
-    double sigma_e_per_um = 0.0;   // the reference band's round-trip extinction, eq. (2)
-    double half_slope_x = 0.0;     // h'_x / h'_z, h'_y / h'_z: where the window sits in slope space
+    double mean_glints = 0.0;     // Lambda, eq. (1), at the reference band (~560 nm)
+    double mean_weight = 1.0;     // E[w] over the slice, eq. (2)
+    double mean_weight_sq = 1.0;  // E[w^2]
+    double sigma_e_per_um = 0.0;  // the reference band's round-trip extinction, eq. (2)
+    double half_slope_x = 0.0;    // h'_x / h'_z, h'_y / h'_z: where the window sits in slope space
     double half_slope_y = 0.0;
-    double window_width_rad = 0.0;  // angular diameter of Omega_h': 2 sqrt(Omega_h' / pi)
+    double window_width_rad = 0.0;          // angular diameter of Omega_h': 2 sqrt(Omega_h' / pi)
     std::vector<double> flake_brdf_per_sr;  // this term's share of f_flake, eq. (3), per band
     // L_g(0) / E, eq. (2), per band: one glint at the slice's top (1/sr).
     std::vector<double> glint_radiance_per_irradiance;
@@ -168,7 +168,7 @@ private:
 // The Poisson mean (1) for given flake numbers: flakes per volume rho, the
 // element area, the slice height, the normal density at h' and the window.
 // What the full model's explicit flake tile is counted against (tests).
-double expectedGlints(double flakes_per_um3, double element_area_um2, double height_um, double normal_pdf_per_sr,
-                      double window_sr);
+double expectedGlints(double flakes_per_um3, double element_area_um2, double height_um,
+                      double normal_pdf_per_sr, double window_sr);
 
 }  // namespace paintlab

@@ -33,6 +33,7 @@ struct PlanSceneOptions {
 PlanScene summariseScene(const Scene& scene, const PlanSceneOptions& options = {});
 PlanScene summariseRayMap(const RayMap& map, const PlanSceneOptions& options = {});
 
-EffectPlan plan(const Recipe& recipe, const Scene& scene, Preset preset, const PlanSceneOptions& options = {});
+EffectPlan plan(const Recipe& recipe, const Scene& scene, Preset preset,
+                const PlanSceneOptions& options = {});
 
 }  // namespace paintlab::raymaps

@@ -35,9 +35,9 @@ struct SparklePassSettings {
 };
 
 struct SparklePassStats {
-    std::uint64_t pixels = 0;         // paint pixels visited
-    std::uint64_t glint_pixels = 0;   // pixels whose draw held at least one glint (any light)
-    double mean_glints = 0.0;         // mean Poisson mean per pixel and light
+    std::uint64_t pixels = 0;        // paint pixels visited
+    std::uint64_t glint_pixels = 0;  // pixels whose draw held at least one glint (any light)
+    double mean_glints = 0.0;        // mean Poisson mean per pixel and light
     double seconds = 0.0;
 };
 
