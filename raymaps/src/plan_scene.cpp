@@ -34,7 +34,10 @@ void checkOptions(const PlanSceneOptions& o) {
 void summariseEnvironment(const EnvironmentMap& residual, PlanScene& s) {
     constexpr int kW = 128;
     constexpr int kH = 64;
-    std::vector<double> lum(static_cast<std::size_t>(kW * kH));
+    std::vector<double> lum(static_cast<std::size_t>(kW) * static_cast<std::size_t>(kH));
+    const auto at = [&](int v, int u) -> double& {
+        return lum[static_cast<std::size_t>(v) * static_cast<std::size_t>(kW) + static_cast<std::size_t>(u)];
+    };
     double sum = 0.0;
     double weight = 0.0;
     double peak = 0.0;
@@ -44,7 +47,7 @@ void summariseEnvironment(const EnvironmentMap& residual, PlanScene& s) {
             const double phi = 2.0 * kPi * (u + 0.5) / kW;
             const Vec3 d(std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi));
             const double l = luminance(residual.radiance(d));
-            lum[static_cast<std::size_t>(v * kW + u)] = l;
+            at(v, u) = l;
             sum += l * std::sin(theta);
             weight += std::sin(theta);
             peak = std::max(peak, l);
@@ -58,12 +61,10 @@ void summariseEnvironment(const EnvironmentMap& residual, PlanScene& s) {
         const double theta = kPi * (v + 0.5) / kH;
         const double dphi_arc = 2.0 * kPi / kW * std::max(std::sin(theta), 0.05);
         for (int u = 0; u < kW; ++u) {
-            const double l = lum[static_cast<std::size_t>(v * kW + u)];
-            const double right = lum[static_cast<std::size_t>(v * kW + (u + 1) % kW)];
+            const double l = at(v, u);
+            const double right = at(v, (u + 1) % kW);
             gradient = std::max(gradient, std::abs(right - l) / dphi_arc);
-            if (v + 1 < kH)
-                gradient = std::max(gradient,
-                                    std::abs(lum[static_cast<std::size_t>((v + 1) * kW + u)] - l) / dtheta);
+            if (v + 1 < kH) gradient = std::max(gradient, std::abs(at(v + 1, u) - l) / dtheta);
         }
     }
     const double width_deg = gradient > 0.0 ? (peak - mean) / gradient * 180.0 / kPi : 180.0;
@@ -159,7 +160,10 @@ PlanScene summariseRayMap(const RayMap& map, const PlanSceneOptions& options) {
             Rgb3 e = Rgb3::Zero();
             for (int j = 0; j < h.cells; ++j)
                 for (int c = 0; c < 3; ++c) {
-                    std::memcpy(&bits, rec + RecordLayout::kMoments0 + 6 * j + 2 * c, sizeof bits);
+                    std::memcpy(&bits,
+                                rec + RecordLayout::kMoments0 + 6 * static_cast<std::size_t>(j) +
+                                    2 * static_cast<std::size_t>(c),
+                                sizeof bits);
                     f.setBits(bits);
                     e[c] += static_cast<double>(static_cast<float>(f));
                 }

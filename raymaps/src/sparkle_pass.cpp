@@ -102,9 +102,9 @@ SparklePassStats addSparkle(const RayMap& map, const SparkleModel& model, RgbIma
                     const Vec3 v = decode(rec + RecordLayout::kView);
                     const double mu_o = n.dot(v);
                     if (!(mu_o > 1e-3)) continue;
-                    const Vec3 position(get<float>(rec + RecordLayout::kPosition),
-                                        get<float>(rec + RecordLayout::kPosition + 4),
-                                        get<float>(rec + RecordLayout::kPosition + 8));
+                    const Vec3 position(static_cast<double>(get<float>(rec + RecordLayout::kPosition)),
+                                        static_cast<double>(get<float>(rec + RecordLayout::kPosition + 4)),
+                                        static_cast<double>(get<float>(rec + RecordLayout::kPosition + 8)));
                     const double footprint_um = halfAt(rec + RecordLayout::kFootprint) * unit_um;
                     if (!(footprint_um > 0.0)) continue;
                     const Rgb3 weight(halfAt(rec + RecordLayout::kWeight),
