@@ -206,6 +206,9 @@ TEST(PlanHonesty, FewerOrdersUnderABlurredSkyChangeTheImageLessThanClaimed) {
         const double sharpness = 90.0;
         const EffectPlan p = plan(r, overcastScene(sharpness), Preset::Standard);
         FastModelSettings full = presetSettings(Preset::Standard);
+        // The 24 computed bands without the 81-band interpolation: the
+        // truncation does not depend on it, and eval() is 3x cheaper.
+        full.output_bands = 0;
         ASSERT_LT(p.fast.orders, full.orders) << name;
         FastModelSettings reduced = full;
         reduced.orders = p.fast.orders;
