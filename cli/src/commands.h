@@ -34,4 +34,7 @@ void addDbCommands(CLI::App& app, CommandAction& action);
 // Registers `raymap build`, `relight`, `render` and `reference` (ray maps, docs/RAYMAPS.md).
 void addRaymapCommands(CLI::App& app, CommandAction& action);
 
+// Registers `plan`: the effect planner's decisions for a recipe in a scene (issue 7).
+void addPlanCommand(CLI::App& app, CommandAction& action);
+
 }  // namespace paintlab::cli

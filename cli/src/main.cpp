@@ -31,6 +31,7 @@ int run(int argc, char** argv) {
     paintlab::cli::addMcCommands(app, action);
     paintlab::cli::addDbCommands(app, action);
     paintlab::cli::addRaymapCommands(app, action);
+    paintlab::cli::addPlanCommand(app, action);
 
     try {
         app.parse(argc, argv);

@@ -2,6 +2,7 @@
 // (docs/RAYMAPS.md). Options are a public contract (issue 6): extend, never rename.
 
 #include "commands.h"
+#include "sparkle_option.h"
 
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/layered_brdf.h"
@@ -49,6 +50,7 @@ struct RelightOptions {
     std::string out;
     double exposure_ev = 0.0;
     int repeat = 1;
+    SparkleOption sparkle;
 };
 
 void addBuildOptions(CLI::App* command, BuildOptions& o) {
@@ -144,6 +146,7 @@ int relightMap(const RelightOptions& o, const std::filesystem::path& map_path) {
         best_s = std::min(best_s, secondsSince(start));
     }
     const double cpu_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC / o.repeat;
+    const std::string sparkle = applySparkle(o.sparkle, *map, recipe, preset, image);
     raymaps::writeImage(image, o.out, o.exposure_ev);
     std::printf("relit %s: %d x %d, %llu paint pixels\n", o.out.c_str(), image.width, image.height,
                 static_cast<unsigned long long>(map->header().paint_pixels));
@@ -151,6 +154,7 @@ int relightMap(const RelightOptions& o, const std::filesystem::path& map_path) {
                 "%.2f ms CPU (mean over threads and repeats)\n",
                 1e3 * load_s, o.preset.c_str(), 1e3 * brdf_s, 1e3 * tables_s, 1e3 * best_s,
                 o.repeat > 1 ? " (best of --repeat)" : "", 1e3 * cpu_s);
+    if (!sparkle.empty()) std::printf("%s\n", sparkle.c_str());
     return 0;
 }
 
@@ -218,6 +222,7 @@ void addRaymapCommands(CLI::App& app, CommandAction& action) {
     CLI::App* relight = app.add_subcommand("relight", "Re-shade the paint of a ray map with a recipe");
     relight->add_option("map", r->map, "Ray-map file (.prm)")->required();
     addRelightOptions(relight, *r);
+    addSparkleOptions(relight, r->sparkle);
     relight->add_option("--repeat", r->repeat, "Relight this many times and report the best time")
         ->capture_default_str();
     relight->callback([r, &action] { action = [r] { return relightMap(*r, r->map); }; });
@@ -239,6 +244,7 @@ void addRaymapCommands(CLI::App& app, CommandAction& action) {
     CLI::App* render = app.add_subcommand("render", "raymap build, then relight (the map is not kept)");
     render->add_option("scene", rb->scene, "Scene JSON file")->required();
     addRelightOptions(render, *rr);
+    addSparkleOptions(render, rr->sparkle);
     addBuildOptions(render, *rb);
     render->callback([rb, rr, &action] {
         action = [rb, rr] {
@@ -246,6 +252,8 @@ void addRaymapCommands(CLI::App& app, CommandAction& action) {
                                               ("paintlab-render-" + std::to_string(getpid()) + ".prm");
             checkImagePath(rr->out);
             (void)presetFromName(rr->preset);
+            rr->sparkle.camera_scene = rb->scene;
+            rr->sparkle.camera_height = rb->height;
             const RemoveOnExit remove(map);
             build(*rb, map);
             return relightMap(*rr, map);

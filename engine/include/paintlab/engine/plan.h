@@ -1,0 +1,87 @@
+#pragma once
+// The effect planner (shared/ARCHITECTURE.md, "Effect planner"; issue 7):
+// from the recipe, a summary of how the scene lights and sees the paint, and
+// an accuracy preset, decide what to simulate, each decision with its reason
+// and the error it accepts.
+//
+// The engine does not know scenes (raymaps depends on the engine, not the
+// other way round), so the lighting and viewing come as a PlanScene; the
+// raymaps library summarises its Scene into one (raymaps/plan_scene.h) and
+// offers plan(const Recipe&, const raymaps::Scene&, Preset).
+//
+// Errors are CIEDE2000 colour differences per pixel (the 99th percentile
+// over the paint's pixels is what the planner's honesty tests measure). A
+// relative change delta of a pixel's radiance changes its CIELAB lightness
+// by 116 |(1 + delta)^(1/3) - 1| (Y/Y_white)^(1/3) and its chroma in the same
+// ratio; with S_L >= 1 and S_C = 1 + 0.045 C* >= 1 (CIE 142-2001) the
+// lightness part bounds Delta E_00 for pixels no brighter than white, which
+// is what the plan claims (deltaEForRelativeChange). A decision is
+// "skip/reduce" only when its claimed error is below half the preset's
+// tolerance (preview 2, standard 1, reference 0.3), so that two accepted
+// errors together stay within it.
+
+#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/recipe.h"
+
+#include <string>
+#include <vector>
+
+namespace paintlab {
+
+// A compact light (a sun, a lamp, an HDR hotspot) as the paint sees it.
+struct PlanLight {
+    std::string name;
+    double irradiance_w_m2 = 0.0;  // luminance-weighted, on a surface facing it
+    double solid_angle_sr = 0.0;   // of its disk (0: a point)
+};
+
+struct PlanScene {
+    std::string source;  // what was summarised (for the reasons)
+    std::vector<PlanLight> lights;
+    // The rest of the lighting (environment without the compact lights,
+    // light from other objects): mean luminance radiance, W/(m^2 sr).
+    double environment_radiance = 0.0;
+    // Angular width (degrees) of its sharpest feature: how narrow a BRDF lobe
+    // the environment can reveal (180: uniform).
+    double environment_sharpness_deg = 180.0;
+    // Pixel footprint on the paint (width of a pixel at the hit, µm), smallest
+    // and largest over the paint; 0: unknown (then viewing_distance_m and the
+    // eye's 1 arcmin are used).
+    double footprint_min_um = 0.0;
+    double footprint_max_um = 0.0;
+    double viewing_distance_m = 0.0;
+    // Whether the lighting has spectra (true) or only RGB (the ray maps: then
+    // the band count is the ingredients' matter alone).
+    bool spectral_lighting = false;
+};
+
+struct PlanDecision {
+    std::string effect;    // "interference", "sparkle", "angular", "bands", "slices", "full_model"
+    bool simulate = true;  // computed (fully or at the chosen setting) or skipped
+    std::string setting;   // what the engine runs, e.g. "orders 8, nodes 16"
+    std::string reason;
+    double accepted_error_de = 0.0;  // claimed Delta E_00 (99th percentile) of what is skipped or reduced
+};
+
+struct EffectPlan {
+    Preset preset = Preset::Standard;
+    double tolerance_de = 1.0;
+    FastModelSettings fast;  // the preset's settings, reduced where the plan allows
+    bool interference = false;
+    bool sparkle = false;
+    bool full_model = false;
+    std::vector<PlanDecision> decisions;
+};
+
+// The preset's colour tolerance (Delta E_00): preview 2, standard 1, reference 0.3.
+double planToleranceDe(Preset preset);
+
+// Upper bound of the Delta E_00 of a pixel whose radiance changes by the
+// relative amount delta (> -1), for pixels no brighter than white (see above).
+double deltaEForRelativeChange(double delta);
+
+// Throws InputError if the recipe is invalid or the scene summary holds a
+// negative or non-finite number (naming the field of PlanScene).
+EffectPlan plan(const Recipe& recipe, const PlanScene& scene, Preset preset);
+
+}  // namespace paintlab
