@@ -183,23 +183,40 @@ Rgb3 PathTracer::directLight(const Hit& hit, const Vec3& wo, const Frame& frame,
 
 Vec3 PathTracer::deltaBounce(const Material& m, const Hit& hit, const Vec3& direction, Rng& rng,
                              Rgb3& beta) const {
-    const Vec3 wo = -direction;
-    const Vec3 ng = hit.geometric_normal.dot(wo) >= 0.0 ? hit.geometric_normal : Vec3(-hit.geometric_normal);
-    Vec3 ns = hit.shading_normal.dot(ng) >= 0.0 ? hit.shading_normal : Vec3(-hit.shading_normal);
-    if (ns.dot(wo) <= 0.0) ns = ng;
     if (m.kind == MaterialKind::Mirror) {
+        const Vec3 wo = -direction;
+        const Vec3 ng =
+            hit.geometric_normal.dot(wo) >= 0.0 ? hit.geometric_normal : Vec3(-hit.geometric_normal);
+        Vec3 ns = hit.shading_normal.dot(ng) >= 0.0 ? hit.shading_normal : Vec3(-hit.shading_normal);
+        if (ns.dot(wo) <= 0.0) ns = ng;
         beta = beta.cwiseProduct(m.albedo);
         const Vec3 dir = reflect(wo, ns);
         return dir.dot(ng) > 0.0 ? dir : reflect(wo, ng);
     }
     // A smooth dielectric: reflect or refract with the Fresnel probability,
     // so the throughput is unchanged (clear glass).
+    const GlassSplit split = glassSplit(m, hit, direction);
+    return rng.uniform() < split.reflectance ? split.reflected : split.refracted;
+}
+
+PathTracer::GlassSplit PathTracer::glassSplit(const Material& m, const Hit& hit,
+                                              const Vec3& direction) const {
+    const Vec3 wo = -direction;
+    const Vec3 ng = hit.geometric_normal.dot(wo) >= 0.0 ? hit.geometric_normal : Vec3(-hit.geometric_normal);
+    Vec3 ns = hit.shading_normal.dot(ng) >= 0.0 ? hit.shading_normal : Vec3(-hit.shading_normal);
+    if (ns.dot(wo) <= 0.0) ns = ng;
     const bool entering = hit.geometric_normal.dot(wo) >= 0.0;
     const double eta = entering ? m.ior : 1.0 / m.ior;
     const double cos_i = std::clamp(wo.dot(ns), 0.0, 1.0);
-    if (rng.uniform() < fresnelDielectric(cos_i, eta)) return reflect(wo, ns);
-    const double cos_t = refractedCos(cos_i, eta);
-    return (-wo / eta + (cos_i / eta - cos_t) * ns).normalized();
+    GlassSplit split;
+    split.reflectance = std::clamp(fresnelDielectric(cos_i, eta), 0.0, 1.0);
+    split.reflected = reflect(wo, ns);
+    split.refracted = split.reflected;  // total internal reflection
+    if (split.reflectance < 1.0) {
+        const double cos_t = refractedCos(cos_i, eta);
+        split.refracted = (-wo / eta + (cos_i / eta - cos_t) * ns).normalized();
+    }
+    return split;
 }
 
 std::uint64_t PathTracer::raysTraced() const { return m_tracer.raysTraced(); }
