@@ -72,31 +72,40 @@ RelightTables::RelightTables(const LayeredBrdf& brdf, int cells, int orders)
     std::vector<float> moments(nu * per_node, 0.0F);
     std::vector<float> coats(nu * 3, 0.0F);
 
+    // Fourier cosine coefficients of f_rgb(mu_o, mu_i, phi) = sum_m a_m
+    // cos(m phi) at every node pair, straight from the fast model's tables
+    // and reduced to linear sRGB there (one basis per cosine, one product per
+    // order, band and mu_o; pair by pair it cost 20x more).
+    const auto series_orders = static_cast<std::size_t>(brdf.orders());
+    std::vector<double> mu_nodes(nu);
+    for (int k = 0; k < kN; ++k) mu_nodes[static_cast<std::size_t>(k)] = grid::muNode(k);
+    Eigen::MatrixXd weights(static_cast<Eigen::Index>(bands), 3);
+    for (std::size_t b = 0; b < bands; ++b)
+        for (std::size_t c = 0; c < 3; ++c)
+            weights(static_cast<Eigen::Index>(b), static_cast<Eigen::Index>(c)) = m_weights[3 * b + c];
+    std::vector<double> series(nu * nu * series_orders * 3);
+    brdf.fourierCoefficientsGrid(mu_nodes, mu_nodes, weights, series);
+
     tbb::parallel_for(0, kN, [&](int o) {
-        const double mu_o = grid::muNode(o);
-        std::vector<double> spectrum(bands);
         std::vector<Rgb3> a(static_cast<std::size_t>(n_phi));
         std::vector<Rgb3> node_a(static_cast<std::size_t>(kN * orders),
                                  Rgb3::Zero());  // a_m at the theta_i nodes
-        // Fourier cosine coefficients of f_rgb(mu_o, mu_i, phi): f = sum_m a_m
-        // cos(m phi), straight from the fast model's tables (one product per
-        // order and band; sampling eval() over phi cost 9x more).
-        std::vector<double> series(static_cast<std::size_t>(brdf.orders()) * bands);
-        const auto coefficients = [&](double mu_i) {
-            brdf.fourierCoefficients(mu_o, mu_i, series);
+        const auto coefficients = [&](int i) {
             for (int m = 0; m < n_phi; ++m) {
                 const auto mm = static_cast<std::size_t>(m);
-                if (m >= brdf.orders()) {
+                if (mm >= series_orders) {
                     a[mm] = Rgb3::Zero();
                     continue;
                 }
-                std::copy_n(series.begin() + static_cast<std::ptrdiff_t>(mm * bands), bands,
-                            spectrum.begin());
-                a[mm] = toRgb(spectrum);
+                const double* at =
+                    series.data() +
+                    ((static_cast<std::size_t>(o) * nu + static_cast<std::size_t>(i)) * series_orders + mm) *
+                        3;
+                a[mm] = Rgb3(at[0], at[1], at[2]);
             }
         };
         for (int i = 0; i < kN; ++i) {
-            coefficients(grid::muNode(i));
+            coefficients(i);
             for (int m = 0; m < orders && m < n_phi; ++m)
                 node_a[index2(i, orders, m)] = a[static_cast<std::size_t>(m)];
             for (int c = 0; c < kC; ++c) {
@@ -143,7 +152,7 @@ RelightTables::RelightTables(const LayeredBrdf& brdf, int cells, int orders)
                             static_cast<std::size_t>(ch)] =
                         static_cast<float>(sum[static_cast<std::size_t>(m)][ch] * 2.0 * cells);
         }
-        const Rgb3 coat = toRgb(brdf.specularReflectance(mu_o));
+        const Rgb3 coat = toRgb(brdf.specularReflectance(grid::muNode(o)));
         for (int ch = 0; ch < 3; ++ch)
             coats[3 * static_cast<std::size_t>(o) + static_cast<std::size_t>(ch)] =
                 static_cast<float>(coat[ch]);
