@@ -201,7 +201,7 @@ Rgb3 RelightTables::lightTable(double mu_o, double mu_i, double cos_dphi) const 
     grid::phiIndex(cos_dphi, kc, tc);
     std::array<float, 4> f{};
     grid::trilinear(m_light.data() + grid::lightNode(ko, ki, kc), to, ti, tc, f.data());
-    return {f[0], f[1], f[2]};
+    return Eigen::Vector3f(f[0], f[1], f[2]).cast<double>();
 }
 
 Rgb3 RelightTables::coat(double mu_o) const {

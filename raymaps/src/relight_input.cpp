@@ -106,9 +106,10 @@ RelightInput::RelightInput(const RayMap& map) {
             m_pixel[i] = get<std::uint32_t>(rec + RecordLayout::kPixel);
             const Eigen::Vector3d nrm = octahedralAt(rec + RecordLayout::kNormal);
             const Eigen::Vector3d view = octahedralAt(rec + RecordLayout::kView);
-            const Eigen::Vector3d position(get<float>(rec + RecordLayout::kPosition),
-                                           get<float>(rec + RecordLayout::kPosition + 4),
-                                           get<float>(rec + RecordLayout::kPosition + 8));
+            const Eigen::Vector3d position = Eigen::Vector3f(get<float>(rec + RecordLayout::kPosition),
+                                                             get<float>(rec + RecordLayout::kPosition + 4),
+                                                             get<float>(rec + RecordLayout::kPosition + 8))
+                                                 .cast<double>();
             Eigen::Vector3f w;
             for (std::size_t c = 0; c < 3; ++c)
                 w[static_cast<Eigen::Index>(c)] = halfAt(rec + RecordLayout::kWeight + 2 * c);
