@@ -30,6 +30,8 @@ packages=(
   libsqlite3-dev sqlite3 nettle-dev
   # ray maps: ray tracing, images, HDR environments, meshes
   libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libassimp-dev assimp-testmodels zlib1g-dev
+  # CC0 HDR environments (lat-long EXR) for the demo scene under a real sky
+  blender-data
   # workstation: Qt6 + VTK (VTK's non-Qt modules only; debian12-stack.md trap 1)
   qt6-base-dev libqt6opengl6-dev qt6-svg-dev libvtk9-dev libgl-dev
   # headless GUI tests and screenshots

@@ -67,8 +67,23 @@ EnvironmentMap EnvironmentMap::fromPixels(int width, int height, std::vector<flo
     if (width <= 0 || height <= 0 ||
         rgb.size() != 3 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
         throw InputError(source, "environment", "pixel data does not match the image size");
+    // Lossy EXR compression (DWA, B44, PXR24) rings into small negative
+    // values around bright pixels (Blender's CC0 studio lights: -0.004 in
+    // maps of mean ~0.5). Those down to -1 % of the map's mean radiance are
+    // set to 0 (a documented repair, counted in clampedNegatives()); NaN,
+    // infinite or more negative pixels are errors naming the first.
+    double sum_abs = 0.0;
+    for (const float x : rgb)
+        if (std::isfinite(x)) sum_abs += std::abs(static_cast<double>(x));
+    const double tolerance = 1e-2 * sum_abs / static_cast<double>(rgb.size());
+    std::size_t clamped = 0;
     for (std::size_t i = 0; i < rgb.size(); ++i) {
         if (std::isfinite(rgb[i]) && rgb[i] >= 0.0F) continue;
+        if (std::isfinite(rgb[i]) && -static_cast<double>(rgb[i]) <= tolerance) {
+            rgb[i] = 0.0F;
+            ++clamped;
+            continue;
+        }
         const std::size_t pixel = i / 3;
         const std::size_t w = static_cast<std::size_t>(width);
         throw InputError(source, "environment",
@@ -76,13 +91,14 @@ EnvironmentMap EnvironmentMap::fromPixels(int width, int height, std::vector<flo
                              ") channel " + std::to_string(i % 3) + " is " +
                              (std::isnan(rgb[i])   ? "NaN"
                               : std::isinf(rgb[i]) ? "infinite"
-                                                   : "negative") +
+                                                   : "negative beyond compression noise (1 % of the mean)") +
                              "; radiance must be finite and non-negative");
     }
     EnvironmentMap map;
     map.m_width = width;
     map.m_height = height;
     map.m_rgb = std::move(rgb);
+    map.m_clamped_negatives = clamped;
     if (intensity != 1.0)
         for (float& x : map.m_rgb) x *= static_cast<float>(intensity);
     map.m_rotation_rad = rotation_deg * kPi / 180.0;

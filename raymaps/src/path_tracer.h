@@ -69,6 +69,15 @@ public:
     // The continuation of a ray that met a mirror or glass surface (kind
     // Mirror or Glass) along `direction`; beta takes the mirror's colour.
     Vec3 deltaBounce(const Material& m, const Hit& hit, const Vec3& direction, Rng& rng, Rgb3& beta) const;
+    // Both continuations of a ray that met glass along `direction`: the
+    // mirror and the refracted direction, and the Fresnel reflectance F
+    // (1 under total internal reflection, refracted = reflected then).
+    struct GlassSplit {
+        Vec3 reflected;
+        Vec3 refracted;
+        double reflectance = 0.0;
+    };
+    GlassSplit glassSplit(const Material& m, const Hit& hit, const Vec3& direction) const;
     const Material& material(const Hit& hit) const {
         return m_scene.materials[static_cast<std::size_t>(hit.material)];
     }

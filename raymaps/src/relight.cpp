@@ -1,15 +1,16 @@
 // Relight: the recipe's tables (cost independent of the image) and the pass
 // over the paint records (docs/RAYMAPS.md, "Relight").
 
-#include "record_layout.h"
+#include "relight_grid.h"
 #include "sampling.h"
 
 #include "paintlab/engine/brdf_colour.h"
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/layered_brdf.h"
 #include "paintlab/raymaps/relight.h"
+#include "paintlab/raymaps/relight_input.h"
 
-#include <Imath/half.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <array>
@@ -21,8 +22,9 @@ namespace paintlab::raymaps {
 
 namespace {
 
-constexpr int kN = RelightTables::kMuNodes;
-constexpr int kC = RelightTables::kPhiNodes;
+using grid::kC;
+using grid::kF;
+using grid::kN;
 
 // 8-point Gauss-Legendre rule on [-1, 1].
 constexpr std::array<double, 8> kGaussX{-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
@@ -32,51 +34,9 @@ constexpr std::array<double, 8> kGaussW{0.1012285362903763, 0.2223810344533745, 
                                         0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
                                         0.2223810344533745, 0.1012285362903763};
 
-// arccos to 7e-5 rad without a library call (Abramowitz and Stegun 4.4.45).
-inline float fastAcos(float x) {
-    const float ax = std::min(std::abs(x), 1.0F);
-    const float r =
-        std::sqrt(1.0F - ax) * (1.5707288F + ax * (-0.2121144F + ax * (0.0742610F - 0.0187293F * ax)));
-    return x >= 0.0F ? r : static_cast<float>(kPi) - r;
-}
-
-// The grid is uniform in the polar angle: the odd Fourier orders of f go as
-// sin(theta) near the normal, which no grid in mu = cos(theta) follows. At
-// the horizon eval() is 0 by definition, so that node takes mu = 0.002.
 // i * n + m in size_t.
 std::size_t index2(int i, int n, int m) {
     return static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(m);
-}
-
-double muNode(int k) { return std::max(0.002, std::cos(0.5 * kPi * k / (kN - 1))); }
-
-// Continuous index on the theta grid, clamped to its ends.
-inline void muIndex(float mu, int& k, float& t) {
-    const float x = std::clamp(fastAcos(mu) * static_cast<float>((kN - 1) / (0.5 * kPi)), 0.0F,
-                               static_cast<float>(kN - 1) - 1e-4F);
-    k = static_cast<int>(x);
-    t = x - static_cast<float>(k);
-}
-
-float halfToFloat(std::uint16_t bits) {
-    Imath::half h;
-    h.setBits(bits);
-    return static_cast<float>(h);
-}
-
-// The nearest fine-grid node of a position (k, t) on the coarse theta grid.
-// The position is never negative, so adding 1/2 and truncating rounds to
-// nearest (without lround's library call in the kernel).
-inline std::size_t fineIndex(int k, float t) {
-    constexpr float kRatio = static_cast<float>(RelightTables::kFineNodes - 1) / static_cast<float>(kN - 1);
-    const float x = (static_cast<float>(k) + t) * kRatio + 0.5F;
-    return static_cast<std::size_t>(x);  // NOLINT(bugprone-incorrect-roundings)
-}
-
-template <typename T> T get(const std::byte* at) {
-    T value;
-    std::memcpy(&value, at, sizeof(T));
-    return value;
 }
 
 }  // namespace
@@ -103,47 +63,57 @@ RelightTables::RelightTables(const LayeredBrdf& brdf, int cells, int orders)
     // Orders kept: at least 8 (the light table sums them at kC azimuths).
     const int n_phi = std::max(8, brdf.settings().orders);
     const auto nu = static_cast<std::size_t>(kN);
-    m_light.assign(nu * nu * static_cast<std::size_t>(kC) * 3, 0.0F);
+    m_light.assign(nu * nu * static_cast<std::size_t>(kC) * 4, 0.0F);
+    // cos(m dphi) at the azimuth nodes, once (not kN^2 times).
+    std::vector<double> cosines(static_cast<std::size_t>(kC) * static_cast<std::size_t>(n_phi));
+    for (int c = 0; c < kC; ++c)
+        for (int m = 0; m < n_phi; ++m) cosines[index2(c, n_phi, m)] = std::cos(m * kPi * c / (kC - 1));
     const std::size_t per_node = static_cast<std::size_t>(cells) * static_cast<std::size_t>(orders) * 3;
     std::vector<float> moments(nu * per_node, 0.0F);
     std::vector<float> coats(nu * 3, 0.0F);
 
+    // Fourier cosine coefficients of f_rgb(mu_o, mu_i, phi) = sum_m a_m
+    // cos(m phi) at every node pair, straight from the fast model's tables
+    // and reduced to linear sRGB there (one basis per cosine, one product per
+    // order, band and mu_o; pair by pair it cost 20x more).
+    const auto series_orders = static_cast<std::size_t>(brdf.orders());
+    std::vector<double> mu_nodes(nu);
+    for (int k = 0; k < kN; ++k) mu_nodes[static_cast<std::size_t>(k)] = grid::muNode(k);
+    Eigen::MatrixXd weights(static_cast<Eigen::Index>(bands), 3);
+    for (std::size_t b = 0; b < bands; ++b)
+        for (std::size_t c = 0; c < 3; ++c)
+            weights(static_cast<Eigen::Index>(b), static_cast<Eigen::Index>(c)) = m_weights[3 * b + c];
+    std::vector<double> series(nu * nu * series_orders * 3);
+    brdf.fourierCoefficientsGrid(mu_nodes, mu_nodes, weights, series);
+
     tbb::parallel_for(0, kN, [&](int o) {
-        const double mu_o = muNode(o);
-        std::vector<double> spectrum(bands);
         std::vector<Rgb3> a(static_cast<std::size_t>(n_phi));
         std::vector<Rgb3> node_a(static_cast<std::size_t>(kN * orders),
                                  Rgb3::Zero());  // a_m at the theta_i nodes
-        // Fourier cosine coefficients of f_rgb(mu_o, mu_i, phi): f = sum_m a_m
-        // cos(m phi), straight from the fast model's tables (one product per
-        // order and band; sampling eval() over phi cost 9x more).
-        std::vector<double> series(static_cast<std::size_t>(brdf.orders()) * bands);
-        const auto coefficients = [&](double mu_i) {
-            brdf.fourierCoefficients(mu_o, mu_i, series);
+        const auto coefficients = [&](int i) {
             for (int m = 0; m < n_phi; ++m) {
                 const auto mm = static_cast<std::size_t>(m);
-                if (m >= brdf.orders()) {
+                if (mm >= series_orders) {
                     a[mm] = Rgb3::Zero();
                     continue;
                 }
-                std::copy_n(series.begin() + static_cast<std::ptrdiff_t>(mm * bands), bands,
-                            spectrum.begin());
-                a[mm] = toRgb(spectrum);
+                const double* at =
+                    series.data() +
+                    ((static_cast<std::size_t>(o) * nu + static_cast<std::size_t>(i)) * series_orders + mm) *
+                        3;
+                a[mm] = Rgb3(at[0], at[1], at[2]);
             }
         };
         for (int i = 0; i < kN; ++i) {
-            coefficients(muNode(i));
+            coefficients(i);
             for (int m = 0; m < orders && m < n_phi; ++m)
                 node_a[index2(i, orders, m)] = a[static_cast<std::size_t>(m)];
             for (int c = 0; c < kC; ++c) {
-                const double dphi = kPi * c / (kC - 1);
                 Rgb3 value = Rgb3::Zero();
-                for (int m = 0; m < n_phi; ++m) value += a[static_cast<std::size_t>(m)] * std::cos(m * dphi);
-                for (int ch = 0; ch < 3; ++ch)
-                    m_light[((static_cast<std::size_t>(o) * nu + static_cast<std::size_t>(i)) * kC +
-                             static_cast<std::size_t>(c)) *
-                                3 +
-                            static_cast<std::size_t>(ch)] = static_cast<float>(std::max(0.0, value[ch]));
+                for (int m = 0; m < n_phi; ++m)
+                    value += a[static_cast<std::size_t>(m)] * cosines[index2(c, n_phi, m)];
+                float* node = m_light.data() + grid::lightNode(o, i, c);
+                for (int ch = 0; ch < 3; ++ch) node[ch] = static_cast<float>(std::max(0.0, value[ch]));
             }
         }
         // Cell averages weighted by mu (the moments are integrals over mu dmu):
@@ -182,13 +152,13 @@ RelightTables::RelightTables(const LayeredBrdf& brdf, int cells, int orders)
                             static_cast<std::size_t>(ch)] =
                         static_cast<float>(sum[static_cast<std::size_t>(m)][ch] * 2.0 * cells);
         }
-        const Rgb3 coat = toRgb(brdf.specularReflectance(mu_o));
+        const Rgb3 coat = toRgb(brdf.specularReflectance(grid::muNode(o)));
         for (int ch = 0; ch < 3; ++ch)
             coats[3 * static_cast<std::size_t>(o) + static_cast<std::size_t>(ch)] =
                 static_cast<float>(coat[ch]);
     });
-    // Resampled on the fine grid (see kFineNodes), m >= 1 scaled by 1/127.
-    constexpr int kF = kFineNodes;
+    // Resampled on the fine grid (see kFineNodes), m >= 1 scaled by 1/127,
+    // in the kernel's order [o][channel][m][j].
     m_moments.assign(static_cast<std::size_t>(kF) * per_node, 0.0F);
     m_coat.assign(static_cast<std::size_t>(kF) * 3, 0.0F);
     for (int f = 0; f < kF; ++f) {
@@ -196,12 +166,16 @@ RelightTables::RelightTables(const LayeredBrdf& brdf, int cells, int orders)
         const auto k = static_cast<std::size_t>(x);
         const auto t = static_cast<float>(x - static_cast<double>(k));
         const auto uf = static_cast<std::size_t>(f);
-        for (std::size_t e = 0; e < per_node; ++e) {
-            const bool first_order = (e / 3) % static_cast<std::size_t>(orders) == 0;
-            m_moments[uf * per_node + e] =
-                ((1.0F - t) * moments[k * per_node + e] + t * moments[(k + 1) * per_node + e]) *
-                (first_order ? 1.0F : 1.0F / 127.0F);
-        }
+        const auto uj = static_cast<std::size_t>(cells);
+        const auto um = static_cast<std::size_t>(orders);
+        for (std::size_t c = 0; c < 3; ++c)
+            for (std::size_t m = 0; m < um; ++m)
+                for (std::size_t j = 0; j < uj; ++j) {
+                    const std::size_t from = (j * um + m) * 3 + c;  // coarse: [o][j][m][channel]
+                    m_moments[((uf * 3 + c) * um + m) * uj + j] =
+                        ((1.0F - t) * moments[k * per_node + from] + t * moments[(k + 1) * per_node + from]) *
+                        (m == 0 ? 1.0F : 1.0F / 127.0F);
+                }
         for (std::size_t c = 0; c < 3; ++c)
             m_coat[uf * 3 + c] = (1.0F - t) * coats[k * 3 + c] + t * coats[(k + 1) * 3 + c];
     }
@@ -215,49 +189,119 @@ Rgb3 RelightTables::toRgb(const std::vector<double>& spectrum) const {
     return c;
 }
 
-namespace {
-
-// Trilinear lookup in the light table (the kernel's, in float).
-inline Eigen::Vector3f lookupLight(const float* table, int ko, float to, float mu_i, float cos_dphi) {
-    int ki = 0;
-    float ti = 0.0F;
-    muIndex(mu_i, ki, ti);
-    const float xc = std::clamp(fastAcos(cos_dphi) * static_cast<float>((kC - 1) / kPi), 0.0F,
-                                static_cast<float>(kC - 1) - 1e-4F);
-    const int kc = static_cast<int>(xc);
-    const float tc = xc - static_cast<float>(kc);
-    Eigen::Vector3f out = Eigen::Vector3f::Zero();
-    for (int dox = 0; dox < 2; ++dox)
-        for (int dix = 0; dix < 2; ++dix)
-            for (int dcx = 0; dcx < 2; ++dcx) {
-                const float w =
-                    (dox != 0 ? to : 1.0F - to) * (dix != 0 ? ti : 1.0F - ti) * (dcx != 0 ? tc : 1.0F - tc);
-                const float* e =
-                    table +
-                    ((static_cast<std::size_t>(ko + dox) * kN + static_cast<std::size_t>(ki + dix)) * kC +
-                     static_cast<std::size_t>(kc + dcx)) *
-                        3;
-                out += w * Eigen::Vector3f(e[0], e[1], e[2]);
-            }
-    return out;
-}
-
-}  // namespace
-
 Rgb3 RelightTables::lightTable(double mu_o, double mu_i, double cos_dphi) const {
     int ko = 0;
+    int ki = 0;
+    int kc = 0;
     float to = 0.0F;
-    muIndex(static_cast<float>(mu_o), ko, to);
-    return lookupLight(m_light.data(), ko, to, static_cast<float>(mu_i), static_cast<float>(cos_dphi))
-        .cast<double>();
+    float ti = 0.0F;
+    float tc = 0.0F;
+    grid::muIndex(mu_o, ko, to);
+    grid::muIndex(mu_i, ki, ti);
+    grid::phiIndex(cos_dphi, kc, tc);
+    std::array<float, 4> f{};
+    grid::trilinear(m_light.data() + grid::lightNode(ko, ki, kc), to, ti, tc, f.data());
+    return Eigen::Vector3f(f[0], f[1], f[2]).cast<double>();
 }
 
 Rgb3 RelightTables::coat(double mu_o) const {
     int k = 0;
     float t = 0.0F;
-    muIndex(static_cast<float>(std::clamp(mu_o, 0.0, 1.0)), k, t);
-    const std::size_t f = 3 * fineIndex(k, t);
+    grid::muIndex(std::clamp(mu_o, 0.0, 1.0), k, t);
+    const std::size_t f = 3 * grid::fineIndex(k, t);
     return Eigen::Vector3f(m_coat[f], m_coat[f + 1], m_coat[f + 2]).cast<double>();
+}
+
+namespace {
+
+// The decoded paint pixels (RelightInput's arrays, relight_input.h).
+struct RelightArrays {
+    const std::uint32_t* pixel;
+    const std::uint32_t* fine;
+    const float* to;
+    const float* l0;
+    const std::int8_t* q;
+    const float* mirror;
+    const std::uint32_t* light_at;
+    const float* light_t;
+    const float* light_s;
+};
+
+// The kernel over the paint pixels of rows [y0, y1), added to the baked
+// radiance already in `image`: per paint pixel
+//   L_c = sum_j l0_cj (fbar^0_cj + sum_{m>=1} fbar^m_cj q_cmj)       (moments)
+//       + sum_k s_kc f_c(trilinear at the light's corner)           (explicit lights)
+//       + R_coat,c mirror_c                                          (clear coat)
+// with the pixel's weight already in l0, s and mirror. No branch depends on
+// the data; kJ, kM > 0 fix J and M_L at compile time (the default 4 x 4 is
+// unrolled and vectorised by the compiler: SSE over j and over the light
+// table's 4 lanes), 0 takes them from the input.
+template <int kJ, int kM> void shadeRows(const RelightInput& in, const std::vector<std::size_t>& row_start,
+                                         const RelightArrays& a, const RelightTables& tables, int y0, int y1,
+                                         float* image) {
+    const std::size_t cells = kJ > 0 ? static_cast<std::size_t>(kJ) : static_cast<std::size_t>(in.cells());
+    const std::size_t orders = kM > 0 ? static_cast<std::size_t>(kM) : static_cast<std::size_t>(in.orders());
+    const auto lights = static_cast<std::size_t>(in.lights());
+    const float* moments = tables.moments().data();
+    const float* coat = tables.coat().data();
+    const float* light = tables.light().data();
+    const std::size_t moment_stride = 3 * orders * cells;
+    constexpr std::size_t kMaxCells = 16;
+    for (std::size_t i = row_start[static_cast<std::size_t>(y0)]; i < row_start[static_cast<std::size_t>(y1)];
+         ++i) {
+        const std::size_t fine = a.fine[i];
+        const float* mt = moments + fine * moment_stride;
+        const float* l0 = a.l0 + i * 3 * cells;
+        const std::int8_t* q = a.q + i * 3 * (orders - 1) * cells;
+        std::array<float, 4> l{};
+        for (std::size_t c = 0; c < 3; ++c) {
+            const float* tc = mt + c * orders * cells;
+            const std::int8_t* qc = q + c * (orders - 1) * cells;
+            std::array<float, kMaxCells> acc{};
+            for (std::size_t j = 0; j < cells; ++j) acc[j] = tc[j];
+            for (std::size_t m = 1; m < orders; ++m)
+                for (std::size_t j = 0; j < cells; ++j)
+                    acc[j] += tc[m * cells + j] * static_cast<float>(qc[(m - 1) * cells + j]);
+            float sum = 0.0F;
+            for (std::size_t j = 0; j < cells; ++j) sum += l0[c * cells + j] * acc[j];
+            l[c] = sum + coat[3 * fine + c] * a.mirror[3 * i + c];
+        }
+        const float to = a.to[i];
+        for (std::size_t k = 0; k < lights; ++k) {
+            const std::size_t ik = i * lights + k;
+            std::array<float, 4> f{};
+            grid::trilinear(light + a.light_at[ik], to, a.light_t[2 * ik], a.light_t[2 * ik + 1], f.data());
+            for (std::size_t c = 0; c < 3; ++c) l[c] += a.light_s[3 * ik + c] * f[c];
+        }
+        float* px = image + 3 * static_cast<std::size_t>(a.pixel[i]);
+        for (std::size_t c = 0; c < 3; ++c) px[c] += l[c];
+    }
+}
+
+}  // namespace
+
+RgbImage relight(const RelightInput& in, const RelightTables& tables) {
+    if (in.cells() != tables.cells() || in.orders() != tables.orders())
+        throw InputError("<ray map>", "header",
+                         "the map has J = " + std::to_string(in.cells()) +
+                             ", M_L = " + std::to_string(in.orders()) +
+                             "; the relight tables were built for J = " + std::to_string(tables.cells()) +
+                             ", M_L = " + std::to_string(tables.orders()));
+    RgbImage image;
+    image.width = in.width();
+    image.height = in.height();
+    image.rgb.assign(in.m_baked.begin(), in.m_baked.end());  // the paint is added below
+    const RelightArrays arrays{in.m_pixel.data(),    in.m_fine.data(),    in.m_to.data(),
+                               in.m_l0.data(),       in.m_q.data(),       in.m_mirror.data(),
+                               in.m_light_at.data(), in.m_light_t.data(), in.m_light_s.data()};
+    const bool fixed = in.cells() == 4 && in.orders() == 4;
+    tbb::parallel_for(tbb::blocked_range<int>(0, in.height(), 8), [&](const tbb::blocked_range<int>& rows) {
+        if (fixed)
+            shadeRows<4, 4>(in, in.m_row_start, arrays, tables, rows.begin(), rows.end(), image.rgb.data());
+        else
+            shadeRows<0, 0>(in, in.m_row_start, arrays, tables, rows.begin(), rows.end(), image.rgb.data());
+    });
+    return image;
 }
 
 RgbImage relight(const RayMap& map, const RelightTables& tables) {
@@ -268,109 +312,7 @@ RgbImage relight(const RayMap& map, const RelightTables& tables) {
                              ", M_L = " + std::to_string(h.orders) +
                              "; the relight tables were built for J = " + std::to_string(tables.cells()) +
                              ", M_L = " + std::to_string(tables.orders()));
-    RgbImage image;
-    image.width = h.width;
-    image.height = h.height;
-    image.rgb.assign(static_cast<std::size_t>(h.width) * static_cast<std::size_t>(h.height) * 3, 0.0F);
-    const RecordLayout layout{h.cells, h.orders, static_cast<int>(h.lights.size())};
-    const std::size_t stride = layout.bytes();
-    const auto cells = static_cast<std::size_t>(h.cells);
-    const auto orders = static_cast<std::size_t>(h.orders);
-    const float* light_table = tables.light().data();
-    const float* moments = tables.moments().data();
-    const float* coat = tables.coat().data();
-    const std::size_t moment_stride = cells * orders * 3;  // per mu_o node
-    struct KernelLight {
-        bool point;
-        Eigen::Vector3f vector;
-        Eigen::Vector3f power;
-    };
-    std::vector<KernelLight> lights;
-    for (const ExplicitLight& l : h.lights)
-        lights.push_back(
-            {l.kind == ExplicitLight::Kind::Point, l.vector.cast<float>(), l.power.cast<float>()});
-
-    tbb::parallel_for(0, map.bandCount(), [&](int b) {
-        const RayMapBand& band = map.band(b);
-        float* out = image.rgb.data() +
-                     static_cast<std::size_t>(band.first_row) * static_cast<std::size_t>(h.width) * 3;
-        for (std::size_t i = 0; i < band.baked.size(); ++i) out[i] = halfToFloat(band.baked[i]);
-        float* image_base = image.rgb.data();
-        // Records in ascending pixel order; a parallel loop inside the band
-        // keeps both cores busy when the paint sits in a few bands.
-        tbb::parallel_for(
-            tbb::blocked_range<std::size_t>(0, band.record_count, 256),
-            [&](const tbb::blocked_range<std::size_t>& range) {
-                for (std::size_t r = range.begin(); r != range.end(); ++r) {
-                    const std::byte* rec = band.records.data() + r * stride;
-                    const auto pixel = get<std::uint32_t>(rec + RecordLayout::kPixel);
-                    const Eigen::Vector3f n =
-                        decodeOctahedral(get<std::uint16_t>(rec + RecordLayout::kNormal),
-                                         get<std::uint16_t>(rec + RecordLayout::kNormal + 2));
-                    const Eigen::Vector3f v =
-                        decodeOctahedral(get<std::uint16_t>(rec + RecordLayout::kView),
-                                         get<std::uint16_t>(rec + RecordLayout::kView + 2));
-                    const float mu_o = std::clamp(n.dot(v), 0.0F, 1.0F);
-                    Eigen::Vector3f t = v - mu_o * n;
-                    const float t_len = t.norm();
-                    // Seen along the normal the BRDF does not depend on the azimuth: any tangent does.
-                    t = t_len > 1e-6F ? Eigen::Vector3f(t / t_len) : Eigen::Vector3f::Zero();
-                    int ko = 0;
-                    float to = 0.0F;
-                    muIndex(mu_o, ko, to);
-                    Eigen::Vector3f l = Eigen::Vector3f::Zero();
-                    // Incident-light moments: sum_j sum_m fbar^m(mu_o, j) l^m_j,
-                    // the table at the nearest fine theta_o node.
-                    const float* mt = moments + fineIndex(ko, to) * moment_stride;
-                    const auto* q = reinterpret_cast<const std::int8_t*>(rec + layout.momentsM());
-                    for (std::size_t j = 0; j < cells; ++j) {
-                        for (std::size_t c = 0; c < 3; ++c) {
-                            const float l0 = halfToFloat(
-                                get<std::uint16_t>(rec + RecordLayout::kMoments0 + 6 * j + 2 * c));
-                            const float* row = mt + j * orders * 3 + c;
-                            float sum = row[0];
-                            for (std::size_t m = 1; m < orders; ++m)
-                                sum +=
-                                    row[3 * m] * static_cast<float>(q[3 * ((orders - 1) * j + (m - 1)) + c]);
-                            l[static_cast<Eigen::Index>(c)] += sum * l0;
-                        }
-                    }
-                    // Explicit lights: V f(wi, wo) E cos(theta_i).
-                    const Eigen::Vector3f position(get<float>(rec + RecordLayout::kPosition),
-                                                   get<float>(rec + RecordLayout::kPosition + 4),
-                                                   get<float>(rec + RecordLayout::kPosition + 8));
-                    for (std::size_t k = 0; k < lights.size(); ++k) {
-                        const auto vis = get<std::uint8_t>(rec + layout.visibility() + k);
-                        if (vis == 0) continue;
-                        Eigen::Vector3f wi = lights[k].vector;
-                        Eigen::Vector3f e = lights[k].power;
-                        if (lights[k].point) {
-                            wi -= position;
-                            const float r2 = wi.squaredNorm();
-                            wi /= std::sqrt(r2);
-                            e /= r2;
-                        }
-                        const float mu_i = n.dot(wi);
-                        if (!(mu_i > 0.0F)) continue;
-                        const Eigen::Vector3f wt = wi - mu_i * n;
-                        const float wt_len = wt.norm();
-                        const float cos_dphi = wt_len > 1e-6F ? wt.dot(t) / wt_len : 1.0F;
-                        const Eigen::Vector3f f = lookupLight(light_table, ko, to, mu_i, cos_dphi);
-                        l += (static_cast<float>(vis) * (1.0F / 255.0F) * mu_i) * f.cwiseProduct(e);
-                    }
-                    // Clear-coat mirror term.
-                    const float* coat_o = coat + 3 * fineIndex(ko, to);
-                    for (std::size_t c = 0; c < 3; ++c)
-                        l[static_cast<Eigen::Index>(c)] +=
-                            coat_o[c] * get<float>(rec + RecordLayout::kMirror + 4 * c);
-                    float* px = image_base + 3 * static_cast<std::size_t>(pixel);
-                    for (std::size_t c = 0; c < 3; ++c)
-                        px[c] += halfToFloat(get<std::uint16_t>(rec + RecordLayout::kWeight + 2 * c)) *
-                                 l[static_cast<Eigen::Index>(c)];
-                }
-            });
-    });
-    return image;
+    return relight(RelightInput(map), tables);
 }
 
 }  // namespace paintlab::raymaps

@@ -147,6 +147,19 @@ TEST(EnvironmentMap, BadPixelsAreNamed) {
     }
 }
 
+// Lossy EXR compression rings into small negatives (Blender's CC0 maps:
+// -0.004 at a mean of ~0.5): down to -1 % of the mean they are set to 0 and
+// counted; beyond, the pixel is an error (BadPixelsAreNamed: -1 at mean 1).
+TEST(EnvironmentMap, CompressionRingingIsClampedAndCounted) {
+    std::vector<float> px = constantPixels(8, 4, 1.0F);
+    px[3 * (1 * 8 + 3) + 2] = -0.005F;
+    const EnvironmentMap map = EnvironmentMap::fromPixels(8, 4, std::move(px), "sky.exr");
+    EXPECT_EQ(map.clampedNegatives(), 1U);
+    std::vector<float> worse = constantPixels(8, 4, 1.0F);
+    worse[5] = -0.02F;  // 2 % of the mean
+    EXPECT_THROW((void)EnvironmentMap::fromPixels(8, 4, std::move(worse), "sky.exr"), InputError);
+}
+
 void writeExr(const std::filesystem::path& file, int w, int h, const std::vector<float>& rgb) {
     auto out = OIIO::ImageOutput::create(file.string());
     ASSERT_TRUE(out);

@@ -491,6 +491,79 @@ void LayeredBrdf::fourierCoefficients(double cos_o, double cos_i, std::span<doub
     }
 }
 
+void LayeredBrdf::fourierCoefficientsGrid(std::span<const double> cos_o, std::span<const double> cos_i,
+                                          const Eigen::MatrixXd& weights, std::span<double> out) const {
+    const std::size_t bands = m_bands.size();
+    const auto orders = static_cast<std::size_t>(this->orders());
+    const std::size_t n_o = cos_o.size();
+    const std::size_t n_i = cos_i.size();
+    const auto channels = static_cast<std::size_t>(weights.cols());
+    if (static_cast<std::size_t>(weights.rows()) != bands)
+        throw InputError("<argument>", "weights", "needs one row per band (" + std::to_string(bands) + ")");
+    if (out.size() < n_o * n_i * orders * channels)
+        throw InputError("<argument>", "out",
+                         "needs cos_o x cos_i x orders x channels = " +
+                             std::to_string(n_o * n_i * orders * channels) + " values");
+    std::fill(out.begin(), out.end(), 0.0);
+    // Per band: the bases of the incident cosines as the columns of one
+    // matrix per parity, and their Fresnel transmittances.
+    struct Incident {
+        Eigen::MatrixXd even, odd;
+        std::vector<double> transmit;
+    };
+    std::vector<Incident> incident(bands);
+    for (std::size_t b = 0; b < bands; ++b) {
+        const BandTable& t = m_bands[b];
+        const auto n = static_cast<Eigen::Index>(t.mu.size());
+        const double eta = m_top_index_per_band[b] / m_ambient_index;
+        Incident& in = incident[b];
+        in.even.resize(n, static_cast<Eigen::Index>(n_i));
+        in.odd.resize(n, static_cast<Eigen::Index>(n_i));
+        in.transmit.assign(n_i, 0.0);
+        Eigen::VectorXd even;
+        Eigen::VectorXd odd;
+        for (std::size_t i = 0; i < n_i; ++i) {
+            interpolationBasis(t, m_ambient_index, std::min(cos_i[i], 1.0), even, odd);
+            in.even.col(static_cast<Eigen::Index>(i)) = even;
+            in.odd.col(static_cast<Eigen::Index>(i)) = odd;
+            in.transmit[i] = cos_i[i] > 0.0 ? 1.0 - fresnelDielectric(cos_i[i], eta) : 0.0;
+        }
+    }
+    // Each outgoing cosine writes its own slice of `out`. As in
+    // fourierCoefficients(): weight 1 for m = 0 and 2 (-1)^m for m > 0.
+    tbb::parallel_for(std::size_t{0}, n_o, [&](std::size_t o) {
+        if (!(cos_o[o] > 0.0)) return;
+        Eigen::VectorXd even;
+        Eigen::VectorXd odd;
+        Eigen::RowVectorXd row;
+        Eigen::RowVectorXd values(static_cast<Eigen::Index>(n_i));
+        for (std::size_t b = 0; b < bands; ++b) {
+            const BandTable& t = m_bands[b];
+            const Incident& in = incident[b];
+            interpolationBasis(t, m_ambient_index, std::min(cos_o[o], 1.0), even, odd);
+            const double transmit_o =
+                1.0 - fresnelDielectric(cos_o[o], m_top_index_per_band[b] / m_ambient_index);
+            for (std::size_t m = 0; m < t.f.size(); ++m) {
+                const double weight = m == 0 ? 1.0 : (m % 2 == 0 ? 2.0 : -2.0);
+                if (m % 2 == 0) {
+                    row.noalias() = even.transpose() * t.f[m];
+                    values.noalias() = row * in.even;
+                } else {
+                    row.noalias() = odd.transpose() * t.f[m];
+                    values.noalias() = row * in.odd;
+                }
+                for (std::size_t i = 0; i < n_i; ++i) {
+                    const double v =
+                        transmit_o * in.transmit[i] * weight * values(static_cast<Eigen::Index>(i));
+                    double* at = out.data() + ((o * n_i + i) * orders + m) * channels;
+                    for (std::size_t c = 0; c < channels; ++c)
+                        at[c] += weights(static_cast<Eigen::Index>(b), static_cast<Eigen::Index>(c)) * v;
+                }
+            }
+        }
+    });
+}
+
 std::vector<double> LayeredBrdf::albedo(const Direction& wi) const {
     std::vector<double> a;
     Eigen::VectorXd even;

@@ -1,4 +1,5 @@
 // The fast model against closed forms, energy conservation and reciprocity.
+#include "paintlab/engine/error.h"
 #include "paintlab/engine/fresnel.h"
 #include "paintlab/engine/layered_brdf.h"
 #include "paintlab/engine/recipe_json.h"
@@ -309,6 +310,43 @@ TEST(FastModelFourier, CoefficientsSumToEval) {
     // Below the horizon there is nothing.
     brdf.fourierCoefficients(0.5, -0.1, c);
     for (const double x : c) EXPECT_EQ(x, 0.0);
+}
+
+// The grid form is the pair-by-pair series reduced by the weights: the same
+// sums in another order (round-off, 1e-12), and zero below the horizon.
+TEST(FastModelFourier, GridIsThePairwiseSeriesReduced) {
+    const Recipe recipe =
+        loadRecipeFile(std::filesystem::path(PAINTLAB_DEMO_DIR) / "recipes" / "pearlescent-two-layer.json");
+    const LayeredBrdf brdf = computeLayeredBrdf(recipe, presetSettings(Preset::Preview));
+    const auto bands = brdf.wavelengthsNm().size();
+    const auto orders = static_cast<std::size_t>(brdf.orders());
+    const std::vector<double> cos_o{1.0, 0.7, 0.2, -0.1};
+    const std::vector<double> cos_i{0.95, 0.5, 0.05};
+    Eigen::MatrixXd weights(static_cast<Eigen::Index>(bands), 2);
+    for (std::size_t b = 0; b < bands; ++b) {
+        weights(static_cast<Eigen::Index>(b), 0) = 1.0 + 0.1 * static_cast<double>(b);
+        weights(static_cast<Eigen::Index>(b), 1) = std::sin(static_cast<double>(b));
+    }
+    std::vector<double> grid(cos_o.size() * cos_i.size() * orders * 2);
+    brdf.fourierCoefficientsGrid(cos_o, cos_i, weights, grid);
+    std::vector<double> pair(orders * bands);
+    for (std::size_t o = 0; o < cos_o.size(); ++o)
+        for (std::size_t i = 0; i < cos_i.size(); ++i) {
+            brdf.fourierCoefficients(cos_o[o], cos_i[i], pair);
+            for (std::size_t m = 0; m < orders; ++m)
+                for (Eigen::Index c = 0; c < 2; ++c) {
+                    double expected = 0.0;
+                    double scale = 0.0;
+                    for (std::size_t b = 0; b < bands; ++b) {
+                        expected += weights(static_cast<Eigen::Index>(b), c) * pair[m * bands + b];
+                        scale += std::abs(weights(static_cast<Eigen::Index>(b), c) * pair[m * bands + b]);
+                    }
+                    const double got =
+                        grid[((o * cos_i.size() + i) * orders + m) * 2 + static_cast<std::size_t>(c)];
+                    EXPECT_NEAR(got, expected, 1e-12 * scale + 1e-15) << o << " " << i << " " << m;
+                }
+        }
+    EXPECT_THROW(brdf.fourierCoefficientsGrid(cos_o, cos_i, Eigen::MatrixXd(2, 3), grid), InputError);
 }
 
 }  // namespace

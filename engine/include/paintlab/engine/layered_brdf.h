@@ -75,6 +75,15 @@ public:
     // eval() over the azimuth: what a renderer's tables need. Unlike eval(),
     // the series is not clipped at zero where truncation makes it ring.
     void fourierCoefficients(double cos_o, double cos_i, std::span<double> out) const;
+    // fourierCoefficients() on a grid of direction pairs, reduced over the
+    // bands by `weights` (bands() x C, e.g. the band -> linear sRGB weights):
+    // out[((o * cos_i.size() + i) * orders() + m) * C + c] =
+    //   sum_b weights(b, c) f^m_b(cos_o[o], cos_i[i]). Each cosine's
+    // interpolation basis is computed once and each f^m applied once per
+    // (cos_o, band): what a renderer's tables need (33 x 33 pairs: ~20x
+    // faster than pair by pair). Throws InputError if the sizes do not fit.
+    void fourierCoefficientsGrid(std::span<const double> cos_o, std::span<const double> cos_i,
+                                 const Eigen::MatrixXd& weights, std::span<double> out) const;
     // Orders in fourierCoefficients(): the largest computed in any band.
     int orders() const;
     // Directional-hemispherical albedo for light from wi, mirror term included, per band.

@@ -32,12 +32,17 @@ public:
     // A clear-sky dome: zenith blue to a bright horizon, a grey ground below
     // (no sun: scenes add one as a SunLight). Radiance ~1 W/(m^2 sr) at the horizon.
     static EnvironmentMap builtinSky(int width = 256);
-    // From linear RGB pixels (row-major, top row = zenith); checks values.
+    // From linear RGB pixels (row-major, top row = zenith); checks values:
+    // NaN, infinite and negative pixels are InputErrors naming the first,
+    // except negatives down to -1 % of the map's mean radiance (lossy EXR
+    // compression's ringing), which are set to 0 and counted.
     static EnvironmentMap fromPixels(int width, int height, std::vector<float> rgb, const std::string& source,
                                      double rotation_deg = 0.0, double intensity = 1.0);
 
     int width() const { return m_width; }
     int height() const { return m_height; }
+    // Pixel channels of the file that were small negatives set to 0.
+    std::size_t clampedNegatives() const { return m_clamped_negatives; }
 
     // Radiance arriving from direction (towards the light), bilinear.
     Rgb3 radiance(const Eigen::Vector3d& direction) const;
@@ -84,6 +89,7 @@ private:
     std::vector<double> m_pixel_weight;  // luminance x sin(theta), unnormalised
     double m_weight_sum = 0.0;
     double m_luminance_integral = 0.0;
+    std::size_t m_clamped_negatives = 0;
 };
 
 // Rec.709 luminance of linear RGB.

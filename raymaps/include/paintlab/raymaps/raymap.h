@@ -32,8 +32,8 @@ struct RayMapSettings {
     int cells = 4;              // J: cells in mu_i (equal projected solid angle)
     int orders = 4;             // M_L: azimuthal Fourier orders of the incident light
     int sun_shadow_rays = 8;    // per sun and camera sample (soft shadows of the sun's disk)
-    int max_depth = 4;          // path vertices of the bake
-    int indirect_depth = 2;     // path vertices behind a moment or mirror ray
+    int max_depth = 4;          // scattering path vertices of the bake (mirror/glass bounces not counted)
+    int indirect_depth = 2;     // scattering path vertices behind a moment or mirror ray
     int max_delta_bounces = 8;  // mirror / glass bounces followed before the paint
     int band_rows = 32;         // rows per chunk
     // K_env: HDR hotspots (EnvironmentMap::withoutHotspots) taken out of the

@@ -12,7 +12,7 @@ namespace paintlab::raymaps {
 
 struct ReferenceSettings {
     int samples_per_pixel = 64;
-    int max_depth = 6;  // path vertices
+    int max_depth = 6;  // scattering path vertices (mirror and glass bounces not counted)
     std::uint64_t seed = 7;
 };
 

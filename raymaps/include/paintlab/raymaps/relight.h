@@ -15,6 +15,8 @@ class LayeredBrdf;
 
 namespace paintlab::raymaps {
 
+class RelightInput;
+
 struct RgbImage {
     int width = 0;
     int height = 0;
@@ -48,14 +50,16 @@ public:
     // Linear sRGB of a spectrum at the BRDF's wavelengths.
     Rgb3 toRgb(const std::vector<double>& spectrum) const;
 
-    // [((o * kMuNodes + i) * kPhiNodes + p) * 3 + channel]
+    // [((o * kMuNodes + i) * kPhiNodes + p) * 4 + channel], channel 3 is 0:
+    // one node is one 16-byte load in the kernel.
     const std::vector<float>& light() const { return m_light; }
     // The kernel reads the moment and coat tables without interpolating:
     // they are resampled (linearly, from the 33 theta_o nodes) on this many
     // nodes uniform in theta_o and read at the nearest (0.18 degrees away at most).
     static constexpr int kFineNodes = 257;
-    // [((o * cells + j) * orders + m) * 3 + channel], o on the fine grid;
-    // orders m >= 1 are divided by 127 (the records' byte scale).
+    // [((o * 3 + channel) * orders + m) * cells + j], o on the fine grid (the
+    // kernel runs over j innermost); orders m >= 1 are divided by 127 (the
+    // records' byte scale).
     const std::vector<float>& moments() const { return m_moments; }
     // [o * 3 + channel], o on the fine grid
     const std::vector<float>& coat() const { return m_coat; }
@@ -71,8 +75,14 @@ private:
 };
 
 // Throws InputError naming the map's file if the map's cells or orders differ
-// from the tables', or a band is corrupt.
+// from the tables', or a band is corrupt. Decodes the map (RelightInput)
+// each call: an interactive client keeps a RelightInput and calls the
+// overload below per recipe change.
 RgbImage relight(const RayMap& map, const RelightTables& tables);
+// The kernel alone: one branch-free pass over the decoded paint pixels (TBB
+// over rows), composited over the baked radiance. Throws InputError if the
+// input's cells or orders differ from the tables'.
+RgbImage relight(const RelightInput& input, const RelightTables& tables);
 
 // Writes `image` x 2^exposure_ev: .exr as linear float RGB, .png as 8-bit
 // sRGB after an extended Reinhard tone map (white point 4). Throws InputError

@@ -1,0 +1,168 @@
+// Ray maps (issue 6, "Speed"): the relight kernel at three resolutions of
+// the demo scene, the relight tables per recipe change, slider-to-image
+// latency (preview fast model + tables + kernel), and the kernel's
+// independence of the geometry (a sphere of 16x more triangles, same image).
+// Figures for docs/PERFORMANCE.md come from running bench_raymaps directly;
+// the smoke test runs the smallest size only.
+//
+// The maps are built once per process with the cheapest precompute settings:
+// the kernel's work depends on the number of paint pixels, J, M_L and K, not
+// on how many rays estimated the stored values.
+#include "temp_dir.h"
+
+#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/recipe_json.h"
+#include "paintlab/raymaps/raymap.h"
+#include "paintlab/raymaps/relight.h"
+#include "paintlab/raymaps/relight_input.h"
+#include "paintlab/raymaps/scene.h"
+
+#include <benchmark/benchmark.h>
+
+#include <ctime>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+
+namespace {
+
+using namespace paintlab;
+using namespace paintlab::raymaps;
+
+const std::filesystem::path kDemo = std::filesystem::path(PAINTLAB_DEMO_DIR);
+
+Recipe pearlescent() { return loadRecipeFile(kDemo / "recipes" / "pearlescent-two-layer.json"); }
+
+RayMapSettings cheapSettings() {
+    RayMapSettings s;
+    s.aa_samples = 1;
+    s.light_rays = 4;  // raised to M_L per cell: 16 moment rays
+    s.bake_paths = 1;
+    s.sun_shadow_rays = 1;
+    s.max_depth = 2;
+    s.indirect_depth = 1;
+    return s;
+}
+
+// Decoded maps by key, built on first use and kept for the process.
+const RelightInput& cachedInput(const std::string& key, const Scene& scene) {
+    static const paintlab::test::TempDir dir;
+    static std::map<std::string, std::unique_ptr<RelightInput>> inputs;
+    auto& slot = inputs[key];
+    if (!slot) {
+        const auto path = dir / (key + ".prm");
+        buildRayMap(scene, cheapSettings(), path);
+        const auto map = RayMap::open(path);
+        slot = std::make_unique<RelightInput>(*map);
+    }
+    return *slot;
+}
+
+const RelightInput& demoInput(int width) {
+    Scene scene = loadSceneFile(kDemo / "scenes" / "car_body_sky.json");
+    scene.camera.width = width;
+    scene.camera.height = width * 9 / 16;
+    return cachedInput("demo" + std::to_string(width), scene);
+}
+
+// Process CPU time (all threads) per iteration, next to the wall time: on a
+// shared machine CPU time / cores is what idle cores would take.
+class CpuClock {
+public:
+    CpuClock() : m_start(std::clock()) {}
+    double msPerIteration(benchmark::IterationCount n) const {
+        return 1e3 * static_cast<double>(std::clock() - m_start) / CLOCKS_PER_SEC / static_cast<double>(n);
+    }
+
+private:
+    std::clock_t m_start;
+};
+
+// Argument: image width (16:9).
+void BM_RelightKernel(benchmark::State& state) {
+    const RelightInput& input = demoInput(static_cast<int>(state.range(0)));
+    const LayeredBrdf brdf = computeLayeredBrdf(pearlescent(), presetSettings(Preset::Preview));
+    const RelightTables tables(brdf, input.cells(), input.orders());
+    const CpuClock cpu;
+    for (auto _ : state) benchmark::DoNotOptimize(relight(input, tables));
+    state.counters["cpu_ms"] = cpu.msPerIteration(state.iterations());
+    state.counters["paint_pixels"] = static_cast<double>(input.paintPixels());
+}
+BENCHMARK(BM_RelightKernel)->Arg(480)->Arg(960)->Arg(1920)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Decoding a map into the kernel's arrays: once per map, not per recipe.
+void BM_RelightDecode(benchmark::State& state) {
+    Scene scene = loadSceneFile(kDemo / "scenes" / "car_body_sky.json");
+    scene.camera.width = static_cast<int>(state.range(0));
+    scene.camera.height = scene.camera.width * 9 / 16;
+    const paintlab::test::TempDir dir;
+    buildRayMap(scene, cheapSettings(), dir / "map.prm");
+    const auto map = RayMap::open(dir / "map.prm");
+    map->loadAll();
+    for (auto _ : state) benchmark::DoNotOptimize(RelightInput(*map));
+}
+BENCHMARK(BM_RelightDecode)->Arg(480)->Arg(1920)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Per recipe change: the relight tables of a computed BRDF. Argument: preset.
+void BM_RelightTables(benchmark::State& state) {
+    const auto preset = static_cast<Preset>(state.range(0));
+    const LayeredBrdf brdf = computeLayeredBrdf(pearlescent(), presetSettings(preset));
+    state.SetLabel(std::string(presetName(preset)));
+    const CpuClock cpu;
+    for (auto _ : state) benchmark::DoNotOptimize(RelightTables(brdf, 4, 4));
+    state.counters["cpu_ms"] = cpu.msPerIteration(state.iterations());
+}
+BENCHMARK(BM_RelightTables)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The preview fast model of the pearlescent demo, for the slider breakdown.
+void BM_PreviewFastModel(benchmark::State& state) {
+    const Recipe recipe = pearlescent();
+    const CpuClock cpu;
+    for (auto _ : state) benchmark::DoNotOptimize(computeLayeredBrdf(recipe, presetSettings(Preset::Preview)));
+    state.counters["cpu_ms"] = cpu.msPerIteration(state.iterations());
+}
+BENCHMARK(BM_PreviewFastModel)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Slider to image: what one recipe change costs with the map decoded (the
+// recipe parsed once; the fast model at the preview preset, the tables, the
+// kernel). Argument: image width.
+void BM_SliderToImage(benchmark::State& state) {
+    const RelightInput& input = demoInput(static_cast<int>(state.range(0)));
+    const Recipe recipe = pearlescent();
+    const CpuClock cpu;
+    for (auto _ : state) {
+        const LayeredBrdf brdf = computeLayeredBrdf(recipe, presetSettings(Preset::Preview));
+        const RelightTables tables(brdf, input.cells(), input.orders());
+        benchmark::DoNotOptimize(relight(input, tables));
+    }
+    state.counters["cpu_ms"] = cpu.msPerIteration(state.iterations());
+}
+BENCHMARK(BM_SliderToImage)->Arg(480)->Arg(1920)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The same image of a paint sphere on a floor, tessellated with 20 x 4^s
+// triangles: s = 4 (5,120) and s = 6 (81,920, 16x). The kernel's time must
+// not follow the triangle count. Argument: s.
+void BM_RelightGeometry(benchmark::State& state) {
+    const auto s = static_cast<int>(state.range(0));
+    const std::string text = R"({"schema_version": 1,
+      "camera": {"position": [0, 1, 4], "look_at": [0, 0.8, 0], "vertical_fov_deg": 30, "width": 960, "height": 540},
+      "lights": [{"type": "sun", "direction": [0.5, 0.8, 0.6], "irradiance": [2, 2, 2]}],
+      "materials": [{"name": "paint", "kind": "paint"}, {"name": "ground", "kind": "diffuse"}],
+      "objects": [{"name": "ball", "sphere": {"radius": 0.8, "subdivisions": )" +
+                             std::to_string(s) + R"(}, "material": "paint",
+                   "transform": {"translate": [0, 0.8, 0]}},
+                  {"name": "floor", "plane": {"size": 30}, "material": "ground"}]})";
+    const RelightInput& input =
+        cachedInput("sphere" + std::to_string(s), parseSceneJson(text, "sphere.json"));
+    const LayeredBrdf brdf = computeLayeredBrdf(pearlescent(), presetSettings(Preset::Preview));
+    const RelightTables tables(brdf, input.cells(), input.orders());
+    state.SetLabel(std::to_string(20 << (2 * s)) + " sphere triangles");
+    const CpuClock cpu;
+    for (auto _ : state) benchmark::DoNotOptimize(relight(input, tables));
+    state.counters["cpu_ms"] = cpu.msPerIteration(state.iterations());
+    state.counters["paint_pixels"] = static_cast<double>(input.paintPixels());
+}
+BENCHMARK(BM_RelightGeometry)->Arg(4)->Arg(6)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
