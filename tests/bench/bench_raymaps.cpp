@@ -119,7 +119,8 @@ BENCHMARK(BM_RelightTables)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseR
 void BM_PreviewFastModel(benchmark::State& state) {
     const Recipe recipe = pearlescent();
     const CpuClock cpu;
-    for (auto _ : state) benchmark::DoNotOptimize(computeLayeredBrdf(recipe, presetSettings(Preset::Preview)));
+    for (auto _ : state)
+        benchmark::DoNotOptimize(computeLayeredBrdf(recipe, presetSettings(Preset::Preview)));
     state.counters["cpu_ms"] = cpu.msPerIteration(state.iterations());
 }
 BENCHMARK(BM_PreviewFastModel)->Unit(benchmark::kMillisecond)->UseRealTime();
