@@ -19,7 +19,7 @@ std::filesystem::path cachedRayMapPath(const std::filesystem::path& scene) {
     const QString folder = QStandardPaths::writableLocation(QStandardPaths::CacheLocation) + "/raymaps";
     QDir().mkpath(folder);
     const QString name = QString::fromStdString(scene.stem().string()) + "-" + tag + ".prm";
-    return std::filesystem::path((folder + "/" + name).toStdString());
+    return {(folder + "/" + name).toStdString()};
 }
 
 }  // namespace paintlab::gui
