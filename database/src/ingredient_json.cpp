@@ -4,11 +4,10 @@
 #include "paintlab/database/ingredient_json.h"
 
 #include "ingredient_json_detail.h"
+#include "json_fields.h"
 #include "spectrum_checks.h"
 
 #include "paintlab/engine/error.h"
-
-#include <set>
 
 namespace paintlab::db {
 
@@ -16,72 +15,12 @@ namespace {
 
 using Json = nlohmann::json;
 
-// One JSON object being read: remembers the keys taken, reports the rest.
-class ObjectReader {
-public:
-    ObjectReader(const Json& object, std::string field, const std::string& source)
-        : m_object(object), m_field(std::move(field)), m_source(source) {
-        if (!object.is_object()) fail("", "expected an object");
-    }
-
-    bool has(const std::string& key) const { return m_object.contains(key); }
-
-    const Json& get(const std::string& key) {
-        if (!m_object.contains(key)) fail(key, "missing");
-        m_taken.insert(key);
-        return m_object.at(key);
-    }
-
-    std::string text(const std::string& key) {
-        const Json& value = get(key);
-        if (!value.is_string()) fail(key, "expected a string");
-        return value.get<std::string>();
-    }
-    std::string optionalText(const std::string& key) { return has(key) ? text(key) : std::string(); }
-
-    double number(const std::string& key) {
-        const Json& value = get(key);
-        if (!value.is_number()) fail(key, "expected a number");
-        return value.get<double>();
-    }
-    std::optional<double> optionalNumber(const std::string& key) {
-        if (!has(key)) return std::nullopt;
-        return number(key);
-    }
-
-    std::string fieldOf(const std::string& key) const { return key.empty() ? m_field : m_field + "." + key; }
-
-    [[noreturn]] void fail(const std::string& key, const std::string& message) const {
-        throw InputError(m_source, fieldOf(key), message);
-    }
-
-    void finish() const {
-        for (const auto& item : m_object.items())
-            if (m_taken.count(item.key()) == 0) fail(item.key(), "unknown field");
-    }
-
-private:
-    const Json& m_object;
-    std::string m_field;
-    const std::string& m_source;
-    std::set<std::string> m_taken;
-};
-
-std::vector<double> numbers(ObjectReader& reader, const std::string& key) {
-    const Json& value = reader.get(key);
-    if (!value.is_array() || value.empty()) reader.fail(key, "expected a non-empty array of numbers");
-    std::vector<double> out;
-    for (const auto& item : value) {
-        if (!item.is_number()) reader.fail(key, "expected a non-empty array of numbers");
-        out.push_back(item.get<double>());
-    }
-    return out;
-}
+using detail::JsonFields;
 
 // Reads spectra.<key> into the ingredient's provenance map and returns the spectrum.
 class SpectraReader {
 public:
-    SpectraReader(ObjectReader& parent, Ingredient& ingredient, const std::string& source)
+    SpectraReader(JsonFields& parent, Ingredient& ingredient, const std::string& source)
         : m_reader(parent.get("spectra"), parent.fieldOf("spectra"), source), m_ingredient(ingredient),
           m_source(source) {}
 
@@ -89,15 +28,15 @@ public:
 
     Spectrum take(std::string_view key_view) {
         const std::string key(key_view);
-        ObjectReader spectrum(m_reader.get(key), m_reader.fieldOf(key), m_source);
+        JsonFields spectrum(m_reader.get(key), m_reader.fieldOf(key), m_source);
         SpectrumInfo info{spectrum.text("unit"), spectrum.text("source"), spectrum.optionalText("date")};
         Spectrum out;
         try {
             if (spectrum.has("value")) {
                 out = Spectrum(spectrum.number("value"));
             } else {
-                auto wavelengths = numbers(spectrum, "wavelengths_nm");
-                auto values = numbers(spectrum, "values");
+                auto wavelengths = spectrum.numbers("wavelengths_nm", 1);
+                auto values = spectrum.numbers("values", 1);
                 out = Spectrum(std::move(wavelengths), std::move(values));
             }
         } catch (const std::invalid_argument& e) {
@@ -116,7 +55,7 @@ public:
     void finish() const { m_reader.finish(); }
 
 private:
-    ObjectReader m_reader;
+    JsonFields m_reader;
     Ingredient& m_ingredient;
     const std::string& m_source;
 };
@@ -125,7 +64,7 @@ private:
 
 Ingredient detail::ingredientFromJson(const nlohmann::json& json, const std::string& field,
                                       const std::string& source) {
-    ObjectReader r(json, field, source);
+    JsonFields r(json, field, source);
     Ingredient ing;
     const std::string kind_text = r.text("kind");
     const auto kind = parseIngredientKind(kind_text);
@@ -146,7 +85,7 @@ Ingredient detail::ingredientFromJson(const nlohmann::json& json, const std::str
         }
     }
     if (r.has("limits")) {
-        ObjectReader limits(r.get("limits"), r.fieldOf("limits"), source);
+        JsonFields limits(r.get("limits"), r.fieldOf("limits"), source);
         ing.limits = {limits.optionalNumber("max_volume_fraction"), limits.optionalNumber("min_thickness_um"),
                       limits.optionalNumber("max_thickness_um")};
         limits.finish();
@@ -317,7 +256,7 @@ std::vector<Ingredient> parseIngredientsJson(std::string_view text, const std::s
     } catch (const Json::parse_error& e) {
         throw InputError(source, "", std::string("not valid JSON: ") + e.what());
     }
-    ObjectReader r(document, "", source);
+    JsonFields r(document, "", source);
     if (r.text("format") != "paintlab-ingredients") r.fail("format", "expected \"paintlab-ingredients\"");
     const double version = r.number("format_version");
     if (version != 1.0) r.fail("format_version", "only version 1 is known to this build");

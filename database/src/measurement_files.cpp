@@ -4,6 +4,7 @@
 #include "paintlab/database/measurement_files.h"
 
 #include "csv.h"
+#include "json_fields.h"
 #include "measurement_json.h"
 
 #include "paintlab/engine/error.h"
@@ -11,7 +12,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <set>
 
 namespace paintlab::db {
 
@@ -21,56 +21,7 @@ namespace {
 
 using Json = nlohmann::json;
 
-// A JSON object whose keys are taken one by one; the rest are reported as unknown.
-class Fields {
-public:
-    Fields(const Json& object, std::string field, const std::string& source)
-        : m_object(object), m_field(std::move(field)), m_source(source) {
-        if (!object.is_object()) fail("", "expected an object");
-    }
-    bool has(const char* key) const { return m_object.contains(key); }
-    const Json& get(const char* key) {
-        if (!m_object.contains(key)) fail(key, "missing");
-        m_taken.insert(key);
-        return m_object.at(key);
-    }
-    std::string text(const char* key, bool required = false) {
-        if (!required && !has(key)) return {};
-        const Json& value = get(key);
-        if (!value.is_string()) fail(key, "expected a string");
-        return value.get<std::string>();
-    }
-    double number(const char* key) {
-        const Json& value = get(key);
-        if (!value.is_number()) fail(key, "expected a number");
-        return value.get<double>();
-    }
-    std::vector<double> numbers(const char* key) {
-        const Json& value = get(key);
-        if (!value.is_array()) fail(key, "expected an array of numbers");
-        std::vector<double> out;
-        for (std::size_t i = 0; i < value.size(); ++i) {
-            if (!value[i].is_number())
-                fail(std::string(key) + "[" + std::to_string(i) + "]", "expected a number");
-            out.push_back(value[i].get<double>());
-        }
-        return out;
-    }
-    std::string at(const std::string& key) const { return key.empty() ? m_field : m_field + "." + key; }
-    [[noreturn]] void fail(const std::string& key, const std::string& message) const {
-        throw InputError(m_source, at(key), message);
-    }
-    void finish() const {
-        for (const auto& item : m_object.items())
-            if (m_taken.count(item.key()) == 0) fail(item.key(), "unknown field");
-    }
-
-private:
-    const Json& m_object;
-    std::string m_field;
-    const std::string& m_source;
-    std::set<std::string> m_taken;
-};
+using Fields = JsonFields;
 
 }  // namespace
 
@@ -115,20 +66,19 @@ void readMeasurementJson(const nlohmann::json& json, bool with_description, Meas
                          const std::string& source) {
     Fields f(json, "", source);
     if (with_description) {
-        if (f.text("format", true) != "paintlab-measurement")
-            f.fail("format", "expected \"paintlab-measurement\"");
+        if (f.text("format") != "paintlab-measurement") f.fail("format", "expected \"paintlab-measurement\"");
         if (f.number("format_version") != 1.0)
             f.fail("format_version", "only version 1 is known to this build");
-        m.name = f.text("name", true);
-        const std::string kind = f.text("kind", true);
+        m.name = f.text("name");
+        const std::string kind = f.text("kind");
         const auto parsed = parseMeasurementKind(kind);
         if (!parsed) f.fail("kind", "unknown kind '" + kind + "' (multiangle or brdf)");
         m.kind = *parsed;
-        m.instrument = f.text("instrument");
-        m.geometry = f.text("geometry");
-        m.sample = f.text("sample");
-        m.measured_at = f.text("measured_at");
-        m.source = f.text("source");
+        m.instrument = f.optionalText("instrument");
+        m.geometry = f.optionalText("geometry");
+        m.sample = f.optionalText("sample");
+        m.measured_at = f.optionalText("measured_at");
+        m.source = f.optionalText("source");
     }
     if (m.kind == MeasurementKind::MultiAngle) {
         if (f.has("illuminant")) m.illuminant = f.text("illuminant");
@@ -136,7 +86,7 @@ void readMeasurementJson(const nlohmann::json& json, bool with_description, Meas
         const Json& readings = f.get("readings");
         if (!readings.is_array()) f.fail("readings", "expected an array");
         for (std::size_t i = 0; i < readings.size(); ++i) {
-            Fields r(readings[i], f.at("readings[" + std::to_string(i) + "]"), source);
+            Fields r(readings[i], f.fieldOf("readings[" + std::to_string(i) + "]"), source);
             MultiAngleReading reading;
             if (r.has("illumination_deg")) reading.illumination_deg = r.number("illumination_deg");
             reading.aspecular_deg = r.number("aspecular_deg");
@@ -159,7 +109,7 @@ void readMeasurementJson(const nlohmann::json& json, bool with_description, Meas
         const Json& samples = f.get("samples");
         if (!samples.is_array()) f.fail("samples", "expected an array");
         for (std::size_t i = 0; i < samples.size(); ++i) {
-            Fields s(samples[i], f.at("samples[" + std::to_string(i) + "]"), source);
+            Fields s(samples[i], f.fieldOf("samples[" + std::to_string(i) + "]"), source);
             BrdfSample sample{s.number("theta_i_deg"), s.number("phi_i_deg"), s.number("theta_o_deg"),
                               s.number("phi_o_deg"), s.numbers("values")};
             s.finish();
