@@ -54,6 +54,14 @@ void storeMinimal(Database& db, std::optional<double> red_density = 5.0) {
     saveRecipeVersion(db, recipe, save);
 }
 
+// The minimal recipe's sheet for a 1 kg batch of its newest version.
+ProductionSheet minimalSheetPerKg(Database& db) {
+    storeMinimal(db);
+    ProductionOptions options;
+    options.batch_kg = 1.0;
+    return productionSheet(db, "test basecoat", std::nullopt, options);
+}
+
 const ProductionLine& line(const ProductionLayer& layer, const std::string& name) {
     for (const auto& l : layer.lines)
         if (l.name == name) return l;
@@ -67,10 +75,7 @@ const ProductionLine& line(const ProductionLayer& layer, const std::string& name
 TEST(Production, BatchByMassMatchesTheHandComputation) {
     TempDir dir;
     Database db = Database::open(dir / "p.db");
-    storeMinimal(db);
-    ProductionOptions options;
-    options.batch_kg = 1.0;
-    const ProductionSheet sheet = productionSheet(db, "test basecoat", std::nullopt, options);
+    const ProductionSheet sheet = minimalSheetPerKg(db);
     EXPECT_EQ(sheet.version.version, 1);
     EXPECT_EQ(sheet.version.checksum_sha256.size(), 64U);
     ASSERT_EQ(sheet.layers.size(), 1U);
@@ -190,10 +195,7 @@ TEST(Production, MissingDensityUnlinkedIngredientAndRawMediumAreNamed) {
 TEST(Production, SheetsNameTheVersionAndChecksumAndEscapeNames) {
     TempDir dir;
     Database db = Database::open(dir / "p.db");
-    storeMinimal(db);
-    ProductionOptions options;
-    options.batch_kg = 1.0;
-    const auto sheet = productionSheet(db, "test basecoat", std::nullopt, options);
+    const auto sheet = minimalSheetPerKg(db);
     const std::string html = productionHtml(sheet);
     EXPECT_NE(html.find(sheet.version.checksum_sha256), std::string::npos);
     EXPECT_NE(html.find("Recipe version</td><td class=\"text\">1<"), std::string::npos);

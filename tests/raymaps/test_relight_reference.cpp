@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 namespace paintlab::raymaps {
@@ -39,6 +40,14 @@ struct Comparison {
     RgbImage relit;
     RgbImage relit_b;  // from a map of another seed: the precompute's noise
     ReferenceImage reference;
+
+    // Relit against reference over the interior paint pixels away from sun
+    // glints, optionally only those `which` accepts.
+    compare::PaintComparison paint(const std::function<bool(const PaintSample&)>& which = {}) const {
+        return compare::comparePaint(
+            relit, reference, compare::interiorPaintMask(*map, compare::notSunGlint(*map, kGlintDeg, which)),
+            relit_b);
+    }
 };
 
 // Precompute (64 moment rays, one camera sample), relight and reference
@@ -96,9 +105,7 @@ TEST(RelightVsReference, DemoScene) {
     scene.camera.height = 36;
     const Comparison c =
         relightAndReference(dir, scene, kDemo / "recipes" / "pearlescent-two-layer.json", 256);
-    const auto result = compare::comparePaint(
-        c.relit, c.reference, compare::interiorPaintMask(*c.map, compare::notSunGlint(*c.map, kGlintDeg)),
-        c.relit_b);
+    const auto result = c.paint();
     expectWithin("demo scene", result, 0.02, 0.03, c, 200);
 }
 
@@ -115,9 +122,7 @@ TEST(RelightVsReference, SunLitSphere) {
                   {"name": "floor", "plane": {"size": 30}, "material": "ground"}]})",
                                        "sphere_sun.json");
     const Comparison c = relightAndReference(dir, scene, kFlakePaint, 256);
-    const auto result = compare::comparePaint(
-        c.relit, c.reference, compare::interiorPaintMask(*c.map, compare::notSunGlint(*c.map, kGlintDeg)),
-        c.relit_b);
+    const auto result = c.paint();
     expectWithin("sun-lit sphere", result, 0.02, 0.03, c, 300);
 }
 
@@ -155,24 +160,9 @@ TEST(RelightVsReference, PaintThroughGlassAndInAMirror) {
     const auto mirror = [](const PaintSample& s) {
         return s.weight.minCoeff() > 0.65F && s.weight.maxCoeff() < 0.75F;
     };
-    expectWithin("seen directly",
-                 compare::comparePaint(
-                     c.relit, c.reference,
-                     compare::interiorPaintMask(*c.map, compare::notSunGlint(*c.map, kGlintDeg, direct)),
-                     c.relit_b),
-                 0.02, 0.03, c, 60);
-    expectWithin("through glass",
-                 compare::comparePaint(
-                     c.relit, c.reference,
-                     compare::interiorPaintMask(*c.map, compare::notSunGlint(*c.map, kGlintDeg, glass)),
-                     c.relit_b),
-                 0.02, 0.03, c, 30);
-    expectWithin("in the mirror",
-                 compare::comparePaint(
-                     c.relit, c.reference,
-                     compare::interiorPaintMask(*c.map, compare::notSunGlint(*c.map, kGlintDeg, mirror)),
-                     c.relit_b),
-                 0.02, 0.03, c, 30);
+    expectWithin("seen directly", c.paint(direct), 0.02, 0.03, c, 60);
+    expectWithin("through glass", c.paint(glass), 0.02, 0.03, c, 30);
+    expectWithin("in the mirror", c.paint(mirror), 0.02, 0.03, c, 30);
 }
 
 }  // namespace
