@@ -7,6 +7,7 @@
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/layered_brdf.h"
 #include "paintlab/engine/recipe_json.h"
+#include "paintlab/raymaps/paint_proxy.h"
 #include "paintlab/raymaps/raymap.h"
 #include "paintlab/raymaps/reference.h"
 #include "paintlab/raymaps/relight.h"
@@ -258,6 +259,11 @@ void addRaymapCommands(CLI::App& app, CommandAction& action) {
             (void)presetFromName(rr->preset);
             rr->sparkle.camera_scene = rb->scene;
             rr->sparkle.camera_height = rb->height;
+            // The recipe is known before the precompute: its own colour, not
+            // the grey stand-in, is the paint that secondary rays meet (paint
+            // seen by paint in a mirror; raymaps/paint_proxy.h).
+            rb->settings.paint_proxy_albedo = raymaps::paintProxyAlbedo(
+                computeLayeredBrdf(loadRecipeFile(rr->recipe), presetSettings(Preset::Preview)));
             const RemoveOnExit remove(map);
             build(*rb, map);
             return relightMap(*rr, map);

@@ -99,7 +99,7 @@ double powerHeuristic(double a, double b) { return a * a / (a * a + b * b); }
 }  // namespace
 
 PathTracer::PathTracer(const Scene& scene, const SceneTracer& tracer, const EnvironmentMap& environment,
-                       int max_depth)
+                       int max_depth, const Rgb3& paint_proxy_albedo)
     : m_scene(scene), m_tracer(tracer), m_environment(environment), m_max_depth(max_depth) {
     for (const Light& light : scene.lights) {
         if (const auto* sun = std::get_if<SunLight>(&light)) {
@@ -110,7 +110,7 @@ PathTracer::PathTracer(const Scene& scene, const SceneTracer& tracer, const Envi
         }
     }
     m_paint_proxy.kind = MaterialKind::Diffuse;
-    m_paint_proxy.albedo = Rgb3::Constant(kPaintProxyAlbedo);
+    m_paint_proxy.albedo = paint_proxy_albedo;
 }
 
 Vec3 PathTracer::offset(const Vec3& position, const Vec3& geometric_normal, const Vec3& towards) const {

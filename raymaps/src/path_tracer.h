@@ -8,9 +8,12 @@
 // glass are followed as deltas.
 //
 // Paint met by a secondary ray (paint seen by paint, or lighting the floor)
-// is a Lambertian grey of albedo kPaintProxyAlbedo: the recipe is not known
-// at precompute, and the light that paint sends onto other surfaces is a
-// second-order term.
+// is a Lambertian proxy: grey of albedo kPaintProxyAlbedo when the recipe is
+// not known at precompute, else the recipe's diffuse albedo in linear sRGB
+// (RayMapSettings::paint_proxy_albedo). The light that paint sends onto other
+// surfaces is a second-order term, but paint seen in a mirror lights the paint
+// itself, and a grey stand-in for a red paint there biased green and blue by
+// ~3 % (docs/RAYMAPS.md, "Per-pixel comparison").
 
 #include "sampling.h"
 #include "scene_tracer.h"
@@ -40,7 +43,7 @@ struct PositionalLight {
 class PathTracer {
 public:
     PathTracer(const Scene& scene, const SceneTracer& tracer, const EnvironmentMap& environment,
-               int max_depth);
+               int max_depth, const Rgb3& paint_proxy_albedo = Rgb3::Constant(kPaintProxyAlbedo));
 
     // Radiance arriving at `origin` from `direction` (unit): what the ray
     // towards `direction` sees. `see_sun_disks`: whether a ray that escapes

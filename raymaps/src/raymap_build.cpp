@@ -275,6 +275,11 @@ void validateRayMapSettings(const RayMapSettings& s) {
     if (!(s.env_light_threshold >= 1.0 && s.env_light_threshold <= 1e9))
         throw InputError("<argument>", "env_light_threshold",
                          std::to_string(s.env_light_threshold) + " is outside [1, 1e9]");
+    // allFinite first: Eigen's minCoeff/maxCoeff may pass over a NaN.
+    if (s.paint_proxy_albedo &&
+        !(s.paint_proxy_albedo->allFinite() && s.paint_proxy_albedo->minCoeff() >= 0.0 &&
+          s.paint_proxy_albedo->maxCoeff() <= 1.0))
+        throw InputError("<argument>", "paint_proxy_albedo", "channels must be in [0, 1]");
 }
 
 RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, const std::filesystem::path& out,
@@ -284,8 +289,9 @@ RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, con
     const SceneGeometry geometry = buildSceneGeometry(scene);
     const EnvironmentMap environment = EnvironmentMap::load(scene.environment);
     const SceneTracer tracer(geometry);
-    const PathTracer pt(scene, tracer, environment, settings.max_depth);
-    const PathTracer pt_indirect(scene, tracer, environment, settings.indirect_depth);
+    const Rgb3 proxy = settings.paint_proxy_albedo.value_or(Rgb3::Constant(kPaintProxyAlbedo));
+    const PathTracer pt(scene, tracer, environment, settings.max_depth, proxy);
+    const PathTracer pt_indirect(scene, tracer, environment, settings.indirect_depth, proxy);
     const PinholeCamera camera(scene.camera);
 
     RayMapHeader header;
@@ -295,7 +301,7 @@ RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, con
     header.orders = settings.orders;
     header.band_rows = settings.band_rows;
     header.scene_file = scene.file.filename().string();
-    header.paint_proxy_albedo = kPaintProxyAlbedo;
+    header.paint_proxy_albedo = proxy.mean();
     for (const auto& sun : pt.suns())
         header.lights.push_back({ExplicitLight::Kind::Sun, sun.direction, sun.irradiance,
                                  2.0 * kPi * (1.0 - sun.cos_half_angle)});

@@ -8,6 +8,7 @@
 #include "paintlab/engine/layered_brdf.h"
 #include "paintlab/engine/recipe_json.h"
 #include "paintlab/raymaps/environment_map.h"
+#include "paintlab/raymaps/paint_proxy.h"
 #include "paintlab/raymaps/raymap.h"
 #include "paintlab/raymaps/reference.h"
 #include "paintlab/raymaps/relight.h"
@@ -288,6 +289,23 @@ TEST(RayMap, BadSettingsAreInputErrors) {
     s = RayMapSettings{};
     s.orders = 40;
     EXPECT_THROW(validateRayMapSettings(s), InputError);
+    s = RayMapSettings{};
+    s.paint_proxy_albedo = Rgb3(0.5, std::nan(""), 0.5);
+    EXPECT_THROW(validateRayMapSettings(s), InputError);
+    s.paint_proxy_albedo = Rgb3(0.5, 1.5, 0.5);
+    EXPECT_THROW(validateRayMapSettings(s), InputError);
+}
+
+// The stand-in for paint met by secondary rays has the recipe's colour: the
+// red test paint (iron-oxide-like pigment) reflects red several times more
+// than green or blue, and every channel is a valid albedo.
+TEST(RayMap, PaintProxyHasTheRecipeColour) {
+    const LayeredBrdf brdf = brdfOf(std::filesystem::path(PAINTLAB_TEST_DATA_DIR) / "valid_minimal.json");
+    const Rgb3 proxy = paintProxyAlbedo(brdf);
+    EXPECT_GE(proxy.minCoeff(), 0.0);
+    EXPECT_LE(proxy.maxCoeff(), 1.0);
+    EXPECT_GT(proxy.x(), 2.0 * proxy.y());
+    EXPECT_GT(proxy.x(), 2.0 * proxy.z());
 }
 
 TEST(RayMap, CancelledBuildLeavesNoFile) {

@@ -11,6 +11,7 @@
 
 #include "paintlab/engine/layered_brdf.h"
 #include "paintlab/engine/recipe_json.h"
+#include "paintlab/raymaps/paint_proxy.h"
 #include "paintlab/raymaps/raymap.h"
 #include "paintlab/raymaps/reference.h"
 #include "paintlab/raymaps/relight.h"
@@ -60,13 +61,14 @@ Comparison relightAndReference(const test::TempDir& dir, const Scene& scene,
     s.bake_paths = 1;
     s.sun_shadow_rays = 4;
     s.band_rows = 8;
+    const LayeredBrdf brdf = computeLayeredBrdf(loadRecipeFile(recipe), presetSettings(Preset::Preview));
+    s.paint_proxy_albedo = paintProxyAlbedo(brdf);
     const auto path = dir / "map.prm";
     buildRayMap(scene, s, path);
     s.seed = 2;
     buildRayMap(scene, s, dir / "map_b.prm");
     Comparison c;
     c.map = RayMap::open(path);
-    const LayeredBrdf brdf = computeLayeredBrdf(loadRecipeFile(recipe), presetSettings(Preset::Preview));
     const RelightTables tables(brdf, c.map->header().cells, c.map->header().orders);
     c.relit = relight(RelightInput(*c.map), tables);
     c.relit_b = relight(*RayMap::open(dir / "map_b.prm"), tables);

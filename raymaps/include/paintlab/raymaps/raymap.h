@@ -20,6 +20,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,12 @@ struct RayMapSettings {
     int env_lights = 4;
     double env_light_threshold = 50.0;
     std::uint64_t seed = 1;
+    // The Lambertian stand-in for paint that a secondary ray meets (paint
+    // seen by paint in a mirror or through glass, paint lighting the floor),
+    // linear sRGB albedo in [0, 1]: grey 0.35 (path_tracer.h) unless the
+    // recipe is known when the map is built (render, the workstation), where
+    // its diffuse albedo removes the stand-in's colour bias.
+    std::optional<Rgb3> paint_proxy_albedo;
 };
 
 // Throws InputError ("<argument>", field) if a setting is out of its range.
