@@ -95,15 +95,19 @@ void InplanePlot::updateChart() {
     }
     t->Modified();
     vtkChartXY* chart = m_vtk->chart;
-    chart->ClearPlots();
-    const unsigned char colours[4][3] = {{200, 30, 30}, {30, 150, 30}, {30, 60, 200}, {20, 20, 20}};
-    for (int s = 0; s < 4; ++s) {
-        vtkPlot* line = chart->AddPlot(vtkChart::LINE);
-        line->SetInputData(t, 0, s + 1);
-        line->SetColor(colours[s][0], colours[s][1], colours[s][2], 255);
-        line->SetWidth(s == 3 ? 2.5F : 1.5F);
+    // The four lines are made once and then follow the table, rather than
+    // re-created with their GL state on every update.
+    if (chart->GetNumberOfPlots() == 0) {
+        const unsigned char colours[4][3] = {{200, 30, 30}, {30, 150, 30}, {30, 60, 200}, {20, 20, 20}};
+        for (int s = 0; s < 4; ++s) {
+            vtkPlot* line = chart->AddPlot(vtkChart::LINE);
+            line->SetInputData(t, 0, s + 1);
+            line->SetColor(colours[s][0], colours[s][1], colours[s][2], 255);
+            line->SetWidth(s == 3 ? 2.5F : 1.5F);
+        }
     }
     chart->GetAxis(vtkAxis::LEFT)->SetLogScale(m_log_scale);
+    chart->RecalculateBounds();
     update();
 }
 
