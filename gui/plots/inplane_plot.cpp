@@ -1,10 +1,6 @@
 #include "inplane_plot.h"
 
-#include "paintlab/engine/brdf_colour.h"
 #include "paintlab/engine/layered_brdf.h"
-
-#include <QSaveFile>
-#include <QTextStream>
 
 #include <vtkAxis.h>
 #include <vtkChartXY.h>
@@ -13,41 +9,88 @@
 #include <vtkDoubleArray.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkNew.h>
+#include <vtkPen.h>
 #include <vtkPlot.h>
 #include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
 #include <vtkTable.h>
-#include <vtkTextProperty.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
 
 namespace paintlab::gui {
 
 struct InplanePlot::Vtk {
-    vtkNew<vtkGenericOpenGLRenderWindow> window;
     vtkNew<vtkContextView> view;
     vtkNew<vtkChartXY> chart;
-    vtkNew<vtkTable> table;
+    vtkNew<vtkTable> table;       // view_deg, then the current BRDF's columns
+    vtkNew<vtkTable> comparison;  // the same for the comparison
 };
 
 namespace {
-constexpr double kIncidenceDeg = 45.0;
-constexpr int kAngles = 69;  // -85 .. 85 deg in 2.5 deg steps
+
+constexpr double kPrimaryIncidenceDeg = 45.0;
+
+// Y per incidence: a distinct colour each, the 45 degree light (the primary curve) black.
+std::array<unsigned char, 3> incidenceColour(std::size_t k, std::size_t count) {
+    static constexpr std::array<std::array<unsigned char, 3>, 6> kPalette{
+        {{90, 40, 160}, {30, 90, 200}, {20, 20, 20}, {220, 120, 20}, {150, 70, 30}, {0, 140, 140}}};
+    if (count == 1) return kPalette[2];
+    return kPalette[k % kPalette.size()];
+}
+
+QString degrees(double v) { return QString::number(v, 'g', 4) + QStringLiteral(" deg"); }
+
+// Fills a table: column 0 the view angle, then Y per curve, then R, G, B of
+// the curve at `primary`. A log axis cannot show zero: values are floored
+// far below any visible reflectance.
+void fillTable(vtkTable* t, const std::vector<InplaneCurve>& curves, std::size_t primary, bool log_scale,
+               const QString& suffix) {
+    t->Initialize();
+    const auto addColumn = [t](const QString& name) {
+        vtkNew<vtkDoubleArray> column;
+        column->SetName(name.toUtf8().constData());
+        t->AddColumn(column);
+    };
+    addColumn(QStringLiteral("view_deg"));
+    for (const InplaneCurve& c : curves)
+        addColumn(QStringLiteral("Y, light at %1%2").arg(degrees(c.theta_i_deg), suffix));
+    const bool channels = primary < curves.size();
+    if (channels)
+        for (const char* ch : {"R", "G", "B"})
+            addColumn(
+                QStringLiteral("%1, light at %2%3").arg(ch, degrees(curves[primary].theta_i_deg), suffix));
+    if (curves.empty()) return;
+    const auto n = static_cast<vtkIdType>(curves.front().view_deg.size());
+    t->SetNumberOfRows(n);
+    const auto shown = [log_scale](double v) { return log_scale ? std::max(v, 1e-6) : v; };
+    for (vtkIdType i = 0; i < n; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        t->SetValue(i, 0, curves.front().view_deg[k]);
+        vtkIdType col = 1;
+        for (const InplaneCurve& c : curves) t->SetValue(i, col++, shown(c.y[k]));
+        if (channels) {
+            const InplaneCurve& p = curves[primary];
+            t->SetValue(i, col++, shown(p.r[k]));
+            t->SetValue(i, col++, shown(p.g[k]));
+            t->SetValue(i, col++, shown(p.b[k]));
+        }
+    }
+    t->Modified();
+}
+
 }  // namespace
 
-InplanePlot::InplanePlot(QWidget* parent) : QOpenGLWidget(parent), m_vtk(std::make_unique<Vtk>()) {
-    m_vtk->view->SetRenderWindow(m_vtk->window);
+InplanePlot::InplanePlot(QWidget* parent) : PlotWidget(parent), m_vtk(std::make_unique<Vtk>()) {
+    m_vtk->view->SetRenderWindow(renderWindow());
     m_vtk->view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
     m_vtk->view->GetScene()->AddItem(m_vtk->chart);
-    m_vtk->chart->SetTitle("In-plane reflectance factor, light at 45 deg");
     m_vtk->chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("view angle (deg, negative: light side)");
     m_vtk->chart->GetAxis(vtkAxis::LEFT)->SetTitle("pi f");
     m_vtk->chart->SetShowLegend(true);
-    for (const char* name : {"view_deg", "R", "G", "B", "Y"}) {
-        vtkNew<vtkDoubleArray> column;
-        column->SetName(name);
-        m_vtk->table->AddColumn(column);
-    }
-    setMinimumSize(320, 240);
+    updateChart();
 }
 
 InplanePlot::~InplanePlot() {
@@ -56,21 +99,41 @@ InplanePlot::~InplanePlot() {
     doneCurrent();
 }
 
+void InplanePlot::compute(const LayeredBrdf& brdf) {
+    m_curves = inplaneCurves(brdf, m_incidences);
+    pickPrimary();
+}
+
+void InplanePlot::pickPrimary() {
+    const auto primary = std::find_if(m_curves.begin(), m_curves.end(),
+                                      [](const Curve& c) { return c.theta_i_deg == kPrimaryIncidenceDeg; });
+    m_curve = primary != m_curves.end() ? *primary : m_curves.empty() ? Curve{} : m_curves.front();
+}
+
+void InplanePlot::setCurves(std::vector<Curve> curves) {
+    m_brdf.reset();
+    m_curves = std::move(curves);
+    m_incidences.clear();
+    for (const Curve& c : m_curves) m_incidences.push_back(c.theta_i_deg);
+    pickPrimary();
+    updateChart();
+}
+
+void InplanePlot::setComparisonCurves(std::vector<Curve> curves, const QString& label) {
+    m_comparison = std::move(curves);
+    m_comparison_label = label.isEmpty() ? QStringLiteral("comparison") : label;
+    updateChart();
+}
+
 void InplanePlot::setBrdf(const LayeredBrdf& brdf) {
-    Curve c;
-    const Direction wi = directionFromAnglesDeg(kIncidenceDeg, 180.0);
-    for (int k = 0; k < kAngles; ++k) {
-        const double view = -85.0 + 2.5 * k;
-        // In the plane of incidence: positive angles on the far side (the specular side).
-        const Direction wo = directionFromAnglesDeg(std::abs(view), view >= 0.0 ? 0.0 : 180.0);
-        const SpectralColour colour = reflectanceFactorColour(brdf, wi, wo);
-        c.view_deg.push_back(view);
-        c.r.push_back(colour.linear_srgb.r);
-        c.g.push_back(colour.linear_srgb.g);
-        c.b.push_back(colour.linear_srgb.b);
-        c.y.push_back(colour.xyz.Y);
-    }
-    m_curve = std::move(c);
+    m_brdf.reset();
+    compute(brdf);
+    updateChart();
+}
+
+void InplanePlot::setBrdf(std::shared_ptr<const LayeredBrdf> brdf) {
+    m_brdf = std::move(brdf);
+    if (m_brdf) compute(*m_brdf);
     updateChart();
 }
 
@@ -79,68 +142,83 @@ void InplanePlot::setLogScale(bool log_scale) {
     updateChart();
 }
 
+void InplanePlot::setIncidences(const std::vector<double>& incidences_deg) {
+    std::vector<double> kept;
+    for (double t : incidences_deg)
+        if (t >= 0.0 && t < 90.0 && std::find(kept.begin(), kept.end(), t) == kept.end()) kept.push_back(t);
+    if (std::find(kept.begin(), kept.end(), kPrimaryIncidenceDeg) == kept.end())
+        kept.push_back(kPrimaryIncidenceDeg);
+    std::sort(kept.begin(), kept.end());
+    m_incidences = std::move(kept);
+    if (m_brdf) compute(*m_brdf);
+    // The comparison is kept as computed: it is redone with its BRDF by setComparison.
+    updateChart();
+}
+
+void InplanePlot::setComparison(const LayeredBrdf& brdf, const QString& label) {
+    setComparisonCurves(inplaneCurves(brdf, m_incidences), label);
+}
+
+void InplanePlot::clearComparison() {
+    m_comparison.clear();
+    m_comparison_label.clear();
+    updateChart();
+}
+
 void InplanePlot::updateChart() {
-    vtkTable* t = m_vtk->table;
-    const auto n = static_cast<vtkIdType>(m_curve.view_deg.size());
-    t->SetNumberOfRows(n);
-    // A log axis cannot show zero: the floor is far below any visible reflectance.
-    const auto shown = [this](double v) { return m_log_scale ? std::max(v, 1e-6) : v; };
-    for (vtkIdType i = 0; i < n; ++i) {
-        const auto k = static_cast<std::size_t>(i);
-        t->SetValue(i, 0, m_curve.view_deg[k]);
-        t->SetValue(i, 1, shown(m_curve.r[k]));
-        t->SetValue(i, 2, shown(m_curve.g[k]));
-        t->SetValue(i, 3, shown(m_curve.b[k]));
-        t->SetValue(i, 4, shown(m_curve.y[k]));
-    }
-    t->Modified();
+    // The R, G, B channels are drawn for the primary curve (curve()).
+    const auto primary = static_cast<std::size_t>(
+        std::find_if(m_curves.begin(), m_curves.end(),
+                     [this](const Curve& c) { return c.theta_i_deg == m_curve.theta_i_deg; }) -
+        m_curves.begin());
+    fillTable(m_vtk->table, m_curves, primary, m_log_scale, QString());
+    fillTable(m_vtk->comparison, m_comparison, m_comparison.size(), m_log_scale,
+              QStringLiteral(" (%1)").arg(m_comparison_label));
     vtkChartXY* chart = m_vtk->chart;
-    // The four lines are made once and then follow the table, rather than
-    // re-created with their GL state on every update.
-    if (chart->GetNumberOfPlots() == 0) {
-        const unsigned char colours[4][3] = {{200, 30, 30}, {30, 150, 30}, {30, 60, 200}, {20, 20, 20}};
-        for (int s = 0; s < 4; ++s) {
+    chart->ClearPlots();
+    chart->SetTitle(m_curves.size() == 1 ? QStringLiteral("In-plane reflectance factor, light at %1")
+                                               .arg(degrees(m_curve.theta_i_deg))
+                                               .toStdString()
+                                         : std::string("In-plane reflectance factor at several incidences"));
+    const auto addLines = [&](vtkTable* t, const std::vector<Curve>& curves, bool dashed, bool channels) {
+        if (curves.empty()) return;
+        vtkIdType col = 1;
+        for (std::size_t k = 0; k < curves.size(); ++k) {
             vtkPlot* line = chart->AddPlot(vtkChart::LINE);
-            line->SetInputData(t, 0, s + 1);
-            line->SetColor(colours[s][0], colours[s][1], colours[s][2], 255);
-            line->SetWidth(s == 3 ? 2.5F : 1.5F);
+            line->SetInputData(t, 0, col++);
+            const auto c = incidenceColour(k, curves.size());
+            line->SetColor(c[0], c[1], c[2], 255);
+            line->SetWidth(curves[k].theta_i_deg == kPrimaryIncidenceDeg ? 2.5F : 1.8F);
+            if (dashed) line->GetPen()->SetLineType(vtkPen::DASH_LINE);
         }
-    }
+        if (!channels) return;
+        const unsigned char rgb[3][3] = {{200, 30, 30}, {30, 150, 30}, {30, 60, 200}};
+        for (const auto& c : rgb) {
+            vtkPlot* line = chart->AddPlot(vtkChart::LINE);
+            line->SetInputData(t, 0, col++);
+            line->SetColor(c[0], c[1], c[2], 255);
+            line->SetWidth(1.2F);
+        }
+    };
+    addLines(m_vtk->table, m_curves, false, true);
+    addLines(m_vtk->comparison, m_comparison, true, false);
     chart->GetAxis(vtkAxis::LEFT)->SetLogScale(m_log_scale);
     chart->RecalculateBounds();
     update();
+    emit dataChanged();
 }
 
 bool InplanePlot::exportCsv(const QString& path) const {
-    QSaveFile file(path);  // atomic: the old file stays until the new one is complete
-    if (!file.open(QIODevice::WriteOnly | QIODevice::Text)) return false;
-    QTextStream out(&file);
-    out << "view_deg,R,G,B,Y\n";
-    for (std::size_t i = 0; i < m_curve.view_deg.size(); ++i)
-        out << m_curve.view_deg[i] << ',' << m_curve.r[i] << ',' << m_curve.g[i] << ',' << m_curve.b[i] << ','
-            << m_curve.y[i] << '\n';
-    out.flush();
-    return file.commit();
-}
-
-void InplanePlot::initializeGL() {
-    // Qt owns the context; VTK draws into whatever framebuffer is bound when
-    // it renders (the widget's) and loads its GL functions from this context.
-    m_vtk->window->SetOwnContext(0);
-    m_vtk->window->SetReadyForRendering(true);
-    m_vtk->window->SetIsCurrent(true);
-    m_vtk->window->SetFrameBlitModeToBlitToCurrent();
-    m_vtk->window->InitializeFromCurrentContext();
-}
-
-void InplanePlot::resizeGL(int w, int h) {
-    const double ratio = devicePixelRatioF();
-    m_vtk->window->SetSize(static_cast<int>(w * ratio), static_cast<int>(h * ratio));
-}
-
-void InplanePlot::paintGL() {
-    m_vtk->window->SetIsCurrent(true);
-    m_vtk->window->Render();
+    std::vector<QStringList> rows;
+    const auto add = [&rows](const std::vector<Curve>& curves, const QString& series) {
+        for (const Curve& c : curves)
+            for (std::size_t i = 0; i < c.view_deg.size(); ++i)
+                rows.push_back({csvText(series), csvNumber(c.theta_i_deg), csvNumber(c.view_deg[i]),
+                                csvNumber(c.r[i]), csvNumber(c.g[i]), csvNumber(c.b[i]), csvNumber(c.y[i])});
+    };
+    add(m_curves, QStringLiteral("current"));
+    add(m_comparison, m_comparison_label);
+    return writeCsv(path, {"series", "theta_i_deg", "view_deg", "R", "G", "B", "Y"}, rows);
 }
 
 }  // namespace paintlab::gui

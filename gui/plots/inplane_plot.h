@@ -1,13 +1,13 @@
 #pragma once
-// In-plane reflectance factor of the paint (pi f, linear sRGB channels and
-// CIE Y) against the viewing angle for light from 45 degrees, drawn by VTK's
-// chart classes into a Qt6 QOpenGLWidget through vtkGenericOpenGLRenderWindow
-// (shared/notes/debian12-stack.md, trap 1: initializeGL makes the VTK window
-// ready and current and initialises its context; resizeGL sizes it; paintGL
-// renders and VTK blits into the widget's framebuffer). No VTK type leaks
-// out of this header.
+// In-plane reflectance factor of the paint (pi f) against the viewing angle,
+// at several incidences: CIE Y per incidence and, for the 45 degree light, the
+// linear sRGB channels; optionally a second BRDF (another version of the
+// recipe, or the full model) overlaid with dashed lines. Linear or logarithmic
+// axis. Drawn by VTK's chart classes (PlotWidget). No VTK type leaks out of
+// this header.
 
-#include <QOpenGLWidget>
+#include "plot_data.h"
+#include "plot_widget.h"
 
 #include <memory>
 #include <vector>
@@ -18,7 +18,7 @@ class LayeredBrdf;
 
 namespace paintlab::gui {
 
-class InplanePlot : public QOpenGLWidget {
+class InplanePlot : public PlotWidget {
     Q_OBJECT
 public:
     explicit InplanePlot(QWidget* parent = nullptr);
@@ -28,29 +28,49 @@ public:
     InplanePlot(InplanePlot&&) = delete;
     InplanePlot& operator=(InplanePlot&&) = delete;
 
-    // Recomputes the curves from the BRDF (a few milliseconds) and redraws.
+    // Recomputes the curves from the BRDF (a few milliseconds, plot_data.h) and redraws.
     void setBrdf(const LayeredBrdf& brdf);
+    // The same, keeping the BRDF so that setIncidences recomputes at once.
+    void setBrdf(std::shared_ptr<const LayeredBrdf> brdf);
     void setLogScale(bool log_scale);
+    bool logScale() const { return m_log_scale; }
+    // The incidences drawn (degrees, each in [0, 90)); 45 is always kept, for
+    // curve(). Default: 45 alone (the main window's central plot); the Plots
+    // dock shows 15, 30, 45, 60, 75.
+    void setIncidences(const std::vector<double>& incidences_deg);
+    const std::vector<double>& incidences() const { return m_incidences; }
+    // A second BRDF drawn dashed, labelled (e.g. "version 3", "full model");
+    // clearComparison removes it.
+    void setComparison(const LayeredBrdf& brdf, const QString& label);
+    void clearComparison();
+    bool hasComparison() const { return !m_comparison.empty(); }
 
-    // The plotted data: view angle (deg, negative = towards the light) and per
-    // angle R, G, B, Y reflectance factors.
-    struct Curve {
-        std::vector<double> view_deg;
-        std::vector<double> r, g, b, y;
-    };
+    // The plotted data at the 45 degree incidence (else the first curve's):
+    // view angle (deg, negative = towards the light) and per angle R, G, B, Y
+    // reflectance factors.
+    using Curve = InplaneCurve;
     const Curve& curve() const { return m_curve; }
-    // Writes the curve as CSV; returns false (and nothing is half written) on failure.
-    bool exportCsv(const QString& path) const;
-
-protected:
-    void initializeGL() override;
-    void resizeGL(int w, int h) override;
-    void paintGL() override;
+    // Curves computed elsewhere (plot_data.h inplaneCurves, on a worker
+    // thread): only the chart is updated here. incidences() become theirs.
+    void setCurves(std::vector<Curve> curves);
+    void setComparisonCurves(std::vector<Curve> curves, const QString& label);
+    // Every incidence, in incidences() order; and the comparison's (empty without one).
+    const std::vector<Curve>& curves() const { return m_curves; }
+    const std::vector<Curve>& comparisonCurves() const { return m_comparison; }
+    // Columns series,theta_i_deg,view_deg,R,G,B,Y; series "current" or the comparison's label.
+    bool exportCsv(const QString& path) const override;
 
 private:
+    void compute(const LayeredBrdf& brdf);
+    void pickPrimary();
     void updateChart();
     struct Vtk;
     std::unique_ptr<Vtk> m_vtk;
+    std::shared_ptr<const LayeredBrdf> m_brdf;
+    std::vector<double> m_incidences{45.0};
+    std::vector<Curve> m_curves;
+    std::vector<Curve> m_comparison;
+    QString m_comparison_label;
     Curve m_curve;
     bool m_log_scale = false;
 };

@@ -50,6 +50,7 @@ MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMa
     addDockWidget(Qt::RightDockWidgetArea, m_render);
     m_accuracy = new AccuracyDock(this);
     addDockWidget(Qt::RightDockWidgetArea, m_accuracy);
+    addPlotsDock();
     buildMenus();
 
     connect(m_recipes, &QListWidget::itemActivated, this,

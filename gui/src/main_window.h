@@ -22,6 +22,7 @@ namespace paintlab::gui {
 
 class AccuracyDock;
 class InplanePlot;
+class PlotsDock;
 class RecipeEditorDock;
 class RenderDock;
 
@@ -57,6 +58,7 @@ public:
     RecipeEditorDock* editorDock() { return m_editor; }
     InplanePlot* plot() { return m_plot; }
     QListWidget* recipeList() { return m_recipes; }
+    PlotsDock* plotsDock() { return m_plots; }
 
 protected:
     void closeEvent(QCloseEvent* event) override;
@@ -72,6 +74,8 @@ private:
     void exportPlotCsv();
     void showError(const QString& title, const QString& message);
     void addRecentFile(const QString& path);
+    // The Plots dock and its wiring (main_window_plots.cpp).
+    void addPlotsDock();
 
     RecipeDocument m_document;
     RenderScheduler m_scheduler;
@@ -81,6 +85,7 @@ private:
     RenderDock* m_render = nullptr;
     AccuracyDock* m_accuracy = nullptr;
     InplanePlot* m_plot = nullptr;
+    PlotsDock* m_plots = nullptr;
     bool m_last_interactive = false;
     // The scene being traced into a ray map, if any (cancelled and joined on close).
     QThread* m_trace = nullptr;

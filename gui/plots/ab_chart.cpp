@@ -1,0 +1,246 @@
+#include "ab_chart.h"
+
+#include "plot_data.h"
+
+#include "paintlab/engine/brdf.h"
+
+#include <vtkAxis.h>
+#include <vtkChartXY.h>
+#include <vtkContext2D.h>
+#include <vtkContextItem.h>
+#include <vtkContextScene.h>
+#include <vtkContextView.h>
+#include <vtkDoubleArray.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkNew.h>
+#include <vtkPen.h>
+#include <vtkPlot.h>
+#include <vtkPlotPoints.h>
+#include <vtkRenderer.h>
+#include <vtkTable.h>
+#include <vtkTextProperty.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+namespace paintlab::gui {
+
+namespace {
+
+// Text at data points, drawn over the chart in screen coordinates: each point
+// is placed through the chart's axes (their screen ends and data range, as
+// they were laid out for this frame). Drawn inside the chart's data transform
+// instead, vtkContext2D strings did not appear (VTK 9.1).
+class PointLabels : public vtkContextItem {
+public:
+    // As vtkStandardNewMacro (whose expansion ends without a semicolon, which
+    // neither -Wpedantic with one nor clang-format without one accepts).
+    static PointLabels* New() {
+        auto* item = new PointLabels;
+        item->InitializeObjectBase();
+        return item;
+    }
+
+    vtkChartXY* chart = nullptr;
+    std::vector<std::pair<double, double>> points;
+    std::vector<std::string> labels;
+
+    bool Paint(vtkContext2D* painter) override {
+        if (chart == nullptr) return false;
+        vtkAxis* x = chart->GetAxis(vtkAxis::BOTTOM);
+        vtkAxis* y = chart->GetAxis(vtkAxis::LEFT);
+        const auto screen = [](vtkAxis* axis, double value, int k) {
+            const double lo = axis->GetMinimum();
+            const double hi = axis->GetMaximum();
+            const auto p1 = static_cast<double>(axis->GetPosition1()[k]);
+            const auto p2 = static_cast<double>(axis->GetPosition2()[k]);
+            return static_cast<float>(hi > lo ? p1 + (value - lo) / (hi - lo) * (p2 - p1) : p1);
+        };
+        vtkTextProperty* text = painter->GetTextProp();
+        text->SetColor(0.1, 0.1, 0.1);
+        text->SetFontSize(13);
+        text->SetBold(false);
+        text->SetJustificationToLeft();
+        text->SetVerticalJustificationToBottom();
+        for (std::size_t k = 0; k < points.size() && k < labels.size(); ++k)
+            painter->DrawString(screen(x, points[k].first, 0) + 9.0F, screen(y, points[k].second, 1) + 5.0F,
+                                labels[k]);
+        return true;
+    }
+
+protected:
+    PointLabels() = default;
+    ~PointLabels() override = default;
+};
+
+void fillPath(vtkTable* t, const MultiAngleReport& report) {
+    t->Initialize();
+    for (const char* name : {"aspecular_deg", "a", "b"}) {
+        vtkNew<vtkDoubleArray> column;
+        column->SetName(name);
+        t->AddColumn(column);
+    }
+    t->SetNumberOfRows(static_cast<vtkIdType>(report.colours.size()));
+    for (std::size_t k = 0; k < report.colours.size(); ++k) {
+        const auto row = static_cast<vtkIdType>(k);
+        t->SetValue(row, 0, report.colours[k].aspecular_deg);
+        t->SetValue(row, 1, report.colours[k].lab.a);
+        t->SetValue(row, 2, report.colours[k].lab.b);
+    }
+    t->Modified();
+}
+
+}  // namespace
+
+struct AbChart::Vtk {
+    vtkNew<vtkContextView> view;
+    vtkNew<vtkChartXY> chart;
+    vtkNew<vtkTable> path;
+    vtkNew<vtkTable> comparison;
+    std::vector<vtkSmartPointer<vtkTable>> point_tables;  // one per geometry: its own colour
+    vtkNew<PointLabels> labels;
+};
+
+AbChart::AbChart(QWidget* parent) : PlotWidget(parent), m_vtk(std::make_unique<Vtk>()) {
+    m_vtk->view->SetRenderWindow(renderWindow());
+    m_vtk->view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
+    m_vtk->view->GetScene()->AddItem(m_vtk->chart);
+    m_vtk->chart->SetTitle("CIELAB a*b* at the multi-angle geometries (D65/10 deg), flop path");
+    m_vtk->chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("a*");
+    m_vtk->chart->GetAxis(vtkAxis::LEFT)->SetTitle("b*");
+    m_vtk->chart->SetShowLegend(true);
+    m_vtk->labels->chart = m_vtk->chart;
+    m_vtk->view->GetScene()->AddItem(m_vtk->labels);  // over the chart
+    updateChart();
+}
+
+AbChart::~AbChart() {
+    makeCurrent();
+    m_vtk.reset();
+    doneCurrent();
+}
+
+void AbChart::setBrdf(const SpectralBrdf& brdf) { setReport(multiAngleColours(brdf)); }
+
+void AbChart::setReport(MultiAngleReport report) {
+    m_report = std::move(report);
+    updateChart();
+}
+
+void AbChart::setComparison(const SpectralBrdf& brdf, const QString& label) {
+    setComparisonReport(multiAngleColours(brdf), label);
+}
+
+void AbChart::setComparisonReport(MultiAngleReport report, const QString& label) {
+    m_comparison = std::move(report);
+    m_comparison_label = label.isEmpty() ? QStringLiteral("comparison") : label;
+    updateChart();
+}
+
+void AbChart::clearComparison() {
+    m_comparison = {};
+    m_comparison_label.clear();
+    updateChart();
+}
+
+std::vector<double> AbChart::pathAspecularDeg() const {
+    std::vector<double> out;
+    for (vtkIdType row = 0; row < m_vtk->path->GetNumberOfRows(); ++row)
+        out.push_back(m_vtk->path->GetValue(row, 0).ToDouble());
+    return out;
+}
+
+void AbChart::updateChart() {
+    fillPath(m_vtk->path, m_report);
+    fillPath(m_vtk->comparison, m_comparison);
+    vtkChartXY* chart = m_vtk->chart;
+    chart->ClearPlots();
+
+    if (!m_report.colours.empty()) {
+        vtkPlot* line = chart->AddPlot(vtkChart::LINE);
+        line->SetInputData(m_vtk->path, 1, 2);
+        line->SetColor(60, 60, 60, 255);
+        line->SetWidth(2.0F);
+        line->SetLabel("current");
+    }
+    if (!m_comparison.colours.empty()) {
+        vtkPlot* line = chart->AddPlot(vtkChart::LINE);
+        line->SetInputData(m_vtk->comparison, 1, 2);
+        line->SetColor(60, 60, 60, 255);
+        line->SetWidth(2.0F);
+        line->GetPen()->SetLineType(vtkPen::DASH_LINE);
+        line->SetLabel(m_comparison_label.toStdString());
+        if (auto* points = vtkPlotPoints::SafeDownCast(line)) {
+            points->SetMarkerStyle(vtkPlotPoints::CROSS);
+            points->SetMarkerSize(9.0F);
+        }
+    }
+    // Each geometry's point in its own colour (hue and saturation: plot_data.h
+    // displayColour; XYZ for the 10° observer through the sRGB matrix, for display only).
+    m_vtk->point_tables.clear();
+    m_vtk->labels->points.clear();
+    m_vtk->labels->labels.clear();
+    for (const MultiAngleColour& c : m_report.colours) {
+        auto table = vtkSmartPointer<vtkTable>::New();
+        for (const char* name : {"a", "b"}) {
+            vtkNew<vtkDoubleArray> column;
+            column->SetName(name);
+            table->AddColumn(column);
+        }
+        table->SetNumberOfRows(1);
+        table->SetValue(0, 0, c.lab.a);
+        table->SetValue(0, 1, c.lab.b);
+        vtkPlot* point = chart->AddPlot(vtkChart::POINTS);
+        point->SetInputData(table, 0, 1);
+        const Rgb8 colour = displayColour(xyzToLinearSrgb(c.xyz));
+        point->SetColor(colour.r, colour.g, colour.b, 255);
+        point->SetLegendVisibility(false);
+        if (auto* p = vtkPlotPoints::SafeDownCast(point)) {
+            p->SetMarkerStyle(vtkPlotPoints::CIRCLE);
+            p->SetMarkerSize(14.0F);
+        }
+        m_vtk->point_tables.push_back(table);
+        m_vtk->labels->points.emplace_back(c.lab.a, c.lab.b);
+        m_vtk->labels->labels.push_back(geometryName(c.aspecular_deg));
+    }
+
+    // The same span on both axes, the origin (neutral grey) always in view.
+    double lo_a = 0.0;
+    double hi_a = 0.0;
+    double lo_b = 0.0;
+    double hi_b = 0.0;
+    for (const MultiAngleReport* r : {&m_report, &m_comparison})
+        for (const MultiAngleColour& c : r->colours) {
+            lo_a = std::min(lo_a, c.lab.a);
+            hi_a = std::max(hi_a, c.lab.a);
+            lo_b = std::min(lo_b, c.lab.b);
+            hi_b = std::max(hi_b, c.lab.b);
+        }
+    const double half = std::max({hi_a - lo_a, hi_b - lo_b, 10.0}) * 0.6;
+    const double mid_a = 0.5 * (lo_a + hi_a);
+    const double mid_b = 0.5 * (lo_b + hi_b);
+    for (auto [axis, mid] : {std::pair{vtkAxis::BOTTOM, mid_a}, std::pair{vtkAxis::LEFT, mid_b}}) {
+        vtkAxis* a = chart->GetAxis(axis);
+        a->SetBehavior(vtkAxis::FIXED);
+        a->SetRange(mid - half, mid + half);
+    }
+    update();
+    emit dataChanged();
+}
+
+bool AbChart::exportCsv(const QString& path) const {
+    std::vector<QStringList> rows;
+    const auto add = [&rows](const MultiAngleReport& report, const QString& series) {
+        for (const MultiAngleColour& c : report.colours)
+            rows.push_back({csvText(series), csvNumber(c.aspecular_deg), csvNumber(c.lab.L),
+                            csvNumber(c.lab.a), csvNumber(c.lab.b), csvNumber(c.xyz.X), csvNumber(c.xyz.Y),
+                            csvNumber(c.xyz.Z)});
+    };
+    add(m_report, QStringLiteral("current"));
+    add(m_comparison, m_comparison_label);
+    return writeCsv(path, {"series", "aspecular_deg", "L", "a", "b", "X", "Y", "Z"}, rows);
+}
+
+}  // namespace paintlab::gui

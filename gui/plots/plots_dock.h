@@ -1,0 +1,116 @@
+#pragma once
+// The "Plots" dock: one tab per plot of the paint being edited (BRDF lobe,
+// in-plane curves, paint spectra, ingredient spectra, a*b* chart), fed with
+// every new BRDF the render scheduler delivers and with the recipe itself
+// (for its ingredients' spectra). A comparison (a pinned earlier state, or any
+// BRDF another panel hands over: a saved version, the full model) is overlaid
+// dashed on the in-plane and a*b* plots. Export of the shown plot as PNG and
+// of its data as CSV.
+//
+// The plot data (lobe grid, in-plane curves, multi-angle colours and spectra)
+// is computed on a worker thread (latest_job.h, newest request first); the
+// GUI thread only hands it to VTK (gui/README.md, "Plots", for the times).
+
+#include "latest_job.h"
+
+#include <QDockWidget>
+#include <QString>
+
+#include <memory>
+#include <vector>
+
+class QCheckBox;
+class QComboBox;
+class QDoubleSpinBox;
+class QLabel;
+class QTabWidget;
+
+namespace paintlab {
+class LayeredBrdf;
+struct Recipe;
+}  // namespace paintlab
+
+namespace paintlab::gui {
+
+class AbChart;
+class InplanePlot;
+class LobePlot;
+class PlotWidget;
+class SpectraPlot;
+
+class PlotsDock : public QDockWidget {
+    Q_OBJECT
+public:
+    explicit PlotsDock(QWidget* parent = nullptr);
+    ~PlotsDock() override;
+    PlotsDock(const PlotsDock&) = delete;
+    PlotsDock& operator=(const PlotsDock&) = delete;
+    PlotsDock(PlotsDock&&) = delete;
+    PlotsDock& operator=(PlotsDock&&) = delete;
+
+    // Every plot follows this BRDF: its data is computed on the worker
+    // (lastComputeMs()), then drawn (lastUpdateMs() on the GUI thread).
+    void setBrdf(std::shared_ptr<const LayeredBrdf> brdf);
+    // The ingredients' spectra of this recipe (redrawn only when they change).
+    void setRecipe(const Recipe& recipe);
+    // Overlaid dashed on the in-plane and a*b* plots until cleared or replaced.
+    void setComparison(std::shared_ptr<const LayeredBrdf> brdf, const QString& label);
+    // The current BRDF becomes the comparison ("pinned").
+    void pinCurrentAsComparison();
+    void clearComparison();
+
+    const std::shared_ptr<const LayeredBrdf>& brdf() const { return m_brdf; }
+    // GUI-thread time of the last update (VTK only), and the worker's time for its data.
+    double lastUpdateMs() const { return m_update_ms; }
+    double lastComputeMs() const { return m_compute_ms; }
+    // Plot data is being computed or waits to be.
+    bool computing() const { return m_current_job.busy() || m_comparison_job.busy(); }
+    static const std::vector<double>& inplaneIncidencesDeg();
+
+    InplanePlot* inplanePlot() const { return m_inplane; }
+    LobePlot* lobePlot() const { return m_lobe; }
+    SpectraPlot* paintSpectra() const { return m_paint_spectra; }
+    SpectraPlot* ingredientSpectra() const { return m_ingredient_spectra; }
+    AbChart* abChart() const { return m_ab; }
+    std::vector<PlotWidget*> plots() const;
+    QTabWidget* tabs() const { return m_tabs; }
+    // The plot of the shown tab.
+    PlotWidget* currentPlot() const;
+
+    // The shown plot as PNG / its data as CSV; false and an error dialog
+    // naming the file on failure.
+    bool exportCurrentPng(const QString& path);
+    bool exportCurrentCsv(const QString& path);
+
+signals:
+    // The plots show the data of the newest BRDF handed in (after setBrdf or an incidence change).
+    void updated();
+
+private:
+    void requestUpdate();
+    void showError(const QString& message);
+    void fillQuantities();
+
+    QTabWidget* m_tabs = nullptr;
+    InplanePlot* m_inplane = nullptr;
+    LobePlot* m_lobe = nullptr;
+    SpectraPlot* m_paint_spectra = nullptr;
+    SpectraPlot* m_ingredient_spectra = nullptr;
+    AbChart* m_ab = nullptr;
+    QDoubleSpinBox* m_theta_i = nullptr;
+    QDoubleSpinBox* m_phi_i = nullptr;
+    QComboBox* m_quantity = nullptr;
+    QCheckBox* m_log = nullptr;
+    QLabel* m_status = nullptr;
+    std::shared_ptr<const LayeredBrdf> m_brdf;
+    std::shared_ptr<const LayeredBrdf> m_comparison;
+    std::vector<std::pair<QWidget*, PlotWidget*>> m_pages;  // tab page -> its plot
+    double m_update_ms = 0.0;
+    double m_compute_ms = 0.0;
+    quint64 m_comparison_generation = 0;  // a comparison result of an older one is dropped
+    // Members, not children: destroyed (waiting for their work) before the plots are.
+    LatestJob m_current_job;
+    LatestJob m_comparison_job;
+};
+
+}  // namespace paintlab::gui

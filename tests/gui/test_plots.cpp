@@ -1,0 +1,548 @@
+// The workstation's plots under a virtual X server (tests/gui/CMakeLists.txt
+// runs this in xvfb-run): every plot draws the pearlescent demo paint, their
+// CSV data agree with the engine evaluated here directly (LayeredBrdf::eval
+// through reflectanceFactorColour, multiAngleColours: an independent truth,
+// not the plots' own numbers), the a*b* path has the six geometries in
+// aspecular order, a changed recipe changes the data, comparisons overlay a
+// second series, PNG export writes an image of the widget's size, the lobe
+// rotates with the mouse, and the main window's Plots dock follows the
+// scheduler. Screenshots of each plot go to the build directory
+// (screenshots/plots_*.png); baselines are not compared here.
+//
+// The BRDFs use the preview preset: quick under ASan, and the plots do not
+// depend on the preset. Times are printed, not asserted (docs/PERFORMANCE.md).
+
+#include "ab_chart.h"
+#include "inplane_plot.h"
+#include "lobe_plot.h"
+#include "main_window.h"
+#include "plot_data.h"
+#include "plots_dock.h"
+#include "spectra_plot.h"
+
+#include "paintlab/engine/brdf_colour.h"
+#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/multiangle.h"
+#include "paintlab/engine/recipe_json.h"
+
+#include <QApplication>
+#include <QDir>
+#include <QDoubleSpinBox>
+#include <QElapsedTimer>
+#include <QFile>
+#include <QSignalSpy>
+#include <QSurfaceFormat>
+#include <QTabWidget>
+#include <QTemporaryDir>
+#include <QTest>
+#include <QTextStream>
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <variant>
+
+using namespace paintlab;
+using namespace paintlab::gui;
+
+namespace {
+
+constexpr int kWaitMs = 120000;  // ASan + llvmpipe on a loaded 2-core machine
+const QString kPearl = QStringLiteral("Blue pearl over black (two layers)");
+
+Recipe pearlRecipe() {
+    return loadRecipeFile(std::string(PAINTLAB_DEMO_DIR) + "/recipes/pearlescent-two-layer.json");
+}
+
+// The same paint with half the pearl flakes.
+Recipe fewerFlakes(Recipe recipe) {
+    for (Layer& layer : recipe.layers)
+        for (Component& c : layer.components)
+            if (auto* flake = std::get_if<InterferenceFlake>(&c)) flake->volume_fraction *= 0.5;
+    return recipe;
+}
+
+// A CSV file as rows of cells (quoted cells as written by PlotWidget::csvText).
+struct Csv {
+    QStringList header;
+    std::vector<QStringList> rows;
+    int column(const QString& name) const { return static_cast<int>(header.indexOf(name)); }
+    double number(std::size_t row, const QString& name) const { return rows[row][column(name)].toDouble(); }
+};
+
+QStringList splitCsvLine(const QString& line) {
+    QStringList cells;
+    QString cell;
+    bool quoted = false;
+    for (qsizetype i = 0; i < line.size(); ++i) {
+        const QChar ch = line[i];
+        if (quoted) {
+            if (ch == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+                cell += '"';
+                ++i;
+            } else if (ch == '"') {
+                quoted = false;
+            } else {
+                cell += ch;
+            }
+        } else if (ch == '"') {
+            quoted = true;
+        } else if (ch == ',') {
+            cells << cell;
+            cell.clear();
+        } else {
+            cell += ch;
+        }
+    }
+    cells << cell;
+    return cells;
+}
+
+Csv readCsv(const QString& path) {
+    Csv csv;
+    QFile file(path);
+    if (!file.open(QIODevice::ReadOnly | QIODevice::Text)) return csv;
+    QTextStream in(&file);
+    csv.header = splitCsvLine(in.readLine());
+    while (!in.atEnd()) {
+        const QString line = in.readLine();
+        if (!line.isEmpty()) csv.rows.push_back(splitCsvLine(line));
+    }
+    return csv;
+}
+
+bool near(double got, double want) { return std::abs(got - want) <= 1e-9 * std::abs(want) + 1e-12; }
+
+// Pixels that differ from the most common colour (the background), and how many colours there are.
+struct PixelStats {
+    qsizetype foreground = 0;
+    qsizetype colours = 0;
+    qsizetype total = 0;
+};
+PixelStats pixelStats(const QImage& image) {
+    std::map<QRgb, qsizetype> histogram;
+    const QImage rgb = image.convertToFormat(QImage::Format_RGB32);
+    for (int y = 0; y < rgb.height(); ++y)
+        for (int x = 0; x < rgb.width(); ++x) ++histogram[rgb.pixel(x, y)];
+    qsizetype background = 0;
+    for (const auto& [colour, count] : histogram) background = std::max(background, count);
+    const qsizetype total = qsizetype(rgb.width()) * rgb.height();
+    return {total - background, static_cast<qsizetype>(histogram.size()), total};
+}
+
+QString screenshotDir() {
+    QDir().mkpath(QStringLiteral(PAINTLAB_SCREENSHOT_DIR));
+    return QStringLiteral(PAINTLAB_SCREENSHOT_DIR);
+}
+
+}  // namespace
+
+class PlotsTest : public QObject {
+    Q_OBJECT
+
+private slots:
+    void initTestCase();
+    void eachPlotDrawsThePearlescentPaint();
+    void inplaneCsvMatchesTheEngine();
+    void abChartHasTheSixGeometriesInAspecularOrder();
+    void abCsvMatchesTheEngine();
+    void lobeCsvMatchesTheEngine();
+    void ingredientSpectraAreTheRecipes();
+    void changingTheRecipeChangesTheData();
+    void comparisonIsASecondDashedSeries();
+    void pngExportWritesAnImageOfTheWidgetsSize();
+    void lobeRotatesWithTheMouseAndFollowsTheIncidence();
+    void logScaleRedraws();
+    void mainWindowPlotsDockFollowsTheRecipe();
+    void cleanupTestCase();
+
+private:
+    // The plots, each a top-level window of a fixed size so screenshots compare.
+    template <class Plot> Plot* shown(std::unique_ptr<Plot>& plot, const char* name);
+    void verifyInplaneCsv(const QString& path, const LayeredBrdf& brdf, const QString& series);
+    void verifyAbCsv(const QString& path, const LayeredBrdf& brdf, const QString& series);
+
+    QTemporaryDir m_dir;
+    std::shared_ptr<const LayeredBrdf> m_pearl;
+    std::shared_ptr<const LayeredBrdf> m_fewer;
+    std::unique_ptr<InplanePlot> m_inplane;
+    std::unique_ptr<LobePlot> m_lobe;
+    std::unique_ptr<SpectraPlot> m_paint_spectra;
+    std::unique_ptr<SpectraPlot> m_ingredient_spectra;
+    std::unique_ptr<AbChart> m_ab;
+};
+
+template <class Plot> Plot* PlotsTest::shown(std::unique_ptr<Plot>& plot, const char* name) {
+    if (!plot) {
+        plot = std::make_unique<Plot>();
+        plot->setObjectName(name);
+        plot->setWindowTitle(name);
+        plot->resize(720, 480);
+        plot->show();
+        if (!QTest::qWaitForWindowExposed(plot.get())) return nullptr;
+    }
+    return plot.get();
+}
+
+void PlotsTest::initTestCase() {
+    QVERIFY(m_dir.isValid());
+    m_pearl = std::make_shared<const LayeredBrdf>(
+        computeLayeredBrdf(pearlRecipe(), presetSettings(Preset::Preview)));
+    m_fewer = std::make_shared<const LayeredBrdf>(
+        computeLayeredBrdf(fewerFlakes(pearlRecipe()), presetSettings(Preset::Preview)));
+    QVERIFY(shown(m_inplane, "inplane") != nullptr);
+    QVERIFY(shown(m_lobe, "lobe") != nullptr);
+    QVERIFY(shown(m_paint_spectra, "paint_spectra") != nullptr);
+    QVERIFY(shown(m_ingredient_spectra, "ingredient_spectra") != nullptr);
+    QVERIFY(shown(m_ab, "ab") != nullptr);
+    m_inplane->setIncidences({15.0, 30.0, 45.0, 60.0, 75.0});
+    m_inplane->setBrdf(m_pearl);
+    m_lobe->setBrdf(m_pearl);
+    m_paint_spectra->setBrdf(*m_pearl);
+    m_ingredient_spectra->setSpectra(recipeSpectra(pearlRecipe()), QStringLiteral("Pearl ingredients"));
+    m_ab->setBrdf(*m_pearl);
+    qInfo("lobe grid %.1f ms, lobe update (grid + VTK geometry) %.1f ms", m_lobe->grid().seconds * 1e3,
+          m_lobe->lastUpdateMs());
+}
+
+void PlotsTest::eachPlotDrawsThePearlescentPaint() {
+    const std::vector<std::pair<PlotWidget*, const char*>> plots{
+        {m_inplane.get(), "plots_inplane"},
+        {m_lobe.get(), "plots_lobe"},
+        {m_paint_spectra.get(), "plots_paint_spectra"},
+        {m_ingredient_spectra.get(), "plots_ingredient_spectra"},
+        {m_ab.get(), "plots_ab"}};
+    for (const auto& [plot, name] : plots) {
+        const QImage image = plot->renderImage();
+        QVERIFY2(!image.isNull(), name);
+        QVERIFY(image.save(screenshotDir() + "/" + name + ".png"));
+        const PixelStats s = pixelStats(image);
+        // Axes, labels and curves cover well over 1 % of the widget, in many colours (antialiasing).
+        QVERIFY2(
+            s.foreground > s.total / 100,
+            qPrintable(QStringLiteral("%1: %2 of %3 pixels drawn").arg(name).arg(s.foreground).arg(s.total)));
+        QVERIFY2(s.colours > 20, qPrintable(QStringLiteral("%1: %2 colours").arg(name).arg(s.colours)));
+        // The first paint compiles shaders and rasterises glyphs; later ones are what an update costs.
+        const double first = plot->lastPaintMs();
+        plot->renderImage();
+        qInfo("%s: paintGL %.1f ms (first), %.1f ms (next) at %dx%d", name, first, plot->lastPaintMs(),
+              image.width(), image.height());
+    }
+    // The blue pearl's lobe is blue where it is bright: many more bluish than reddish pixels.
+    const QImage lobe = m_lobe->renderImage().convertToFormat(QImage::Format_RGB32);
+    qsizetype blue = 0;
+    qsizetype red = 0;
+    for (int y = 0; y < lobe.height(); ++y)
+        for (int x = 0; x < lobe.width(); ++x) {
+            const QColor c = lobe.pixelColor(x, y);
+            if (c.blue() > c.red() + 40 && c.blue() > c.green() + 10) ++blue;
+            if (c.red() > c.blue() + 40) ++red;
+        }
+    QVERIFY2(blue > 500 && blue > 4 * red, qPrintable(QStringLiteral("blue %1, red %2").arg(blue).arg(red)));
+}
+
+void PlotsTest::verifyInplaneCsv(const QString& path, const LayeredBrdf& brdf, const QString& series) {
+    const Csv csv = readCsv(path);
+    QCOMPARE(csv.header, QStringList({"series", "theta_i_deg", "view_deg", "R", "G", "B", "Y"}));
+    std::size_t checked = 0;
+    std::map<double, int> per_incidence;
+    for (std::size_t k = 0; k < csv.rows.size(); ++k) {
+        if (csv.rows[k][0] != series) continue;
+        const double theta_i = csv.number(k, "theta_i_deg");
+        const double view = csv.number(k, "view_deg");
+        ++per_incidence[theta_i];
+        // The light at azimuth 180; positive view angles on the far (mirror) side.
+        const Direction wi = directionFromAnglesDeg(theta_i, 180.0);
+        const Direction wo = directionFromAnglesDeg(std::abs(view), view >= 0.0 ? 0.0 : 180.0);
+        const SpectralColour c = reflectanceFactorColour(brdf, wi, wo);
+        const double want[4] = {c.linear_srgb.r, c.linear_srgb.g, c.linear_srgb.b, c.xyz.Y};
+        const char* names[4] = {"R", "G", "B", "Y"};
+        for (int i = 0; i < 4; ++i)
+            QVERIFY2(near(csv.number(k, names[i]), want[i]),
+                     qPrintable(QStringLiteral("%1 at theta_i %2, view %3: %4, engine %5")
+                                    .arg(names[i])
+                                    .arg(theta_i)
+                                    .arg(view)
+                                    .arg(csv.number(k, names[i]), 0, 'g', 17)
+                                    .arg(want[i], 0, 'g', 17)));
+        ++checked;
+    }
+    QCOMPARE(per_incidence.size(), std::size_t{5});  // 15, 30, 45, 60, 75
+    for (const auto& [theta_i, count] : per_incidence) QCOMPARE(count, 69);
+    QCOMPARE(checked, std::size_t{5 * 69});
+}
+
+void PlotsTest::inplaneCsvMatchesTheEngine() {
+    const QString path = m_dir.filePath("inplane.csv");
+    QVERIFY(m_inplane->exportCsv(path));
+    verifyInplaneCsv(path, *m_pearl, QStringLiteral("current"));
+    // curve() is still the 45 degree curve (test_workstation relies on it): its peak is the mirror direction.
+    QCOMPARE(m_inplane->curve().theta_i_deg, 45.0);
+}
+
+void PlotsTest::abChartHasTheSixGeometriesInAspecularOrder() {
+    const std::vector<double> want(kAspecularAnglesDeg.begin(), kAspecularAnglesDeg.end());
+    QCOMPARE(m_ab->pathAspecularDeg(), want);  // what the chart joins, read from its own table
+    QCOMPARE(m_ab->report().colours.size(), std::size_t{6});
+    const QString path = m_dir.filePath("ab.csv");
+    QVERIFY(m_ab->exportCsv(path));
+    const Csv csv = readCsv(path);
+    QCOMPARE(csv.rows.size(), std::size_t{6});
+    for (std::size_t k = 0; k < 6; ++k) QCOMPARE(csv.number(k, "aspecular_deg"), want[k]);
+}
+
+void PlotsTest::verifyAbCsv(const QString& path, const LayeredBrdf& brdf, const QString& series) {
+    const Csv csv = readCsv(path);
+    QCOMPARE(csv.header, QStringList({"series", "aspecular_deg", "L", "a", "b", "X", "Y", "Z"}));
+    const MultiAngleReport truth = multiAngleColours(brdf);
+    std::size_t g = 0;
+    for (std::size_t k = 0; k < csv.rows.size(); ++k) {
+        if (csv.rows[k][0] != series) continue;
+        QVERIFY(g < truth.colours.size());
+        const MultiAngleColour& c = truth.colours[g++];
+        QCOMPARE(csv.number(k, "aspecular_deg"), c.aspecular_deg);
+        const double want[6] = {c.lab.L, c.lab.a, c.lab.b, c.xyz.X, c.xyz.Y, c.xyz.Z};
+        const char* names[6] = {"L", "a", "b", "X", "Y", "Z"};
+        for (int i = 0; i < 6; ++i)
+            QVERIFY2(near(csv.number(k, names[i]), want[i]),
+                     qPrintable(QStringLiteral("%1 at 45as%2: %3, engine %4")
+                                    .arg(names[i])
+                                    .arg(c.aspecular_deg)
+                                    .arg(csv.number(k, names[i]), 0, 'g', 17)
+                                    .arg(want[i], 0, 'g', 17)));
+    }
+    QCOMPARE(g, truth.colours.size());
+}
+
+void PlotsTest::abCsvMatchesTheEngine() {
+    const QString path = m_dir.filePath("ab_truth.csv");
+    QVERIFY(m_ab->exportCsv(path));
+    verifyAbCsv(path, *m_pearl, QStringLiteral("current"));
+}
+
+void PlotsTest::lobeCsvMatchesTheEngine() {
+    const QString path = m_dir.filePath("lobe.csv");
+    QVERIFY(m_lobe->exportCsv(path));
+    const Csv csv = readCsv(path);
+    const LobeGrid& grid = m_lobe->grid();
+    QCOMPARE(csv.rows.size(), grid.theta_o_deg.size() * grid.phi_o_deg.size());
+    for (std::size_t k = 0; k < csv.rows.size(); k += 37) {  // a spread sample of the 4416 directions
+        const Direction wi = directionFromAnglesDeg(csv.number(k, "theta_i_deg"), csv.number(k, "phi_i_deg"));
+        const Direction wo = directionFromAnglesDeg(csv.number(k, "theta_o_deg"), csv.number(k, "phi_o_deg"));
+        const SpectralColour c = reflectanceFactorColour(*m_pearl, wi, wo);
+        QVERIFY2(near(csv.number(k, "Y"), c.xyz.Y) && near(csv.number(k, "B"), c.linear_srgb.b),
+                 qPrintable(
+                     QStringLiteral("row %1: Y %2, engine %3").arg(k).arg(csv.number(k, "Y")).arg(c.xyz.Y)));
+    }
+}
+
+void PlotsTest::ingredientSpectraAreTheRecipes() {
+    const std::vector<std::string> quantities = m_ingredient_spectra->quantities();
+    QVERIFY(quantities.size() >= 3);  // binder index, TiO2 / mica index, carbon black absorption ...
+    const std::vector<NamedSpectrum> all = recipeSpectra(pearlRecipe());
+    for (const std::string& q : quantities) {
+        m_ingredient_spectra->setQuantity(q);
+        const QString path = m_dir.filePath("ingredients.csv");
+        QVERIFY(m_ingredient_spectra->exportCsv(path));
+        const Csv csv = readCsv(path);
+        std::size_t rows = 0;
+        for (const NamedSpectrum& s : all)
+            if (s.quantity == q) rows += s.spectrum.values().size();
+        QCOMPARE(csv.rows.size(), rows);
+        for (const QStringList& row : csv.rows) QCOMPARE(row[1].toStdString(), q);
+    }
+    // The carbon black's absorption, sample for sample.
+    const auto carbon = std::find_if(all.begin(), all.end(), [](const NamedSpectrum& s) {
+        return s.name.find("carbon black") != std::string::npos && s.quantity.find("1/") != std::string::npos;
+    });
+    QVERIFY(carbon != all.end());
+    m_ingredient_spectra->setQuantity(carbon->quantity);
+    const std::vector<NamedSpectrum> shown = m_ingredient_spectra->shownSpectra();
+    QVERIFY(std::find(shown.begin(), shown.end(), *carbon) != shown.end());
+    m_ingredient_spectra->setQuantity(quantities.front());
+    // Paint spectra: the reflectance factor at each geometry, as the engine's multi-angle report.
+    const MultiAngleReport truth = multiAngleColours(*m_pearl);
+    QCOMPARE(m_paint_spectra->shownSpectra().size(), std::size_t{6});
+    for (std::size_t g = 0; g < 6; ++g)
+        QVERIFY(m_paint_spectra->shownSpectra()[g].spectrum.values() == truth.colours[g].reflectance_factor);
+}
+
+void PlotsTest::changingTheRecipeChangesTheData() {
+    const auto before_inplane = m_inplane->curves();
+    const auto before_ab = m_ab->report().colours;
+    QSignalSpy changed(m_inplane.get(), &PlotWidget::dataChanged);
+    m_inplane->setBrdf(m_fewer);
+    m_ab->setBrdf(*m_fewer);
+    QCOMPARE(changed.count(), 1);
+    QVERIFY(m_inplane->curves()[2].y != before_inplane[2].y);
+    QVERIFY(m_ab->report().colours[1].lab.L != before_ab[1].lab.L);
+    // Half the flakes: less light at the near-specular 45as15.
+    QVERIFY(m_ab->report().colours[1].lab.L < before_ab[1].lab.L);
+    const QString inplane = m_dir.filePath("inplane_fewer.csv");
+    const QString ab = m_dir.filePath("ab_fewer.csv");
+    QVERIFY(m_inplane->exportCsv(inplane));
+    QVERIFY(m_ab->exportCsv(ab));
+    verifyInplaneCsv(inplane, *m_fewer, QStringLiteral("current"));
+    verifyAbCsv(ab, *m_fewer, QStringLiteral("current"));
+    m_inplane->setBrdf(m_pearl);
+    m_ab->setBrdf(*m_pearl);
+}
+
+void PlotsTest::comparisonIsASecondDashedSeries() {
+    const QImage alone = m_inplane->renderImage();
+    m_inplane->setComparison(*m_fewer, QStringLiteral("half the flakes"));
+    m_ab->setComparison(*m_fewer, QStringLiteral("half the flakes"));
+    QVERIFY(m_inplane->hasComparison() && m_ab->hasComparison());
+    QVERIFY(m_inplane->renderImage() != alone);
+    QVERIFY(m_inplane->renderImage().save(screenshotDir() + "/plots_inplane_comparison.png"));
+    QVERIFY(m_ab->renderImage().save(screenshotDir() + "/plots_ab_comparison.png"));
+    const QString inplane = m_dir.filePath("inplane_cmp.csv");
+    const QString ab = m_dir.filePath("ab_cmp.csv");
+    QVERIFY(m_inplane->exportCsv(inplane));
+    QVERIFY(m_ab->exportCsv(ab));
+    verifyInplaneCsv(inplane, *m_pearl, QStringLiteral("current"));
+    verifyInplaneCsv(inplane, *m_fewer, QStringLiteral("half the flakes"));
+    verifyAbCsv(ab, *m_pearl, QStringLiteral("current"));
+    verifyAbCsv(ab, *m_fewer, QStringLiteral("half the flakes"));
+    m_inplane->clearComparison();
+    m_ab->clearComparison();
+    QVERIFY(m_inplane->exportCsv(inplane));
+    QCOMPARE(readCsv(inplane).rows.size(), std::size_t{5 * 69});
+}
+
+void PlotsTest::pngExportWritesAnImageOfTheWidgetsSize() {
+    for (PlotWidget* plot : std::initializer_list<PlotWidget*>{
+             m_inplane.get(), m_lobe.get(), m_paint_spectra.get(), m_ingredient_spectra.get(), m_ab.get()}) {
+        const QString path = m_dir.filePath(plot->objectName() + ".png");
+        QVERIFY(plot->exportPng(path));
+        QImage image;
+        QVERIFY(image.load(path, "PNG"));
+        QCOMPARE(image.size(), plot->size() * plot->devicePixelRatio());
+        QVERIFY(pixelStats(image).colours > 20);
+    }
+    // A file that cannot be written: false, nothing left behind.
+    QVERIFY(!m_ab->exportPng(m_dir.filePath("no/such/dir/ab.png")));
+    QVERIFY(!m_ab->exportCsv(m_dir.filePath("no/such/dir/ab.csv")));
+}
+
+void PlotsTest::lobeRotatesWithTheMouseAndFollowsTheIncidence() {
+    const auto camera = m_lobe->cameraPosition();
+    const QImage before = m_lobe->renderImage();
+    const QPoint from(m_lobe->width() / 2, m_lobe->height() / 2);
+    QTest::mousePress(m_lobe.get(), Qt::LeftButton, {}, from);
+    for (int k = 1; k <= 10; ++k) QTest::mouseMove(m_lobe.get(), from + QPoint(8 * k, 3 * k));
+    QTest::mouseRelease(m_lobe.get(), Qt::LeftButton, {}, from + QPoint(80, 30));
+    QVERIFY(m_lobe->cameraPosition() != camera);
+    const QImage rotated = m_lobe->renderImage();
+    QVERIFY(rotated != before);
+    QVERIFY(rotated.save(screenshotDir() + "/plots_lobe_rotated.png"));
+    m_lobe->resetView();
+    QCOMPARE(m_lobe->cameraPosition(), camera);
+
+    m_lobe->setIncidence(20.0, 90.0);
+    QCOMPARE(m_lobe->grid().theta_i_deg, 20.0);
+    QCOMPARE(m_lobe->grid().phi_i_deg, 90.0);
+    // The peak follows the mirror direction: theta 20, azimuth 270.
+    const LobeGrid& g = m_lobe->grid();
+    const auto peak = static_cast<std::size_t>(std::max_element(g.y.begin(), g.y.end()) - g.y.begin());
+    QVERIFY2(std::abs(g.theta_o_deg[peak / g.phi_o_deg.size()] - 20.0) < 4.0 &&
+                 std::abs(g.phi_o_deg[peak % g.phi_o_deg.size()] - 270.0) < 8.0,
+             qPrintable(QStringLiteral("peak at theta %1, phi %2")
+                            .arg(g.theta_o_deg[peak / g.phi_o_deg.size()])
+                            .arg(g.phi_o_deg[peak % g.phi_o_deg.size()])));
+    QVERIFY(m_lobe->renderImage() != before);
+    m_lobe->setIncidence(45.0, 0.0);
+}
+
+void PlotsTest::logScaleRedraws() {
+    const QImage inplane = m_inplane->renderImage();
+    const QImage lobe = m_lobe->renderImage();
+    m_inplane->setLogScale(true);
+    m_lobe->setLogRadius(true);
+    QVERIFY(m_inplane->renderImage() != inplane);
+    QVERIFY(m_lobe->renderImage() != lobe);
+    QVERIFY(m_inplane->renderImage().save(screenshotDir() + "/plots_inplane_log.png"));
+    QVERIFY(m_lobe->renderImage().save(screenshotDir() + "/plots_lobe_log.png"));
+    m_inplane->setLogScale(false);
+    m_lobe->setLogRadius(false);
+}
+
+void PlotsTest::mainWindowPlotsDockFollowsTheRecipe() {
+    qputenv("XDG_CACHE_HOME", (m_dir.path() + "/cache").toUtf8());
+    qputenv("XDG_CONFIG_HOME", (m_dir.path() + "/config").toUtf8());
+    WorkstationOptions options;
+    options.database = m_dir.filePath("lab.db").toStdString();
+    options.open_scene = false;  // the BRDF alone: no scene to trace
+    MainWindow window(options);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    PlotsDock* dock = window.plotsDock();
+    QVERIFY(dock != nullptr);
+    QCOMPARE(dock->plots().size(), std::size_t{5});
+    QVERIFY(window.selectRecipe(kPearl));
+    QTRY_VERIFY_WITH_TIMEOUT(dock->brdf() != nullptr && window.scheduler()->idle() && !dock->computing(),
+                             kWaitMs);
+    QVERIFY(!dock->ingredientSpectra()->spectra().empty());
+    // The dock's in-plane data is that of the BRDF the scheduler delivered.
+    const QString path = m_dir.filePath("dock_inplane.csv");
+    dock->tabs()->setCurrentWidget(dock->inplanePlot());
+    QVERIFY(dock->exportCurrentCsv(path));
+    verifyInplaneCsv(path, *dock->brdf(), QStringLiteral("current"));
+    qInfo("Plots dock (standard preset, %zu bands): data %.1f ms on the worker, drawn %.1f ms on the GUI "
+          "thread",
+          dock->brdf()->wavelengthsNm().size(), dock->lastComputeMs(), dock->lastUpdateMs());
+    QElapsedTimer timer;
+    timer.start();
+    window.plot()->setBrdf(*dock->brdf());  // the central plot computes on the GUI thread
+    qInfo("central in-plane plot (45 deg alone): %.1f ms on the GUI thread",
+          static_cast<double>(timer.nsecsElapsed()) * 1e-6);
+    for (int tab = 0; tab < dock->tabs()->count(); ++tab) {
+        dock->tabs()->setCurrentIndex(tab);
+        QVERIFY(dock->currentPlot() != nullptr);
+        QVERIFY(QTest::qWaitForWindowExposed(dock->currentPlot()));
+        const QImage image = dock->currentPlot()->renderImage();
+        QVERIFY(pixelStats(image).colours > 20);
+    }
+    QVERIFY(window.grab().save(screenshotDir() + "/plots_main_window.png"));
+    // Pinning, then an edit: the comparison stays, the current series follows.
+    dock->pinCurrentAsComparison();
+    QTRY_VERIFY_WITH_TIMEOUT(!dock->computing(), kWaitMs);
+    QVERIFY(dock->inplanePlot()->hasComparison() && dock->abChart()->hasComparison());
+    const auto pinned = dock->brdf();
+    window.document()->load(fewerFlakes(pearlRecipe()), QStringLiteral("fewer flakes"), 0);
+    QTRY_VERIFY_WITH_TIMEOUT(dock->brdf() != pinned && window.scheduler()->idle() && !dock->computing(),
+                             kWaitMs);
+    QVERIFY(dock->abChart()->report().colours[1].lab.L !=
+            dock->abChart()->comparisonReport().colours[1].lab.L);
+    // The incidence chooser: the lobe is recomputed for the new light.
+    auto* theta_i = dock->findChild<QDoubleSpinBox*>(QStringLiteral("lobe_theta_i"));
+    QVERIFY(theta_i != nullptr);
+    QSignalSpy updated(dock, &PlotsDock::updated);
+    theta_i->setValue(30.0);
+    QTRY_VERIFY_WITH_TIMEOUT(updated.count() >= 1 && !dock->computing(), kWaitMs);
+    QCOMPARE(dock->lobePlot()->grid().theta_i_deg, 30.0);
+    dock->clearComparison();
+    QVERIFY(!dock->inplanePlot()->hasComparison());
+}
+
+void PlotsTest::cleanupTestCase() {
+    m_inplane.reset();
+    m_lobe.reset();
+    m_paint_spectra.reset();
+    m_ingredient_spectra.reset();
+    m_ab.reset();
+}
+
+int main(int argc, char** argv) {
+    QSurfaceFormat format;  // as the application's main(): VTK needs a 3.2 core profile
+    format.setVersion(3, 2);
+    format.setProfile(QSurfaceFormat::CoreProfile);
+    QSurfaceFormat::setDefaultFormat(format);
+    QApplication app(argc, argv);
+    QApplication::setOrganizationName("PaintLab-test");
+    QApplication::setApplicationName("PaintLab-test-plots");
+    PlotsTest test;
+    return QTest::qExec(&test, argc, argv);
+}
+
+#include "test_plots.moc"
