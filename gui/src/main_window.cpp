@@ -50,6 +50,7 @@ MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMa
     addDockWidget(Qt::RightDockWidgetArea, m_render);
     m_accuracy = new AccuracyDock(this);
     addDockWidget(Qt::RightDockWidgetArea, m_accuracy);
+    addDatabaseDocks();
     addPlotsDock();
     buildMenus();
 
@@ -84,6 +85,7 @@ MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMa
     restoreState(settings.value("window/state").toByteArray());
 
     openDatabase(options.database);
+    connectDatabaseDocks();
     if (options.open_scene)
         openScene(options.scene.empty() ? demoScenePath() : options.scene, options.raymap);
 }
@@ -103,6 +105,7 @@ void MainWindow::buildMenus() {
         if (!path.isEmpty()) openRecipeFile(path);
     });
     file->addAction(tr("&Save version..."), QKeySequence::Save, this, &MainWindow::saveVersion);
+    addDatabaseMenuItems(file);
     file->addAction(tr("Open &scene..."), this, [this]() {
         const QString path = QFileDialog::getOpenFileName(this, tr("Open scene"), {}, tr("Scenes (*.json)"));
         if (!path.isEmpty()) openScene(path.toStdString(), {});
@@ -269,6 +272,7 @@ bool MainWindow::saveVersionAs(const QString& note) {
         options.source = m_document.origin().toStdString();
         const db::SavedVersion saved = db::saveRecipeVersion(*m_db, m_document.recipe(), options);
         fillRecipeList();
+        emit versionSaved(QString::fromStdString(saved.recipe_name), saved.version);
         statusBar()->showMessage(
             saved.created
                 ? tr("Saved %1 version %2").arg(QString::fromStdString(saved.recipe_name)).arg(saved.version)

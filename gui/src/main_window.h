@@ -16,6 +16,7 @@
 #include <optional>
 
 class QListWidget;
+class QMenu;
 class QThread;
 
 namespace paintlab::gui {
@@ -32,6 +33,11 @@ struct WorkstationOptions {
     std::filesystem::path raymap;    // empty: traced from the scene into the cache when missing
     bool open_scene = true;
 };
+
+// The database docks and dialog (main_window_docks.cpp).
+class IngredientDock;
+class ProductionDialog;
+class VersionsDock;
 
 class MainWindow : public QMainWindow {
     Q_OBJECT
@@ -52,6 +58,12 @@ public:
     // false (and a message box) if the database refuses it.
     bool saveVersionAs(const QString& note);
 
+    // The ingredient browser, the recipe versions and the production export
+    // (main_window_docks.cpp): shows the non-modal dialog on the edited version.
+    IngredientDock* ingredientDock() { return m_ingredients; }
+    VersionsDock* versionsDock() { return m_versions; }
+    ProductionDialog* openProductionDialog();
+
     RecipeDocument* document() { return &m_document; }
     RenderScheduler* scheduler() { return &m_scheduler; }
     RenderDock* renderDock() { return m_render; }
@@ -62,6 +74,10 @@ public:
 
 protected:
     void closeEvent(QCloseEvent* event) override;
+
+signals:
+    // saveVersionAs stored a version (or found the recipe identical to the latest one).
+    void versionSaved(const QString& recipe, int version);
 
 private:
     void buildMenus();
@@ -90,6 +106,15 @@ private:
     // The scene being traced into a ray map, if any (cancelled and joined on close).
     QThread* m_trace = nullptr;
     std::shared_ptr<std::atomic<bool>> m_trace_cancel;
+
+    // main_window_docks.cpp: the ingredient and versions docks, their menu
+    // entries (recent files, production export) and their database.
+    void addDatabaseDocks();
+    void addDatabaseMenuItems(QMenu* file);
+    void connectDatabaseDocks();
+    IngredientDock* m_ingredients = nullptr;
+    VersionsDock* m_versions = nullptr;
+    ProductionDialog* m_production = nullptr;
 };
 
 }  // namespace paintlab::gui

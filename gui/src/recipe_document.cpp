@@ -19,6 +19,12 @@ void RecipeDocument::applyEdit(const Recipe& recipe, bool interactive) {
     emit recipeChanged(interactive);
 }
 
+void RecipeDocument::markSaved(const QString& origin, int version) {
+    m_origin = origin;
+    m_version = version;
+    m_undo.setClean();
+}
+
 void RecipeDocument::settle() { emit recipeChanged(false); }
 
 }  // namespace paintlab::gui

@@ -28,6 +28,9 @@ public:
     void load(const Recipe& recipe, const QString& origin, int version);
     // For undo commands only: replaces the recipe without touching the history.
     void applyEdit(const Recipe& recipe, bool interactive);
+    // The recipe as it is now was saved as this version: the origin and
+    // version change, the recipe and the undo history stay (marked clean).
+    void markSaved(const QString& origin, int version);
     // An interactive edit (a slider drag) ended: announces the recipe again as final.
     void settle();
 

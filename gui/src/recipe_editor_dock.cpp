@@ -26,7 +26,22 @@ RecipeEditorDock::RecipeEditorDock(RecipeDocument* document, QWidget* parent)
     scroll->setWidget(m_form);
     setWidget(scroll);
     connect(document, &RecipeDocument::recipeLoaded, this, &RecipeEditorDock::rebuild);
-    connect(document, &RecipeDocument::recipeChanged, this, &RecipeEditorDock::refreshValues);
+    connect(document, &RecipeDocument::recipeChanged, this, [this]() {
+        // An edit that added or removed a component (or its undo) changes the rows.
+        if (structureChanged()) {
+            rebuild();
+        } else {
+            refreshValues();
+        }
+    });
+}
+
+bool RecipeEditorDock::structureChanged() const {
+    const std::vector<ParameterRef> refs = editableParameters(m_document->recipe());
+    if (refs.size() != m_rows.size()) return true;
+    for (std::size_t i = 0; i < refs.size(); ++i)
+        if (!(refs[i] == m_rows[i].ref)) return true;
+    return false;
 }
 
 QSlider* RecipeEditorDock::sliderFor(std::string_view key) const {

@@ -35,6 +35,7 @@ private:
         QSlider* slider = nullptr;
     };
     void rebuild();
+    bool structureChanged() const;
     void refreshValues();
     void edit(const Row& row, double value, bool interactive);
     static constexpr int kSliderSteps = 1000;

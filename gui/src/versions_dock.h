@@ -1,0 +1,88 @@
+#pragma once
+// The saved versions of the recipe being edited (recipes.h): its history
+// (version, author, time, note; the checksum as tooltip), saving a new
+// version with a note, the differences between two versions (a table of the
+// values that changed: path, old, new; recipe_diff.h), opening an old
+// version in the editor and reverting to one. Versions are immutable: a
+// revert saves the old contents as a new version.
+//
+// Every operation is one or two small queries on the GUI thread's connection
+// (a version is one recipe JSON of at most a few hundred kB).
+
+#include "recipe_diff.h"
+#include "recipe_document.h"
+
+#include "paintlab/database/database.h"
+#include "paintlab/database/recipes.h"
+
+#include <QDockWidget>
+#include <QString>
+
+#include <optional>
+#include <vector>
+
+class QLabel;
+class QPushButton;
+class QTableWidget;
+
+namespace paintlab::gui {
+
+class VersionsDock : public QDockWidget {
+    Q_OBJECT
+public:
+    explicit VersionsDock(RecipeDocument* document, QWidget* parent = nullptr);
+
+    void setDatabase(db::Database* database);
+    // Shows the history of the recipe of this name (the edited recipe's by default).
+    void showRecipe(const QString& name);
+    // Reads the history again.
+    void refresh();
+    const QString& recipeName() const { return m_name; }
+    const std::vector<db::RecipeVersionInfo>& history() const { return m_history; }
+
+    // Asks the main window to save the edited recipe as a new version (saveRequested).
+    void saveNewVersion(const QString& note);
+    // Fills the difference table with what changed from version a to version
+    // b; false (and a message) if either cannot be read.
+    bool diffVersions(int a, int b);
+    const std::vector<RecipeChange>& lastDiff() const { return m_diff; }
+    // Saves the contents of an old version as a new version (note "Revert to
+    // version N"); returns the new version's number, or nullopt with a message
+    // (nothing saved) if it cannot. When the latest version already has those
+    // contents, nothing is saved and that version is returned.
+    std::optional<int> revertTo(int version);
+    // Loads a version into the editor.
+    bool openVersion(int version);
+
+    QTableWidget* historyTable() const { return m_table; }
+    QTableWidget* diffTable() const { return m_diff_table; }
+
+signals:
+    void saveRequested(const QString& note);
+    // A revert saved this version (the main window lists and opens it).
+    void versionCreated(const QString& recipe, int version);
+
+private:
+    std::vector<int> selectedVersions() const;
+    void askNoteAndSave();
+    void diffSelected();
+    void revertSelected();
+    void updateButtons();
+    void showError(const QString& title, const QString& message);
+
+    RecipeDocument* m_document;
+    db::Database* m_db = nullptr;
+    QString m_name;
+    std::vector<db::RecipeVersionInfo> m_history;
+    std::vector<RecipeChange> m_diff;
+    QLabel* m_title = nullptr;
+    QTableWidget* m_table = nullptr;
+    QPushButton* m_save = nullptr;
+    QPushButton* m_compare = nullptr;
+    QPushButton* m_open = nullptr;
+    QPushButton* m_revert = nullptr;
+    QLabel* m_diff_title = nullptr;
+    QTableWidget* m_diff_table = nullptr;
+};
+
+}  // namespace paintlab::gui
