@@ -275,6 +275,9 @@ void validateRayMapSettings(const RayMapSettings& s) {
     if (!(s.env_light_threshold >= 1.0 && s.env_light_threshold <= 1e9))
         throw InputError("<argument>", "env_light_threshold",
                          std::to_string(s.env_light_threshold) + " is outside [1, 1e9]");
+    if (!(s.scene_unit_m > 0.0 && s.scene_unit_m <= 1e6))
+        throw InputError("<argument>", "scene_unit_m",
+                         std::to_string(s.scene_unit_m) + " is outside (0, 1e6]");
 }
 
 RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, const std::filesystem::path& out,
@@ -296,6 +299,9 @@ RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, con
     header.band_rows = settings.band_rows;
     header.scene_file = scene.file.filename().string();
     header.paint_proxy_albedo = kPaintProxyAlbedo;
+    header.camera_position = camera.origin();
+    header.pixel_angle_rad = camera.pixelAngle();
+    header.scene_unit_m = settings.scene_unit_m;
     for (const auto& sun : pt.suns())
         header.lights.push_back({ExplicitLight::Kind::Sun, sun.direction, sun.irradiance,
                                  2.0 * kPi * (1.0 - sun.cos_half_angle)});
