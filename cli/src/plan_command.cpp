@@ -57,6 +57,7 @@ int runPlan(const PlanOptions& o) {
                                  {"simulate", d.simulate},
                                  {"setting", d.setting},
                                  {"accepted_error_de", d.accepted_error_de},
+                                 {"skip_error_de", d.skip_error_de},
                                  {"reason", d.reason}});
         ordered_json out{{"scene_file", o.scene},
                          {"recipe_file", o.recipe},

@@ -6,6 +6,7 @@
 
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/plan.h"
 #include "paintlab/engine/recipe_json.h"
 #include "paintlab/raymaps/paint_proxy.h"
 #include "paintlab/raymaps/raymap.h"
@@ -25,6 +26,7 @@
 #include <ctime>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace paintlab::cli {
@@ -135,7 +137,18 @@ int relightMap(const RelightOptions& o, const std::filesystem::path& map_path) {
     const raymaps::RelightInput input(*map);
     start = Clock::now();
     const Recipe recipe = loadRecipeFile(o.recipe);
-    const LayeredBrdf brdf = computeLayeredBrdf(recipe, presetSettings(preset));
+    // The effect plan (--plan, --sparkle plan): from the map's lights and
+    // footprints; --plan runs the fast model at its settings.
+    std::optional<EffectPlan> effect_plan;
+    double plan_s = 0.0;
+    if (o.sparkle.needsPlan()) {
+        effect_plan = planForMap(o.sparkle, *map, recipe, preset);
+        plan_s = secondsSince(start);
+        start = Clock::now();
+    }
+    const FastModelSettings settings =
+        o.sparkle.plan ? applyPlan(*effect_plan, presetSettings(preset)) : presetSettings(preset);
+    const LayeredBrdf brdf = computeLayeredBrdf(recipe, settings);
     const double brdf_s = secondsSince(start);
     start = Clock::now();
     const raymaps::RelightTables tables(brdf, map->header().cells, map->header().orders);
@@ -151,14 +164,26 @@ int relightMap(const RelightOptions& o, const std::filesystem::path& map_path) {
         best_s = std::min(best_s, secondsSince(start));
     }
     const double cpu_s = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC / o.repeat;
-    const std::string sparkle = applySparkle(o.sparkle, *map, recipe, preset, image);
+    const std::string sparkle =
+        applySparkle(o.sparkle, *map, recipe, effect_plan ? &*effect_plan : nullptr, image);
     raymaps::writeImage(image, o.out, o.exposure_ev);
     std::printf("relit %s: %d x %d, %llu paint pixels\n", o.out.c_str(), image.width, image.height,
                 static_cast<unsigned long long>(map->header().paint_pixels));
+    std::string model = o.preset;
+    if (o.sparkle.plan)
+        model += ", plan: orders " + std::to_string(settings.orders) + ", bands " +
+                 std::to_string(settings.bands) + ", slices " + std::to_string(settings.slices);
     std::printf("load %.1f ms, decode %.1f ms, fast model (%s) %.1f ms, relight tables %.1f ms, relight %.2f "
                 "ms%s, %.2f ms CPU (mean over threads and repeats)\n",
-                1e3 * load_s, 1e3 * input.seconds(), o.preset.c_str(), 1e3 * brdf_s, 1e3 * tables_s,
+                1e3 * load_s, 1e3 * input.seconds(), model.c_str(), 1e3 * brdf_s, 1e3 * tables_s,
                 1e3 * best_s, o.repeat > 1 ? " (best of --repeat)" : "", 1e3 * cpu_s);
+    if (effect_plan) {
+        std::printf("plan (preset %s, tolerance dE00 %.2g per pixel, 99th percentile; %.1f ms), %s:\n",
+                    std::string(presetName(preset)).c_str(), effect_plan->tolerance_de, 1e3 * plan_s,
+                    o.sparkle.plan ? "applied" : "sparkle decision applied (--plan applies the rest)");
+        for (const std::string& line : appliedPlanLines(o.sparkle, *effect_plan))
+            std::printf("%s\n", line.c_str());
+    }
     if (!sparkle.empty()) std::printf("%s\n", sparkle.c_str());
     return 0;
 }
@@ -216,6 +241,9 @@ void addRaymapCommands(CLI::App& app, CommandAction& action) {
     cmd->add_option("scene", b->scene, "Scene JSON file")->required();
     cmd->add_option("--out", b->out, "Ray-map file to write (.prm)")->required();
     addBuildOptions(cmd, *b);
+    cmd->add_option("--scene-unit", b->settings.scene_unit_m,
+                    "One scene unit in metres, stored in the map (sparkle and plan: pixel footprints)")
+        ->capture_default_str();
     cmd->callback([b, &action] {
         action = [b] {
             build(*b, b->out);
@@ -257,8 +285,8 @@ void addRaymapCommands(CLI::App& app, CommandAction& action) {
                                               ("paintlab-render-" + std::to_string(getpid()) + ".prm");
             checkImagePath(rr->out);
             (void)presetFromName(rr->preset);
-            rr->sparkle.camera_scene = rb->scene;
-            rr->sparkle.camera_height = rb->height;
+            // --scene-unit goes into the map, which the relight then reads.
+            rb->settings.scene_unit_m = rr->sparkle.scene_unit_m;
             // The recipe is known before the precompute: its own colour, not
             // the grey stand-in, is the paint that secondary rays meet (paint
             // seen by paint in a mirror; raymaps/paint_proxy.h).

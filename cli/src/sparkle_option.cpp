@@ -1,19 +1,16 @@
-// `--sparkle on|off|plan` (sparkle_option.h).
+// `--sparkle on|off|plan`, `--scene-unit`, `--plan` (sparkle_option.h).
 
 #include "sparkle_option.h"
 
-#include "paintlab/engine/plan.h"
+#include "paintlab/engine/error.h"
 #include "paintlab/engine/sparkle.h"
 #include "paintlab/raymaps/plan_scene.h"
-#include "paintlab/raymaps/scene.h"
 #include "paintlab/raymaps/sparkle_pass.h"
 
 #include <CLI/CLI.hpp>
 
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
-#include <numbers>
+#include <utility>
 
 namespace paintlab::cli {
 
@@ -22,32 +19,71 @@ void addSparkleOptions(CLI::App* command, SparkleOption& o) {
         ->add_option("--sparkle", o.mode,
                      "Flake glints: on, off, or plan (on where the planner finds them visible)")
         ->check(CLI::IsMember({"on", "off", "plan"}))
+        ->each([&o](const std::string&) { o.mode_given = true; })
         ->capture_default_str();
     command
-        ->add_option("--scene-unit", o.scene_unit_m, "One scene unit in metres (sparkle: pixel footprints)")
+        ->add_option("--scene-unit", o.scene_unit_m,
+                     "One scene unit in metres (sparkle and plan: pixel footprints; default: the ray map's, "
+                     "1 for maps written before the header held it)")
+        ->each([&o](const std::string&) { o.scene_unit_given = true; })
         ->capture_default_str();
+    command->add_flag("--plan", o.plan,
+                      "Run the effect plan: the fast model at the plan's orders, bands and slices, sparkle "
+                      "where the plan finds it visible (an explicit --sparkle overrides that)");
+}
+
+EffectPlan planForMap(const SparkleOption& o, const raymaps::RayMap& map, const Recipe& recipe,
+                      Preset preset) {
+    return plan(recipe, raymaps::summariseRayMap(map, {.scene_unit_m = o.sceneUnit()}), preset);
+}
+
+std::vector<std::string> appliedPlanLines(const SparkleOption& o, const EffectPlan& plan) {
+    std::vector<std::string> lines;
+    for (const AppliedDecision& a : appliedDecisions(plan)) {
+        std::string applied = a.applied;
+        double accepted = a.accepted_error_de;
+        if (a.effect == "sparkle") {
+            const std::string mode = o.effectiveMode();
+            if (mode == "on" || mode == "off") {
+                applied = mode;
+                applied.append(" (--sparkle ")
+                    .append(mode)
+                    .append("; the plan: ")
+                    .append(a.applied)
+                    .append(")");
+            }
+            if (mode == "on") accepted = 0.0;
+            if (mode == "off")
+                for (const auto& d : plan.decisions)
+                    if (d.effect == "sparkle") accepted = d.skip_error_de;
+        } else if (!o.plan) {
+            continue;  // --sparkle plan alone: the fast model runs at the preset's settings
+        }
+        char text[512];
+        std::snprintf(text, sizeof text, "  %-12s %-40s accepted dE00 %.3g: ", a.effect.c_str(),
+                      applied.c_str(), accepted);
+        std::string line = text;
+        line.append(a.reason);
+        lines.push_back(std::move(line));
+    }
+    return lines;
 }
 
 std::string applySparkle(const SparkleOption& o, const raymaps::RayMap& map, const Recipe& recipe,
-                         Preset preset, raymaps::RgbImage& image) {
-    if (o.mode == "off") return "";
-    std::string why;
-    if (o.mode == "plan") {
-        const EffectPlan p =
-            plan(recipe, raymaps::summariseRayMap(map, {.scene_unit_m = o.scene_unit_m}), preset);
-        for (const auto& d : p.decisions)
-            if (d.effect == "sparkle") why = d.reason;
-        if (!p.sparkle) return "sparkle: skipped by the plan (" + why + ")";
+                         const EffectPlan* plan, raymaps::RgbImage& image) {
+    const std::string mode = o.effectiveMode();
+    if (mode == "off") return "";
+    if (mode == "plan") {
+        if (plan == nullptr) throw Error("applySparkle: --sparkle plan without a plan");
+        if (!plan->sparkle) {
+            std::string why;
+            for (const auto& d : plan->decisions)
+                if (d.effect == "sparkle") why = d.reason;
+            return "sparkle: skipped by the plan (" + why + ")";
+        }
     }
     raymaps::SparklePassSettings settings;
-    settings.scene_unit_m = o.scene_unit_m;
-    if (!o.camera_scene.empty()) {
-        const raymaps::Scene scene = raymaps::loadSceneFile(o.camera_scene);
-        const int height = o.camera_height > 0 ? o.camera_height : scene.camera.height;
-        settings.pixel_angle_rad = 2.0 *
-                                   std::tan(0.5 * scene.camera.vertical_fov_deg * std::numbers::pi / 180.0) /
-                                   std::max(1, height);
-    }
+    settings.scene_unit_m = o.sceneUnit();
     const SparkleModel model(recipe);
     const raymaps::SparklePassStats s = raymaps::addSparkle(map, model, image, settings);
     char text[256];

@@ -26,9 +26,12 @@ namespace {
 constexpr int kEnvLights = 4;
 constexpr double kEnvThreshold = 50.0;
 
-void checkOptions(const PlanSceneOptions& o) {
-    if (!(o.scene_unit_m > 0.0) || !std::isfinite(o.scene_unit_m))
-        throw InputError("<argument>", "scene_unit_m", std::to_string(o.scene_unit_m) + " must be > 0");
+// The scene unit in metres: the options', else `fallback`.
+double checkOptions(const PlanSceneOptions& o, double fallback) {
+    const double unit = o.scene_unit_m.value_or(fallback);
+    if (!(unit > 0.0) || !std::isfinite(unit))
+        throw InputError("<argument>", "scene_unit_m", std::to_string(unit) + " must be > 0");
+    return unit;
 }
 
 void summariseEnvironment(const EnvironmentMap& residual, PlanScene& s) {
@@ -74,7 +77,7 @@ void summariseEnvironment(const EnvironmentMap& residual, PlanScene& s) {
 }  // namespace
 
 PlanScene summariseScene(const Scene& scene, const PlanSceneOptions& options) {
-    checkOptions(options);
+    const double unit_m = checkOptions(options, 1.0);
     PlanScene s;
     s.source = scene.file.empty() ? "<scene>" : scene.file.string();
 
@@ -106,9 +109,9 @@ PlanScene summariseScene(const Scene& scene, const PlanSceneOptions& options) {
     if (paint_hits > 0.0) {
         centre /= paint_hits;
         const double angle = camera.pixelAngle();
-        s.footprint_min_um = near * angle * options.scene_unit_m * 1e6;
-        s.footprint_max_um = far * angle * options.scene_unit_m * 1e6;
-        s.viewing_distance_m = near * options.scene_unit_m;
+        s.footprint_min_um = near * angle * unit_m * 1e6;
+        s.footprint_max_um = far * angle * unit_m * 1e6;
+        s.viewing_distance_m = near * unit_m;
     }
 
     for (std::size_t i = 0; i < scene.lights.size(); ++i) {
@@ -133,10 +136,10 @@ PlanScene summariseScene(const Scene& scene, const PlanSceneOptions& options) {
 }
 
 PlanScene summariseRayMap(const RayMap& map, const PlanSceneOptions& options) {
-    checkOptions(options);
+    const RayMapHeader& h = map.header();
+    const double unit_m = checkOptions(options, h.scene_unit_m);
     PlanScene s;
     s.source = map.path().string();
-    const RayMapHeader& h = map.header();
     for (std::size_t i = 0; i < h.lights.size(); ++i) {
         const ExplicitLight& l = h.lights[i];
         const bool env = static_cast<int>(i) >= static_cast<int>(h.lights.size()) - h.env_lights;
@@ -175,8 +178,9 @@ PlanScene summariseRayMap(const RayMap& map, const PlanSceneOptions& options) {
         const auto at = [&](double q) {
             return footprints[static_cast<std::size_t>(q * static_cast<double>(footprints.size() - 1))];
         };
-        s.footprint_min_um = at(0.01) * options.scene_unit_m * 1e6;
-        s.footprint_max_um = at(0.99) * options.scene_unit_m * 1e6;
+        s.footprint_min_um = at(0.01) * unit_m * 1e6;
+        s.footprint_max_um = at(0.99) * unit_m * 1e6;
+        if (h.cameraKnown()) s.viewing_distance_m = at(0.01) / h.pixel_angle_rad * unit_m;
         s.environment_radiance = moment_sum / static_cast<double>(footprints.size());
     }
     // The map keeps the rest of the light as M_L azimuthal orders over J

@@ -280,6 +280,9 @@ void validateRayMapSettings(const RayMapSettings& s) {
         !(s.paint_proxy_albedo->allFinite() && s.paint_proxy_albedo->minCoeff() >= 0.0 &&
           s.paint_proxy_albedo->maxCoeff() <= 1.0))
         throw InputError("<argument>", "paint_proxy_albedo", "channels must be in [0, 1]");
+    if (!(s.scene_unit_m > 0.0 && s.scene_unit_m <= 1e6))
+        throw InputError("<argument>", "scene_unit_m",
+                         std::to_string(s.scene_unit_m) + " is outside (0, 1e6]");
 }
 
 RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, const std::filesystem::path& out,
@@ -302,6 +305,9 @@ RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, con
     header.band_rows = settings.band_rows;
     header.scene_file = scene.file.filename().string();
     header.paint_proxy_albedo = proxy.mean();
+    header.camera_position = camera.origin();
+    header.pixel_angle_rad = camera.pixelAngle();
+    header.scene_unit_m = settings.scene_unit_m;
     for (const auto& sun : pt.suns())
         header.lights.push_back({ExplicitLight::Kind::Sun, sun.direction, sun.irradiance,
                                  2.0 * kPi * (1.0 - sun.cos_half_angle)});

@@ -30,11 +30,13 @@ Eigen::Vector3d vector3(jsonio::ObjectReader& r, std::string_view key) {
     return {v[0], v[1], v[2]};
 }
 
-RayMapHeader parseHeader(const std::vector<std::byte>& payload, const std::string& file) {
+RayMapHeader parseHeader(const std::vector<std::byte>& payload, const std::string& file,
+                         std::uint32_t version) {
     const std::string text(reinterpret_cast<const char*>(payload.data()), payload.size());
     const json j = jsonio::parseUntrustedJson(text, file);
     jsonio::ObjectReader r(j, "chunk 1 (HEAD)", file);
     RayMapHeader h;
+    h.file_version = version;
     h.width = r.integerIn("width", 1, kMaxImageSide);
     h.height = r.integerIn("height", 1, kMaxImageSide);
     h.cells = r.integerIn("cells", 1, 16);
@@ -63,6 +65,15 @@ RayMapHeader parseHeader(const std::vector<std::byte>& payload, const std::strin
         l.finish();
         h.lights.push_back(light);
     }
+    if (version >= 2) {
+        jsonio::ObjectReader camera(r.require("camera", "the camera's position and pixel angle"),
+                                    r.fieldPath("camera"), file);
+        h.camera_position = vector3(camera, "position");
+        if (!h.camera_position.allFinite()) camera.fail("position", "not finite");
+        h.pixel_angle_rad = camera.numberIn("pixel_angle_rad", 1e-9, std::numbers::pi);
+        camera.finish();
+        h.scene_unit_m = r.numberIn("scene_unit_m", 1e-12, 1e6);
+    }
     jsonio::ObjectReader stats(r.require("statistics", "precompute statistics"), r.fieldPath("statistics"),
                                file);
     h.paint_pixels = static_cast<std::uint64_t>(stats.numberIn("paint_pixels", 0.0, 1e12));
@@ -71,7 +82,7 @@ RayMapHeader parseHeader(const std::vector<std::byte>& payload, const std::strin
     stats.finish();
     const int record = r.integerIn("record_bytes", 1, 1 << 20);
     if (static_cast<std::size_t>(record) != recordBytes(h.cells, h.orders, static_cast<int>(h.lights.size())))
-        r.fail("record_bytes", "does not match the layout of version 1 for these cells, orders and lights");
+        r.fail("record_bytes", "does not match the record layout for these cells, orders and lights");
     r.finish();
     return h;
 }
@@ -89,6 +100,8 @@ std::string headerToJson(const RayMapHeader& h) {
     j["paint_proxy_albedo"] = h.paint_proxy_albedo;
     j["scene_file"] = h.scene_file;
     j["record_bytes"] = recordBytes(h.cells, h.orders, static_cast<int>(h.lights.size()));
+    j["camera"] = {{"position", vec3(h.camera_position)}, {"pixel_angle_rad", h.pixel_angle_rad}};
+    j["scene_unit_m"] = h.scene_unit_m;
     json lights = json::array();
     for (const ExplicitLight& l : h.lights)
         lights.push_back({{"kind", l.kind == ExplicitLight::Kind::Sun ? "sun" : "point"},
@@ -116,7 +129,7 @@ std::unique_ptr<RayMap> RayMap::open(const std::filesystem::path& path) {
     const auto& chunks = reader.chunks();
     if (chunks.empty() || chunks[0].type != kHeaderChunk)
         throw InputError(file, "chunk 1", "the first chunk is not the ray-map header (HEAD)");
-    map->m_header = parseHeader(reader.read(0), file);
+    map->m_header = parseHeader(reader.read(0), file, reader.version());
     const RayMapHeader& h = map->m_header;
     map->m_record_bytes = raymaps::recordBytes(h.cells, h.orders, static_cast<int>(h.lights.size()));
     const int bands = (h.height + h.band_rows - 1) / h.band_rows;

@@ -10,7 +10,9 @@
 namespace paintlab::raymaps {
 
 constexpr Magic kRayMapMagic{'P', 'L', 'R', 'A', 'Y', 'M', 'A', 'P'};
-constexpr std::uint32_t kRayMapVersion = 1;
+// 2: the header holds the camera (position, pixel angle) and the scene unit.
+// Version 1 is still read (RayMapHeader's defaults).
+constexpr std::uint32_t kRayMapVersion = 2;
 constexpr std::uint32_t kHeaderChunk = chunkType("HEAD");
 constexpr std::uint32_t kBakedChunk = chunkType("BAKE");
 constexpr std::uint32_t kPaintChunk = chunkType("PNTR");

@@ -47,11 +47,13 @@ void checkSetting(double value, bool zero_ok, const char* name) {
 
 SparklePassStats addSparkle(const RayMap& map, const SparkleModel& model, RgbImage& image,
                             const SparklePassSettings& settings) {
-    checkSetting(settings.scene_unit_m, false, "scene_unit_m");
-    checkSetting(settings.pixel_angle_rad, true, "pixel_angle_rad");
+    const RayMapHeader& h = map.header();
+    const double scene_unit_m = settings.scene_unit_m.value_or(h.scene_unit_m);
+    const double pixel_angle_rad = settings.pixel_angle_rad.value_or(h.pixel_angle_rad);
+    checkSetting(scene_unit_m, false, "scene_unit_m");
+    checkSetting(pixel_angle_rad, true, "pixel_angle_rad");
     checkSetting(settings.viewing_distance_m, false, "viewing_distance_m");
     checkSetting(settings.aperture_mm, false, "aperture_mm");
-    const RayMapHeader& h = map.header();
     if (image.width != h.width || image.height != h.height ||
         image.rgb.size() != static_cast<std::size_t>(h.width) * static_cast<std::size_t>(h.height) * 3)
         throw InputError(map.path().string(), "image",
@@ -80,7 +82,7 @@ SparklePassStats addSparkle(const RayMap& map, const SparkleModel& model, RgbIma
 
     const RecordLayout layout{h.cells, h.orders, static_cast<int>(h.lights.size())};
     const std::size_t stride = layout.bytes();
-    const double unit_um = settings.scene_unit_m * 1e6;
+    const double unit_um = scene_unit_m * 1e6;
     std::atomic<std::uint64_t> pixels{0};
     std::atomic<std::uint64_t> glint_pixels{0};
     std::atomic<std::uint64_t> glints_micro{0};  // sum of Poisson means x 1e6
@@ -92,6 +94,7 @@ SparklePassStats addSparkle(const RayMap& map, const SparkleModel& model, RgbIma
             tbb::blocked_range<std::size_t>(0, band.record_count, 64),
             [&](const tbb::blocked_range<std::size_t>& range) {
                 std::vector<double> x;
+                SparkleStats s;  // reused: no allocation per pixel
                 std::uint64_t local_glint_pixels = 0;
                 std::uint64_t local_visits = 0;
                 double local_glints = 0.0;
@@ -113,9 +116,8 @@ SparklePassStats addSparkle(const RayMap& map, const SparkleModel& model, RgbIma
                     // The texture's frame from the normal alone: it must not turn with the view.
                     const Frame frame = Frame::fromNormal(n);
                     const Vec3 wo = frame.toLocal(v);
-                    const double distance_m = settings.pixel_angle_rad > 0.0
-                                                  ? footprint_um * 1e-6 / settings.pixel_angle_rad
-                                                  : settings.viewing_distance_m;
+                    const double distance_m = pixel_angle_rad > 0.0 ? footprint_um * 1e-6 / pixel_angle_rad
+                                                                    : settings.viewing_distance_m;
                     SparkleGeometry g;
                     g.wo = {wo.x(), wo.y(), wo.z()};
                     g.element_area_um2 = footprint_um * footprint_um / mu_o;
@@ -142,7 +144,7 @@ SparklePassStats addSparkle(const RayMap& map, const SparkleModel& model, RgbIma
                         if (!(wl.z() > 0.0)) continue;
                         g.wi = {wl.x(), wl.y(), wl.z()};
                         g.light_solid_angle_sr = light.solid_angle_sr;
-                        const SparkleStats s = model.evaluate(g);
+                        model.evaluate(g, s);
                         ++local_visits;
                         local_glints += s.expected_glints;
                         x.assign(s.terms.size(), 0.0);

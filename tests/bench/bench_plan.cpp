@@ -58,6 +58,14 @@ void BM_Plan(benchmark::State& state) {
 }
 BENCHMARK(BM_Plan)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 
+// The sparkle model of a recipe (per recipe change, before the sparkle pass):
+// per band the paint stack and the exit chains on the polar grid.
+void BM_SparkleModel(benchmark::State& state) {
+    const Recipe r = loadRecipeFile(kDemo / kRecipes[static_cast<std::size_t>(state.range(0))]);
+    for (auto _ : state) benchmark::DoNotOptimize(SparkleModel(r));
+}
+BENCHMARK(BM_SparkleModel)->Arg(0)->Arg(2)->Unit(benchmark::kMillisecond);
+
 // One paint pixel and light: statistics and draw (16 bands).
 void BM_SparklePixel(benchmark::State& state) {
     const SparkleModel model(loadRecipeFile(kDemo / kRecipes[static_cast<std::size_t>(state.range(0))]));

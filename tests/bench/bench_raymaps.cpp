@@ -2,6 +2,8 @@
 // the demo scene, the relight tables per recipe change, slider-to-image
 // latency (preview fast model + tables + kernel), and the kernel's
 // independence of the geometry (a sphere of 16x more triangles, same image).
+// Issue 7: the effect plan's saving per recipe change in the relight path,
+// and the sparkle pass.
 // Figures for docs/PERFORMANCE.md come from running bench_raymaps directly;
 // the smoke test runs the smallest size only.
 //
@@ -11,14 +13,19 @@
 #include "temp_dir.h"
 
 #include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/plan.h"
 #include "paintlab/engine/recipe_json.h"
+#include "paintlab/engine/sparkle.h"
+#include "paintlab/raymaps/plan_scene.h"
 #include "paintlab/raymaps/raymap.h"
 #include "paintlab/raymaps/relight.h"
 #include "paintlab/raymaps/relight_input.h"
 #include "paintlab/raymaps/scene.h"
+#include "paintlab/raymaps/sparkle_pass.h"
 
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <ctime>
 #include <filesystem>
 #include <map>
@@ -45,26 +52,38 @@ RayMapSettings cheapSettings() {
     return s;
 }
 
-// Decoded maps by key, built on first use and kept for the process.
-const RelightInput& cachedInput(const std::string& key, const Scene& scene) {
+// Maps (loaded) and their decoded input by key, built on first use and kept for the process.
+struct CachedMap {
+    std::unique_ptr<RayMap> map;
+    std::unique_ptr<RelightInput> input;
+};
+
+const CachedMap& cachedMap(const std::string& key, const Scene& scene) {
     static const paintlab::test::TempDir dir;
-    static std::map<std::string, std::unique_ptr<RelightInput>> inputs;
-    auto& slot = inputs[key];
-    if (!slot) {
+    static std::map<std::string, CachedMap> maps;
+    auto& slot = maps[key];
+    if (!slot.map) {
         const auto path = dir / (key + ".prm");
         buildRayMap(scene, cheapSettings(), path);
-        const auto map = RayMap::open(path);
-        slot = std::make_unique<RelightInput>(*map);
+        slot.map = RayMap::open(path);
+        slot.map->loadAll();
+        slot.input = std::make_unique<RelightInput>(*slot.map);
     }
-    return *slot;
+    return slot;
 }
 
-const RelightInput& demoInput(int width) {
+const RelightInput& cachedInput(const std::string& key, const Scene& scene) {
+    return *cachedMap(key, scene).input;
+}
+
+const CachedMap& demoMap(int width) {
     Scene scene = loadSceneFile(kDemo / "scenes" / "car_body_sky.json");
     scene.camera.width = width;
     scene.camera.height = width * 9 / 16;
-    return cachedInput("demo" + std::to_string(width), scene);
+    return cachedMap("demo" + std::to_string(width), scene);
 }
+
+const RelightInput& demoInput(int width) { return *demoMap(width).input; }
 
 // Process CPU time (all threads) per iteration, next to the wall time: on a
 // shared machine CPU time / cores is what idle cores would take.
@@ -165,5 +184,64 @@ void BM_RelightGeometry(benchmark::State& state) {
     state.counters["paint_pixels"] = static_cast<double>(input.paintPixels());
 }
 BENCHMARK(BM_RelightGeometry)->Arg(4)->Arg(6)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Issue 7: one recipe change in the relight path of the demo map (standard
+// preset) with every effect computed (the preset's fast model, the sparkle
+// model and pass) against the effect plan (the plan itself, from the map's
+// summary, then the fast model at the plan's settings and sparkle only if
+// the plan keeps it). Args: image width (48: ~9 cm pixels, where the plan
+// skips sparkle; 480: ~2 cm, where it keeps it), recipe (0 silver, 1 solid
+// red, 2 pearlescent), 0 = everything / 1 = the plan.
+const std::array<const char*, 3> kPlanRecipes{"silver-metallic.json", "solid-red.json",
+                                              "pearlescent-two-layer.json"};
+
+void BM_RecipeChangePresetVsPlan(benchmark::State& state) {
+    const CachedMap& demo = demoMap(static_cast<int>(state.range(0)));
+    const auto name = kPlanRecipes[static_cast<std::size_t>(state.range(1))];
+    const Recipe recipe = loadRecipeFile(kDemo / "recipes" / name);
+    const bool use_plan = state.range(2) == 1;
+    const PlanScene summary = summariseRayMap(*demo.map);  // once per map
+    const CpuClock cpu;
+    bool sparkle = true;
+    FastModelSettings settings = presetSettings(Preset::Standard);
+    for (auto _ : state) {
+        if (use_plan) {
+            const EffectPlan p = plan(recipe, summary, Preset::Standard);
+            settings = applyPlan(p, presetSettings(Preset::Standard));
+            sparkle = p.sparkle;
+        }
+        const LayeredBrdf brdf = computeLayeredBrdf(recipe, settings);
+        const RelightTables tables(brdf, demo.input->cells(), demo.input->orders());
+        RgbImage image = relight(*demo.input, tables);
+        if (sparkle) addSparkle(*demo.map, SparkleModel(recipe), image);
+        benchmark::DoNotOptimize(image);
+    }
+    state.counters["cpu_ms"] = cpu.msPerIteration(state.iterations());
+    state.SetLabel(std::string(name) + (use_plan ? " plan" : " everything") + ": orders " +
+                   std::to_string(settings.orders) + ", bands " + std::to_string(settings.bands) +
+                   (sparkle ? ", sparkle" : ", no sparkle"));
+}
+BENCHMARK(BM_RecipeChangePresetVsPlan)
+    ->ArgsProduct({{48, 480}, {0, 1, 2}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The sparkle pass alone on the demo map (the sparkle model built once).
+// Args: image width, recipe.
+void BM_SparklePass(benchmark::State& state) {
+    const CachedMap& demo = demoMap(static_cast<int>(state.range(0)));
+    const Recipe recipe =
+        loadRecipeFile(kDemo / "recipes" / kPlanRecipes[static_cast<std::size_t>(state.range(1))]);
+    const SparkleModel model(recipe);
+    RgbImage image{demo.input->width(), demo.input->height(),
+                   std::vector<float>(static_cast<std::size_t>(demo.input->width()) *
+                                          static_cast<std::size_t>(demo.input->height()) * 3,
+                                      0.0F)};
+    const CpuClock cpu;
+    for (auto _ : state) benchmark::DoNotOptimize(addSparkle(*demo.map, model, image));
+    state.counters["cpu_ms"] = cpu.msPerIteration(state.iterations());
+    state.counters["paint_pixels"] = static_cast<double>(demo.input->paintPixels());
+}
+BENCHMARK(BM_SparklePass)->Args({480, 0})->Args({480, 2})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

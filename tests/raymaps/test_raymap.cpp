@@ -7,20 +7,24 @@
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/layered_brdf.h"
 #include "paintlab/engine/recipe_json.h"
+#include "paintlab/raymaps/chunk_file.h"
 #include "paintlab/raymaps/environment_map.h"
 #include "paintlab/raymaps/paint_proxy.h"
 #include "paintlab/raymaps/raymap.h"
 #include "paintlab/raymaps/reference.h"
 #include "paintlab/raymaps/relight.h"
+#include "paintlab/raymaps/relight_input.h"
 #include "paintlab/raymaps/scene.h"
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -282,6 +286,104 @@ TEST_F(RayMapFile, OtherFileIsRejected) {
     EXPECT_THROW((void)RayMap::open(m_path), InputError);
 }
 
+// Rewrites the map as format `version` with its header JSON changed by `edit`
+// (chunk_file.h's framing: the same chunks, in the same order).
+template <typename Edit> void rewriteMap(const std::filesystem::path& from, const std::filesystem::path& to,
+                                         std::uint32_t version, Edit edit) {
+    const Magic magic{'P', 'L', 'R', 'A', 'Y', 'M', 'A', 'P'};
+    const ChunkFileReader reader(from, magic, 2);
+    std::vector<std::vector<std::byte>> payloads;
+    for (std::size_t i = 0; i < reader.chunks().size(); ++i) payloads.push_back(reader.read(i));
+    const std::vector<std::byte>& head = payloads[0];
+    nlohmann::json j =
+        nlohmann::json::parse(std::string(reinterpret_cast<const char*>(head.data()), head.size()));
+    edit(j);
+    const std::string text = j.dump();
+    payloads[0].resize(text.size());
+    std::memcpy(payloads[0].data(), text.data(), text.size());
+    ChunkFileWriter writer(to, magic, version);
+    for (std::size_t i = 0; i < payloads.size(); ++i)
+        writer.addChunk(reader.chunks()[i].type, std::span<const std::byte>(payloads[i]));
+    writer.finish();
+}
+
+// Version 2: where the map was seen from and at what scale, for footprints
+// and viewing distances from the map alone (sparkle, the effect planner).
+TEST_F(RayMapFile, HeaderHoldsTheCameraAndTheSceneUnit) {
+    const auto map = RayMap::open(m_path);
+    const RayMapHeader& h = map->header();
+    EXPECT_EQ(h.file_version, 2U);
+    EXPECT_TRUE(h.cameraKnown());
+    EXPECT_NEAR((h.camera_position - Eigen::Vector3d(0, 0, 4)).norm(), 0.0, 1e-12);
+    EXPECT_NEAR(h.pixel_angle_rad, 2.0 * std::tan(0.5 * 35.0 * std::numbers::pi / 180.0) / 16.0, 1e-12);
+    EXPECT_EQ(h.scene_unit_m, 1.0);
+    // A record's footprint / pixel angle is its distance from the camera:
+    // the sphere's front is 3 units away.
+    map->loadAll();
+    const PaintSample sample = decodePaintSample(*map, map->band(0), map->band(0).record_count - 1);
+    const double distance = (sample.position.cast<double>() - h.camera_position).norm();
+    EXPECT_NEAR(static_cast<double>(sample.footprint) / h.pixel_angle_rad, distance,
+                2e-3 * distance);  // half-float footprint
+
+    const Scene scene = parseSceneJson(sphereScene(writeUniformSky(m_dir, 1.0F), 16), "sphere.json");
+    RayMapSettings mm = smallSettings();
+    mm.scene_unit_m = 1e-3;
+    buildRayMap(scene, mm, m_dir.path() / "mm.prm");
+    EXPECT_EQ(RayMap::open(m_dir.path() / "mm.prm")->header().scene_unit_m, 1e-3);
+}
+
+// Maps written before version 2 (no camera, no scene unit; the same
+// records) are read with the documented defaults and relight the same.
+TEST_F(RayMapFile, VersionOneFileIsReadWithDefaults) {
+    const auto v1 = m_dir.path() / "v1.prm";
+    rewriteMap(m_path, v1, 1, [](nlohmann::json& j) {
+        j.erase("camera");
+        j.erase("scene_unit_m");
+    });
+    const auto old_map = RayMap::open(v1);
+    const RayMapHeader& h = old_map->header();
+    EXPECT_EQ(h.file_version, 1U);
+    EXPECT_FALSE(h.cameraKnown());
+    EXPECT_EQ(h.pixel_angle_rad, 0.0);
+    EXPECT_EQ(h.scene_unit_m, 1.0);
+    const auto new_map = RayMap::open(m_path);
+    EXPECT_EQ(h.paint_pixels, new_map->header().paint_pixels);
+    const LayeredBrdf brdf = brdfOf(kData / "lambertian_index_matched.json");
+    const RelightTables tables(brdf, h.cells, h.orders);
+    EXPECT_EQ(relight(*old_map, tables).rgb, relight(*new_map, tables).rgb);
+}
+
+TEST_F(RayMapFile, VersionTwoHeaderWithoutCameraIsRejectedNamingTheField) {
+    const auto bad = m_dir.path() / "bad.prm";
+    rewriteMap(m_path, bad, 2, [](nlohmann::json& j) { j.erase("camera"); });
+    try {
+        (void)RayMap::open(bad);
+        FAIL() << "a version-2 header without the camera was accepted";
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find(bad.string()), std::string::npos) << what;
+        EXPECT_NE(what.find("camera"), std::string::npos) << what;
+    }
+    rewriteMap(m_path, bad, 2, [](nlohmann::json& j) { j["camera"]["pixel_angle_rad"] = -1.0; });
+    EXPECT_THROW((void)RayMap::open(bad), InputError);
+    // A version-1 file cannot carry version-2 fields (unknown keys are errors).
+    rewriteMap(m_path, bad, 1, [](nlohmann::json&) {});
+    EXPECT_THROW((void)RayMap::open(bad), InputError);
+}
+
+TEST_F(RayMapFile, NewerVersionIsRejectedSayingWhatThisBuildReads) {
+    const auto newer = m_dir.path() / "v3.prm";
+    rewriteMap(m_path, newer, 3, [](nlohmann::json&) {});
+    try {
+        (void)RayMap::open(newer);
+        FAIL() << "a version-3 map was opened";
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("version 3"), std::string::npos) << what;
+        EXPECT_NE(what.find("versions 1 to 2"), std::string::npos) << what;
+    }
+}
+
 TEST(RayMap, BadSettingsAreInputErrors) {
     RayMapSettings s;
     s.cells = 0;
@@ -293,6 +395,9 @@ TEST(RayMap, BadSettingsAreInputErrors) {
     s.paint_proxy_albedo = Rgb3(0.5, std::nan(""), 0.5);
     EXPECT_THROW(validateRayMapSettings(s), InputError);
     s.paint_proxy_albedo = Rgb3(0.5, 1.5, 0.5);
+    EXPECT_THROW(validateRayMapSettings(s), InputError);
+    s = RayMapSettings{};
+    s.scene_unit_m = 0.0;
     EXPECT_THROW(validateRayMapSettings(s), InputError);
 }
 

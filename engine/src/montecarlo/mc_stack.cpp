@@ -25,7 +25,15 @@ double interpolate(const std::vector<double>& table, double cos_local) {
     return (1.0 - t) * table[i] + t * table[i + 1];
 }
 
-void tabulateRate(FlakeKind& k) {
+// The geometry-only tables of a flake kind: copied from `same` (the same
+// flakes at another wavelength) when its area density and orientation match.
+void tabulateRate(FlakeKind& k, const FlakeKind* same) {
+    if (same != nullptr && same->area_density_per_um == k.area_density_per_um &&
+        same->orientation.spreadDeg() == k.orientation.spreadDeg() &&
+        same->rate_table.size() == static_cast<std::size_t>(kRateTableSize)) {
+        k.rate_table = same->rate_table;
+        return;
+    }
     k.rate_table.resize(kRateTableSize);
     for (int i = 0; i < kRateTableSize; ++i)
         k.rate_table[static_cast<std::size_t>(i)] =
@@ -33,7 +41,22 @@ void tabulateRate(FlakeKind& k) {
             k.orientation.meanProjectedCos(static_cast<double>(i) / (kRateTableSize - 1));
 }
 
-FlakeKind mirrorKind(const MirrorFlakeContent& f, double binder_n) {
+void stratifyNormals(FlakeKind& k, const FlakeKind* same) {
+    if (same != nullptr && same->orientation.spreadDeg() == k.orientation.spreadDeg() &&
+        !same->normals.empty()) {
+        k.normals = same->normals;
+        return;
+    }
+    const int np = k.orientation.isDelta() ? 1 : kNormalPolar;
+    const int na = k.orientation.isDelta() ? 1 : kNormalAzimuth;
+    k.normals.clear();
+    k.normals.reserve(static_cast<std::size_t>(np) * static_cast<std::size_t>(na));
+    for (int a = 0; a < np; ++a)
+        for (int b = 0; b < na; ++b)
+            k.normals.push_back(k.orientation.sample((a + 0.5) / np, (b + 0.5) / na));
+}
+
+FlakeKind mirrorKind(const MirrorFlakeContent& f, double binder_n, const FlakeKind* same = nullptr) {
     FlakeKind k;
     k.area_density_per_um = f.area_density_per_um;
     k.orientation = FlakeOrientation(f.orientation_spread_deg);
@@ -41,11 +64,12 @@ FlakeKind mirrorKind(const MirrorFlakeContent& f, double binder_n) {
     k.has_metal_index = f.metal_index.has_value();
     if (f.metal_index) k.metal_index = *f.metal_index;
     k.reflectance_normal = f.reflectance.value_or(0.0);
-    tabulateRate(k);
+    tabulateRate(k, same);
     return k;
 }
 
-FlakeKind interferenceKind(const InterferenceFlakeContent& f, double binder_n, double wavelength_nm) {
+FlakeKind interferenceKind(const InterferenceFlakeContent& f, double binder_n, double wavelength_nm,
+                           const FlakeKind* same = nullptr) {
     FlakeKind k;
     k.area_density_per_um = f.area_density_per_um;
     k.orientation = FlakeOrientation(f.orientation_spread_deg);
@@ -65,7 +89,8 @@ FlakeKind interferenceKind(const InterferenceFlakeContent& f, double binder_n, d
     k.table_R.assign(cosines.size(), 0.0);
     k.table_T.assign(cosines.size(), 0.0);
     tabulateInterferenceFlake(optics, wavelength_nm, cosines, k.table_R, k.table_T);
-    tabulateRate(k);
+    tabulateRate(k, same);
+    stratifyNormals(k, same);
     return k;
 }
 
@@ -91,18 +116,15 @@ double Slice::chainExtinction(double abs_cos) const {
             e += flakeRate(k, abs_cos);
             continue;
         }
-        // E_D[(1 - T)|v.n|] by stratified normals (the delta: one normal).
-        const int np = f.orientation.isDelta() ? 1 : kNormalPolar;
-        const int na = f.orientation.isDelta() ? 1 : kNormalAzimuth;
+        // E_D[(1 - T)|v.n|] by stratified normals (the delta: one normal;
+        // interferenceKind draws them once).
         const double sin_v = std::sqrt(std::max(0.0, 1.0 - abs_cos * abs_cos));
         double sum = 0.0;
-        for (int a = 0; a < np; ++a)
-            for (int b = 0; b < na; ++b) {
-                const FlakeNormal nrm = f.orientation.sample((a + 0.5) / np, (b + 0.5) / na);
-                const double c = std::abs(sin_v * nrm.x + abs_cos * nrm.z);
-                sum += (1.0 - f.T(c)) * c;
-            }
-        e += f.area_density_per_um * sum / (np * na);
+        for (const FlakeNormal& nrm : f.normals) {
+            const double c = std::abs(sin_v * nrm.x + abs_cos * nrm.z);
+            sum += (1.0 - f.T(c)) * c;
+        }
+        e += f.area_density_per_um * sum / static_cast<double>(f.normals.size());
     }
     return e;
 }
@@ -154,7 +176,8 @@ std::vector<FlakeKind> layerFlakeKinds(const Layer& layer, double wavelength_nm)
     return kinds;
 }
 
-PaintStack buildPaintStack(const Recipe& recipe, double wavelength_nm, int slices_per_profiled_layer) {
+PaintStack buildPaintStack(const Recipe& recipe, double wavelength_nm, int slices_per_profiled_layer,
+                           const PaintStack* same_recipe) {
     PaintStack stack;
     stack.wavelength_nm = wavelength_nm;
     stack.ambient_n = recipe.ambient_refractive_index;
@@ -175,9 +198,19 @@ PaintStack buildPaintStack(const Recipe& recipe, double wavelength_nm, int slice
             slice.sigma_a_per_um = o.sigma_a_per_um;
             slice.sigma_s_per_um = o.sigma_s_per_um;
             slice.lobes = o.lobes;
-            for (const auto& f : o.mirror_flakes) slice.flakes.push_back(mirrorKind(f, o.binder_index));
+            // The same slice of the same recipe at another wavelength, if given.
+            const std::size_t index = stack.slices.size();
+            const Slice* same = same_recipe != nullptr && index < same_recipe->slices.size()
+                                    ? &same_recipe->slices[index]
+                                    : nullptr;
+            const auto sameKind = [&](std::size_t k) -> const FlakeKind* {
+                return same != nullptr && k < same->flakes.size() ? &same->flakes[k] : nullptr;
+            };
+            for (const auto& f : o.mirror_flakes)
+                slice.flakes.push_back(mirrorKind(f, o.binder_index, sameKind(slice.flakes.size())));
             for (const auto& f : o.interference_flakes)
-                slice.flakes.push_back(interferenceKind(f, o.binder_index, wavelength_nm));
+                slice.flakes.push_back(
+                    interferenceKind(f, o.binder_index, wavelength_nm, sameKind(slice.flakes.size())));
             stack.slices.push_back(std::move(slice));
         }
         depth += layer.thickness_um;

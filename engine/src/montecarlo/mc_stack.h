@@ -34,6 +34,9 @@ struct FlakeKind {
     std::vector<double> table_R;  // on cos = i / (size - 1)
     std::vector<double> table_T;
     std::vector<double> rate_table;  // A E_D[|v.n|] on |cos v| = i / (size - 1)
+    // Interference flakes: the stratified normals over which chainExtinction
+    // averages (1 - T)|v.n| (they depend on the orientation alone: drawn once).
+    std::vector<FlakeNormal> normals;
 
     double R(double cos_local) const;
     double T(double cos_local) const;  // 0 for mirror flakes
@@ -81,8 +84,13 @@ struct PaintStack {
 // only those present: the order of layerFlakeGeometries (flake_tile.h).
 std::vector<FlakeKind> layerFlakeKinds(const Layer& layer, double wavelength_nm);
 
-// Throws InputError if a layer's thickness is not positive.
-PaintStack buildPaintStack(const Recipe& recipe, double wavelength_nm, int slices_per_profiled_layer);
+// Throws InputError if a layer's thickness is not positive. `same_recipe`:
+// optionally the stack of the same recipe and slicing at another wavelength,
+// whose flakes' collision-rate tables and stratified normals (which depend
+// on the flakes' area density and orientation, not on the wavelength) are
+// reused where they match; the result is the same as without it.
+PaintStack buildPaintStack(const Recipe& recipe, double wavelength_nm, int slices_per_profiled_layer,
+                           const PaintStack* same_recipe = nullptr);
 
 // Henyey-Greenstein phase function (1/sr) of the cosine between propagation directions.
 double henyeyGreenstein(double g, double cos_theta);

@@ -170,6 +170,7 @@ PlanDecision sparkleDecision(const Recipe& recipe, const PlanScene& scene, Effec
     p.sparkle = skip_error > 0.5 * p.tolerance_de;
     d.simulate = p.sparkle;
     d.accepted_error_de = p.sparkle ? 0.0 : skip_error;
+    d.skip_error_de = skip_error;
     d.setting = p.sparkle ? "sparkle texture on the paint pixels" : "none";
     d.reason = (p.sparkle ? "resolvable glints: " : "glints average out: ") + worst_text + " at " +
                element_text +
@@ -357,7 +358,8 @@ PlanDecision fullModelDecision(const Recipe& recipe, EffectPlan& p) {
     p.full_model = !v.within;
     d.simulate = p.full_model;
     d.setting = p.full_model ? "Monte Carlo full model (explicit flakes)" : "fast model only";
-    d.accepted_error_de = p.full_model ? 0.0 : deltaEForRelativeChange(v.expected_rel_difference);
+    d.skip_error_de = deltaEForRelativeChange(v.expected_rel_difference);
+    d.accepted_error_de = p.full_model ? 0.0 : d.skip_error_de;
     d.reason = v.reason + format(" (the preset allows %.0f %%)", 100.0 * tolerance);
     return d;
 }
@@ -395,6 +397,53 @@ EffectPlan plan(const Recipe& recipe, const PlanScene& scene, Preset preset) {
     p.decisions.push_back(slicesDecision(recipe, p));
     p.decisions.push_back(fullModelDecision(recipe, p));
     return p;
+}
+
+FastModelSettings applyPlan(const EffectPlan& plan, FastModelSettings settings) {
+    const FastModelSettings preset = presetSettings(plan.preset);
+    if (plan.fast.orders < preset.orders) settings.orders = std::min(settings.orders, plan.fast.orders);
+    if (plan.fast.bands < preset.bands) settings.bands = std::min(settings.bands, plan.fast.bands);
+    if (plan.fast.slices < preset.slices) settings.slices = std::min(settings.slices, plan.fast.slices);
+    return settings;
+}
+
+std::vector<AppliedDecision> appliedDecisions(const EffectPlan& plan, bool full_model_available) {
+    const FastModelSettings preset = presetSettings(plan.preset);
+    const auto setting = [](const char* name, int from, int to) {
+        return to < from ? format("%s %d -> %d", name, from, to) : format("%s %d (the preset's)", name, from);
+    };
+    std::vector<AppliedDecision> out;
+    for (const PlanDecision& d : plan.decisions) {
+        std::string applied;
+        bool changed = false;
+        double accepted = d.accepted_error_de;
+        if (d.effect == "angular") {
+            applied = setting("orders", preset.orders, plan.fast.orders);
+            changed = plan.fast.orders < preset.orders;
+        } else if (d.effect == "bands") {
+            applied = setting("bands", preset.bands, plan.fast.bands);
+            changed = plan.fast.bands < preset.bands;
+        } else if (d.effect == "slices") {
+            applied = d.simulate ? setting("slices", preset.slices, plan.fast.slices)
+                                 : std::string("skipped (exact: no depth profiles)");
+            changed = d.simulate && plan.fast.slices < preset.slices;
+        } else if (d.effect == "full_model") {
+            if (!d.simulate)
+                applied = "not needed (fast model only)";
+            else if (full_model_available)
+                applied = "full model";
+            else {
+                applied = "advised, not run (the fast model is used; its error here is above the preset's)";
+                changed = true;
+                accepted = d.skip_error_de;
+            }
+        } else {
+            applied = d.simulate ? "on" : "skipped";
+            changed = !d.simulate && d.accepted_error_de > 0.0;
+        }
+        out.push_back({d.effect, applied, changed, accepted, d.reason});
+    }
+    return out;
 }
 
 }  // namespace paintlab

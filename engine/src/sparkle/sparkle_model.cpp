@@ -16,6 +16,8 @@
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/recipe_validation.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -64,6 +66,13 @@ std::vector<SliceFlake> presentFlakes(const Layer& layer, double z0, double z1) 
     return mirrors;
 }
 
+// Reflectance of a mirror or metal flake at the local cosine, tabulated:
+// the complex Fresnel equations cost more than the rest of a pixel's
+// statistics. Linear in the cosine on 1025 points: the reflectance is smooth
+// there (its second derivative in the cosine is O(1) even near grazing for
+// aluminium), so the error is ~ 1e-7 of R.
+constexpr int kReflectanceTable = 1025;
+
 struct Band {
     double wavelength_nm = 550.0;
     mc::PaintStack stack;
@@ -71,6 +80,19 @@ struct Band {
     // the chain's radiance factor up[j] and the slice's extinction at its cosine.
     std::vector<double> up;
     std::vector<double> extinction;
+    // Per slice and flake kind: R on cos = i / (kReflectanceTable - 1) for
+    // mirror and metal flakes; empty for interference flakes (their R is
+    // already a table, FlakeKind::R).
+    std::vector<std::vector<std::vector<double>>> reflectance;
+
+    double R(std::size_t slice, std::size_t kind, double cos_local) const {
+        const std::vector<double>& table = reflectance[slice][kind];
+        if (table.empty()) return stack.slices[slice].flakes[kind].R(cos_local);
+        const double x = std::clamp(cos_local, 0.0, 1.0) * static_cast<double>(kReflectanceTable - 1);
+        const auto i = std::min(static_cast<std::size_t>(x), static_cast<std::size_t>(kReflectanceTable - 2));
+        const double t = x - static_cast<double>(i);
+        return (1.0 - t) * table[i] + t * table[i + 1];
+    }
 };
 
 }  // namespace
@@ -169,10 +191,15 @@ SparkleModel::SparkleModel(const Recipe& recipe, const SparkleSettings& settings
         }
     }
     const std::size_t slice_count = m.slices.size();
-    for (int b = 0; b < count; ++b) {
-        Band band;
-        band.wavelength_nm = m.wavelengths[static_cast<std::size_t>(b)];
-        band.stack = mc::buildPaintStack(paint, band.wavelength_nm, settings.slices_per_profiled_layer);
+    // Band 0 first: the others reuse its flakes' geometry-only tables
+    // (buildPaintStack's same_recipe), then every band in parallel (each is
+    // independent: the result does not depend on the thread count).
+    m.bands.resize(static_cast<std::size_t>(count));
+    const auto build = [&](std::size_t b) {
+        Band& band = m.bands[b];
+        band.wavelength_nm = m.wavelengths[b];
+        band.stack = mc::buildPaintStack(paint, band.wavelength_nm, settings.slices_per_profiled_layer,
+                                         b == 0 ? nullptr : &m.bands[0].stack);
         const auto nodes = static_cast<std::size_t>(settings.chain_nodes);
         band.up.assign(nodes * slice_count, 0.0);
         band.extinction.assign(nodes * slice_count, 0.0);
@@ -187,8 +214,22 @@ SparkleModel::SparkleModel(const Recipe& recipe, const SparkleSettings& settings
                 band.extinction[k * slice_count + j] = chain.extinction[j];
             }
         }
-        m.bands.push_back(std::move(band));
-    }
+        band.reflectance.resize(band.stack.slices.size());
+        for (std::size_t j = 0; j < band.stack.slices.size(); ++j) {
+            const auto& flakes = band.stack.slices[j].flakes;
+            band.reflectance[j].resize(flakes.size());
+            for (std::size_t k = 0; k < flakes.size(); ++k) {
+                if (flakes[k].interference || flakes[k].orientation.isDelta()) continue;
+                std::vector<double>& table = band.reflectance[j][k];
+                table.resize(kReflectanceTable);
+                for (int i = 0; i < kReflectanceTable; ++i)
+                    table[static_cast<std::size_t>(i)] =
+                        flakes[k].R(static_cast<double>(i) / (kReflectanceTable - 1));
+            }
+        }
+    };
+    build(0);
+    tbb::parallel_for(std::size_t{1}, static_cast<std::size_t>(count), build);
     for (const auto& slice : m.bands.front().stack.slices)
         for (const auto& kind : slice.flakes)
             if (!kind.orientation.isDelta()) m.has_flakes = true;
@@ -203,27 +244,52 @@ std::span<const double> SparkleModel::wavelengthsNm() const { return m_impl->wav
 bool SparkleModel::hasFlakes() const { return m_impl->has_flakes; }
 
 SparkleStats SparkleModel::evaluate(const SparkleGeometry& g) const {
-    const Impl& m = *m_impl;
     SparkleStats stats;
+    evaluate(g, stats);
+    return stats;
+}
+
+void SparkleModel::evaluate(const SparkleGeometry& g, SparkleStats& stats) const {
+    const Impl& m = *m_impl;
     const std::size_t band_count = m.bands.size();
     stats.flake_brdf_per_sr.assign(band_count, 0.0);
-    if (!m.has_flakes || !(g.wi.z > 0.0) || !(g.wo.z > 0.0)) return stats;
+    stats.expected_glints = 0.0;
+    stats.sparkle_probability = 0.0;
+    stats.relative_variance = 0.0;
+    if (!m.has_flakes || !(g.wi.z > 0.0) || !(g.wo.z > 0.0)) {
+        stats.terms.clear();
+        return;
+    }
 
-    // Terms: one per (slice, flake kind with a density of normals), fixed by the recipe.
+    // Terms: one per (slice, flake kind with a density of normals), fixed by
+    // the recipe (the vectors of `stats` are reused: no allocation per call
+    // once they have their size).
+    std::size_t term_count = 0;
+    for (std::size_t j = 0; j < m.slices.size(); ++j)
+        for (const auto& kind : m.bands.front().stack.slices[j].flakes)
+            if (!kind.orientation.isDelta()) ++term_count;
+    stats.terms.resize(term_count);
+    std::size_t next = 0;
     for (std::size_t j = 0; j < m.slices.size(); ++j) {
         const mc::Slice& slice = m.bands.front().stack.slices[j];
         for (std::size_t k = 0; k < slice.flakes.size(); ++k) {
             if (slice.flakes[k].orientation.isDelta()) continue;
-            SparkleTerm term;
+            SparkleTerm& term = stats.terms[next++];
             term.layer = m.slices[j].layer;
             term.component = m.slices[j].flakes[k].component;
             term.slice = m.slices[j].slice;
             term.top_um = slice.top_um;
             term.bottom_um = slice.bottom_um;
             term.diameter_um = m.slices[j].flakes[k].diameter_um;
+            term.mean_glints = 0.0;
+            term.mean_weight = 1.0;
+            term.mean_weight_sq = 1.0;
+            term.sigma_e_per_um = 0.0;
+            term.half_slope_x = 0.0;
+            term.half_slope_y = 0.0;
+            term.window_width_rad = 0.0;
             term.flake_brdf_per_sr.assign(band_count, 0.0);
             term.glint_radiance_per_irradiance.assign(band_count, 0.0);
-            stats.terms.push_back(std::move(term));
         }
     }
 
@@ -263,7 +329,10 @@ SparkleStats SparkleModel::evaluate(const SparkleGeometry& g) const {
             const double x = sigma_e * H;
             // int_0^H w dz and int_0^H w^2 dz (expm1 keeps them exact as sigma_e -> 0).
             const double I1 = x > 1e-12 ? -std::expm1(-x) / sigma_e : H;
-            const double I2 = x > 1e-12 ? -std::expm1(-2.0 * x) / (2.0 * sigma_e) : H;
+            // E[w^2] is the reference band's only.
+            const double I2 = b != m.reference_band ? 0.0
+                              : x > 1e-12           ? -std::expm1(-2.0 * x) / (2.0 * sigma_e)
+                                                    : H;
             const double beta = m.settings.flake_lobe_deg * kPi / 180.0;
             const double omega_w = g.light_solid_angle_sr * g.wi.z * n0 * n0 / (n * n * mu_i) +
                                    g.view_solid_angle_sr * g.wo.z * n0 * n0 / (n * n * mu_o) +
@@ -275,7 +344,7 @@ SparkleStats SparkleModel::evaluate(const SparkleGeometry& g) const {
                 SparkleTerm& term = stats.terms[first_term + local];
                 const double d = m.slices[j].flakes[k].diameter_um;
                 ++local;
-                const double R = kind.R(c_d);
+                const double R = band.R(j, k, c_d);
                 const double D = kind.orientation.pdf(h[2]);
                 const double A = kind.area_density_per_um;
                 // Eq. (3): the kernel A R D / 4 of mc_stack.h / slab_operator.cpp, single scattering.
@@ -320,7 +389,6 @@ SparkleStats SparkleModel::evaluate(const SparkleGeometry& g) const {
     }
     stats.sparkle_probability = -std::expm1(-stats.expected_glints);
     stats.relative_variance = mean > 0.0 ? variance / (mean * mean) : 0.0;
-    return stats;
 }
 
 }  // namespace paintlab

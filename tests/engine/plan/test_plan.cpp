@@ -140,6 +140,65 @@ TEST(Plan, FullModelOnlyOutsideTheFastModelsValidity) {
         plan(loadRecipeFile(kDemo / "solid-red.json"), sunScene(8000.0), Preset::Standard).full_model);
 }
 
+// What the relight runs (applyPlan) and reports (appliedDecisions).
+TEST(Plan, ApplyPlanLowersOnlyWhatThePlanLowered) {
+    const Recipe silver = loadRecipeFile(kDemo / "silver-metallic.json");
+    const EffectPlan p = plan(silver, sunScene(8000.0), Preset::Standard);
+    const FastModelSettings preset = presetSettings(Preset::Standard);
+    ASSERT_LT(p.fast.bands, preset.bands);  // smooth spectra under RGB lighting
+    const FastModelSettings applied = applyPlan(p, preset);
+    EXPECT_EQ(applied.orders, p.fast.orders);
+    EXPECT_EQ(applied.bands, p.fast.bands);
+    EXPECT_EQ(applied.slices, p.fast.slices);
+    EXPECT_EQ(applied.nodes, preset.nodes);
+    EXPECT_EQ(applied.output_bands, preset.output_bands);
+    // Nothing is raised: settings already below the plan's stay.
+    FastModelSettings low = preset;
+    low.orders = 2;
+    low.bands = 3;
+    EXPECT_EQ(applyPlan(p, low).orders, 2);
+    EXPECT_EQ(applyPlan(p, low).bands, 3);
+    // What the plan keeps at the preset's is not lowered in other settings either.
+    const EffectPlan pearl =
+        plan(loadRecipeFile(kDemo / "pearlescent-two-layer.json"), sunScene(8000.0), Preset::Standard);
+    const FastModelSettings reference = presetSettings(Preset::Reference);
+    EXPECT_EQ(applyPlan(pearl, reference).bands, reference.bands);
+
+    const std::vector<AppliedDecision> lines = appliedDecisions(p);
+    ASSERT_EQ(lines.size(), p.decisions.size());
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        EXPECT_EQ(lines[i].effect, p.decisions[i].effect);
+        if (lines[i].effect != "full_model") {
+            EXPECT_EQ(lines[i].accepted_error_de, p.decisions[i].accepted_error_de);
+        }
+        EXPECT_FALSE(lines[i].applied.empty()) << lines[i].effect;
+    }
+    const auto line = [&](const std::vector<AppliedDecision>& all, const std::string& effect) {
+        for (const auto& a : all)
+            if (a.effect == effect) return a;
+        throw std::runtime_error("no line " + effect);
+    };
+    EXPECT_EQ(line(lines, "bands").applied,
+              "bands " + std::to_string(preset.bands) + " -> " + std::to_string(p.fast.bands));
+    EXPECT_TRUE(line(lines, "bands").changed);
+    EXPECT_EQ(line(lines, "interference").applied, "skipped");
+    EXPECT_FALSE(line(lines, "interference").changed);  // exact: nothing to change
+    const EffectPlan red = plan(loadRecipeFile(kDemo / "solid-red.json"), sunScene(8000.0), Preset::Standard);
+    EXPECT_EQ(line(appliedDecisions(red), "full_model").applied, "not needed (fast model only)");
+    Recipe dense = silver;
+    auto& flake = std::get<MirrorFlake>(dense.layers[1].components[0]);
+    flake.volume_fraction = 0.2;
+    flake.diameter_um = 40.0;
+    const EffectPlan outside = plan(dense, sunScene(8000.0), Preset::Standard);
+    const AppliedDecision advised = line(appliedDecisions(outside), "full_model");
+    EXPECT_NE(advised.applied.find("advised, not run"), std::string::npos);
+    EXPECT_TRUE(advised.changed);
+    // Not running it accepts the fast model's expected difference from the full model.
+    EXPECT_GT(advised.accepted_error_de, outside.tolerance_de);
+    EXPECT_EQ(advised.accepted_error_de, decision(outside, "full_model").skip_error_de);
+    EXPECT_EQ(line(appliedDecisions(outside, true), "full_model").applied, "full model");
+}
+
 TEST(Plan, BadSceneSummaryIsAnInputError) {
     PlanScene bad = sunScene(30.0);
     bad.footprint_min_um = std::nan("");

@@ -61,6 +61,10 @@ struct PlanDecision {
     std::string setting;   // what the engine runs, e.g. "orders 8, nodes 16"
     std::string reason;
     double accepted_error_de = 0.0;  // claimed Delta E_00 (99th percentile) of what is skipped or reduced
+    // The plan's estimate of what skipping the effect would cost (Delta E_00),
+    // also when it decides to simulate it: what a caller that cannot or will
+    // not run it accepts instead (sparkle and full_model; 0 for the others).
+    double skip_error_de = 0.0;
 };
 
 struct EffectPlan {
@@ -83,5 +87,31 @@ double deltaEForRelativeChange(double delta);
 // Throws InputError if the recipe is invalid or the scene summary holds a
 // negative or non-finite number (naming the field of PlanScene).
 EffectPlan plan(const Recipe& recipe, const PlanScene& scene, Preset preset);
+
+// The plan's reductions applied to fast-model settings (the preset's, or a
+// caller's own): orders, bands and depth slices are lowered to the plan's
+// where the plan lowered them from its preset's, and nothing is raised, so
+// applyPlan(p, presetSettings(p.preset)) == p.fast. Interference and sparkle
+// are not settings of the fast model: interference optics are skipped only
+// when the recipe has no interference flakes (exact, nothing to change),
+// sparkle is a pass after the relight (EffectPlan::sparkle), and the full
+// model is another model (EffectPlan::full_model: the caller reports it).
+FastModelSettings applyPlan(const EffectPlan& plan, FastModelSettings settings);
+
+// One decision as a caller applied it, for reports: what runs and what the
+// preset would have run ("orders 8 -> 6", "skipped", "on").
+struct AppliedDecision {
+    std::string effect;
+    std::string applied;             // e.g. "orders 8 -> 6", "bands 24 (preset's)", "skipped", "on"
+    bool changed = false;            // the plan (or the caller) runs less than the preset here
+    double accepted_error_de = 0.0;  // the decision's, or its skip_error_de when the caller skips it
+    std::string reason;
+};
+
+// The plan's decisions against its preset's settings, in the plan's order,
+// as a relight that uses applyPlan() and EffectPlan::sparkle runs them;
+// `full_model_available`: whether the caller can run the full model (a
+// relight cannot: a decision to run it is reported as advised, not applied).
+std::vector<AppliedDecision> appliedDecisions(const EffectPlan& plan, bool full_model_available = false);
 
 }  // namespace paintlab

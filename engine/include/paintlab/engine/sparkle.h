@@ -159,6 +159,9 @@ public:
     // horizon, a zero element area or a zero angular resolution give no glints
     // (f_flake is still computed).
     SparkleStats evaluate(const SparkleGeometry& geometry) const;
+    // The same into `out`, reusing its vectors (a pass over many pixels
+    // allocates nothing once they have their size).
+    void evaluate(const SparkleGeometry& geometry, SparkleStats& out) const;
 
 private:
     struct Impl;

@@ -16,16 +16,22 @@
 //     scene_unit_m (paint seen only in mirrors or through glass is not found);
 //   - viewing_distance_m: the nearest paint distance.
 // The RayMap overload reads the same from a traced map: the header's lights
-// and the records' footprints (1st and 99th percentile).
+// and the records' footprints (1st and 99th percentile), in µm via the
+// header's scene unit (unless the options give one), and the viewing
+// distance as the 1st-percentile footprint / the header's pixel angle
+// (version-1 maps, without a camera: unknown, 0).
 
 #include "paintlab/engine/plan.h"
+
 #include "paintlab/raymaps/raymap.h"
 #include "paintlab/raymaps/scene.h"
+#include <optional>
 
 namespace paintlab::raymaps {
 
 struct PlanSceneOptions {
-    double scene_unit_m = 1.0;  // one scene unit in metres
+    // One scene unit in metres; unset: 1 for a scene, the header's for a ray map.
+    std::optional<double> scene_unit_m;
 };
 
 // Throws InputError as loading the scene's meshes and environment does, or

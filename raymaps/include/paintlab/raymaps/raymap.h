@@ -5,12 +5,15 @@
 // moments, explicit-light visibility, mirror radiance). relight.h re-shades
 // the paint with any LayeredBrdf in a time that depends on the image size only.
 //
-// File (chunk_file.h framing, magic PLRAYMAP, version 1): a header chunk
+// File (chunk_file.h framing, magic PLRAYMAP, version 2): a header chunk
 // (JSON text: image size, J cells, M_L orders, band height, the explicit
-// lights, the scene file's name, the record layout's size, statistics), then
+// lights, the scene file's name, the camera's position and pixel angle, the
+// scene unit, the record layout's size, statistics), then
 // per band of rows a BAKE chunk (baked radiance, 3 half floats per pixel) and
 // a PNTR chunk (the band's paint records, recordBytes() each, layout in
-// raymap.cpp). Bands are read and checked when first used.
+// raymap.cpp). Bands are read and checked when first used. Version-1 files
+// (no camera, no scene unit; the records are the same) are still read, with
+// the defaults RayMapHeader documents.
 
 #include "paintlab/raymaps/scene.h"
 
@@ -49,6 +52,10 @@ struct RayMapSettings {
     // recipe is known when the map is built (render, the workstation), where
     // its diffuse albedo removes the stand-in's colour bias.
     std::optional<Rgb3> paint_proxy_albedo;
+    // Metres per scene unit (scene.h: lengths are in scene units), stored in
+    // the header: the sparkle pass and the effect planner turn the records'
+    // footprints into µm with it. Not used by the trace itself.
+    double scene_unit_m = 1.0;
 };
 
 // Throws InputError ("<argument>", field) if a setting is out of its range.
@@ -72,6 +79,21 @@ struct RayMapHeader {
     std::string scene_file;
     double paint_proxy_albedo = 0.0;
     int env_lights = 0;  // K_env: HDR hotspots extracted as lights (the last entries of `lights`)
+    // Where the map was seen from and at what scale (file version 2), so that
+    // pixel footprints, viewing distances and the viewer's aperture follow
+    // from the map alone. A version-1 file reads with the defaults: camera
+    // position (0, 0, 0) and pixel angle 0 (unknown: cameraKnown() is false,
+    // the sparkle pass then uses a fixed viewing distance), scene unit 1 m
+    // (what the CLI's --scene-unit defaulted to).
+    Eigen::Vector3d camera_position{0.0, 0.0, 0.0};  // scene units
+    // Width of one pixel at unit distance along the camera's axis (radians
+    // per pixel at the image centre): 2 tan(vertical_fov / 2) / height. A
+    // record's footprint / pixel_angle_rad is its distance along the camera
+    // ray, mirror and glass bounces unfolded.
+    double pixel_angle_rad = 0.0;
+    double scene_unit_m = 1.0;       // metres per scene unit
+    std::uint32_t file_version = 2;  // of the file read (buildRayMap writes the newest)
+    bool cameraKnown() const { return pixel_angle_rad > 0.0; }
     // Statistics of the precompute.
     std::uint64_t paint_pixels = 0;
     std::uint64_t rays = 0;

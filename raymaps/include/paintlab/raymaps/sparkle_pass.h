@@ -13,22 +13,26 @@
 // and per light the header's direction, irradiance and solid angle.
 //
 // The footprint is in scene units; the paint's flakes are in µm: the scene's
-// unit must be given (scene.h says lengths are in scene units; the demo's are
-// metres). The view aperture (the eye's pupil) needs the distance to the
-// camera, which the records do not store: footprint / pixel angle when the
-// camera's pixel angle is given, else a fixed viewing distance.
+// unit comes from the map's header (version 2; scene.h says lengths are in
+// scene units, the demo's are metres) unless the settings give one. The view
+// aperture (the eye's pupil) needs the distance to the camera, which the
+// records do not store: footprint / pixel angle (the header's, or the
+// settings'), else (a version-1 map) a fixed viewing distance.
 
 #include "paintlab/engine/sparkle.h"
 #include "paintlab/raymaps/raymap.h"
 #include "paintlab/raymaps/relight.h"
 
 #include <cstdint>
+#include <optional>
 
 namespace paintlab::raymaps {
 
 struct SparklePassSettings {
-    double scene_unit_m = 1.0;        // one scene unit in metres
-    double pixel_angle_rad = 0.0;     // the camera's, 2 tan(fov / 2) / height; 0: use viewing_distance_m
+    std::optional<double> scene_unit_m;  // one scene unit in metres; unset: the map's (1 for version 1)
+    // The camera's, 2 tan(fov / 2) / height; unset: the map's; 0 (or a
+    // version-1 map's unknown angle): use viewing_distance_m.
+    std::optional<double> pixel_angle_rad;
     double viewing_distance_m = 2.0;  // when the pixel angle is not known
     double aperture_mm = 3.0;         // the viewer's pupil (daylight)
     std::uint64_t seed = 0;           // another texture for the same surface
