@@ -89,6 +89,7 @@ mc::McSettings mcSettings(const McOptions& o) {
     s.explicit_flakes = o.explicit_flakes;
     s.reject_overlaps = o.reject_overlaps;
     s.connections = !o.histogram_only;
+    s.split_branches = !o.histogram_only;  // --histogram-only: the estimator before 2026-12, path for path
     s.tile_views = o.tile_views;
     s.batches = o.batches;
     s.histogram_cone_deg = o.cone_deg > 0.0 ? o.cone_deg : (o.explicit_flakes ? 5.0 : 0.0);
@@ -148,6 +149,10 @@ ordered_json settingsJson(const mc::McSettings& s, const mc::McResult& r) {
             {"batches", s.batches},
             {"connections", s.explicit_flakes && s.connections},
             {"tile_views", s.explicit_flakes ? s.tile_views : 1},
+            {"glint_azimuths", s.explicit_flakes && s.connections && s.glint_azimuths},
+            {"adaptive_fractions",
+             s.explicit_flakes && s.connections && s.glint_azimuths && s.adaptive_fractions},
+            {"split_branches", s.explicit_flakes && s.split_branches},
             {"max_paths", s.max_paths},
             {"target_rel_error", s.target_rel_error},
             {"max_seconds", s.max_seconds},
@@ -428,7 +433,7 @@ void addStopOptions(CLI::App* command, McOptions& o) {
                       "With --explicit-flakes: re-draw flakes that would intersect one already placed");
     command->add_flag("--histogram-only", o.histogram_only,
                       "With --explicit-flakes: score f by the cone histogram alone, without the "
-                      "connections through the tile (same mean, larger errors)");
+                      "connections through the tile or split branches (same mean, larger errors)");
     command
         ->add_option("--tile-views", o.tile_views,
                      "With --explicit-flakes: azimuths of the incidence plane each tile is traced at "

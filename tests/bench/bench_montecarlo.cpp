@@ -15,11 +15,14 @@
 
 #include <benchmark/benchmark.h>
 
+#include <sys/resource.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <numbers>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -29,10 +32,13 @@ const std::filesystem::path kDemo = std::filesystem::path(PAINTLAB_DEMO_DIR) / "
 
 Recipe pearlescent() { return loadRecipeFile(kDemo / "pearlescent-two-layer.json"); }
 
-// Incidence 45 degrees with the six multi-angle detectors (the `mc` command's oblique request).
-std::vector<mc::IncidenceRequest> multiAngleRequest() {
+// Incidence 45 degrees with the six multi-angle detectors (the `mc` command's
+// oblique request), or the first `count` of them (4: 45as-15 to 45as45, near
+// the specular direction).
+std::vector<mc::IncidenceRequest> multiAngleRequest(std::size_t count = 6) {
     mc::IncidenceRequest oblique{multiAngleGeometry(kAspecularAnglesDeg[0]).wi, {}};
-    for (double as : kAspecularAnglesDeg) oblique.wo.push_back(multiAngleGeometry(as).wo);
+    for (double as : kAspecularAnglesDeg)
+        if (oblique.wo.size() < count) oblique.wo.push_back(multiAngleGeometry(as).wo);
     return {oblique};
 }
 
@@ -43,17 +49,37 @@ void reportPaths(benchmark::State& state, std::int64_t paths) {
         benchmark::Counter(static_cast<double>(paths), benchmark::Counter::kIsRate);
 }
 
-// Arguments: bands, estimator: 0 continuum flakes + next-event; 1 explicit
-// flakes, 5 degree cone, connections and 32 views per tile (the default,
-// mc_connection.h); 2 explicit flakes, the histogram alone and one view per
-// tile (the estimator before 2026-12). Stops every band at 1 % relative
-// standard error of the albedo and all six f; 2 threads. Explicit flakes
-// run for at most 60 s and report the time 1 % would take from the worst
-// error reached (error ~ 1 / sqrt(time)), over all six geometries and over
-// the four near the specular direction (45as-15 to 45as45).
+// CPU seconds of the whole process (every thread): on a loaded machine the
+// wall time of a 2-thread run overstates what two idle cores would take.
+double processCpuSeconds() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+           1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+// Explicit-flake estimators of the benchmarks below: the default, or that of 2026-12-01.
+void estimatorOf20261201(mc::McSettings& s) {
+    s.glint_azimuths = false;
+    s.adaptive_fractions = false;
+    s.split_branches = false;
+}
+
+// Arguments: bands; estimator: 0 continuum flakes + next-event, 1 explicit
+// flakes with a 5 degree cone and the default connections (mc_connection.h),
+// 2 explicit flakes, the histogram alone and one view per tile (the estimator
+// before 2026-12), 3 explicit flakes, the connections of 2026-12-01 (per-view
+// glint lists, one fraction for all cones, no split branches); geometries: the
+// six multi-angle ones or the four near the specular direction (45as-15 to
+// 45as45). Stops every band at 1 % relative standard error of the albedo and
+// every f; 2 threads. Explicit flakes run for at most 60 s and report the time
+// 1 % would take from the worst error reached (error ~ 1 / sqrt(time)), over
+// the requested geometries and over the four near the specular direction,
+// both in wall time and in the process's CPU time (cpu_*: all threads).
 void BM_McPearlescentOnePercent(benchmark::State& state) {
     const Recipe recipe = pearlescent();
     const auto wavelengths = visibleBands(static_cast<std::size_t>(state.range(0)));
+    const auto request = multiAngleRequest(static_cast<std::size_t>(state.range(2)));
     mc::McSettings s;
     s.threads = 2;
     s.max_paths = 100000000;
@@ -63,14 +89,19 @@ void BM_McPearlescentOnePercent(benchmark::State& state) {
     if (state.range(1) == 2) {
         s.connections = false;
         s.tile_views = 1;
+        s.split_branches = false;
     }
+    if (state.range(1) == 3) estimatorOf20261201(s);
     if (s.explicit_flakes) s.max_seconds = 60.0;
     std::int64_t paths = 0;
     double worst = 0.0;
     double worst_near = 0.0;
     double seconds = 0.0;
+    double cpu = 0.0;
     for (auto _ : state) {
-        const mc::McResult r = mc::runMonteCarlo(recipe, wavelengths, multiAngleRequest(), s);
+        const double cpu_start = processCpuSeconds();
+        const mc::McResult r = mc::runMonteCarlo(recipe, wavelengths, request, s);
+        cpu += processCpuSeconds() - cpu_start;
         paths += r.total_paths;
         seconds += r.seconds;
         for (const auto& band : r.bands)
@@ -80,20 +111,29 @@ void BM_McPearlescentOnePercent(benchmark::State& state) {
             }
     }
     reportPaths(state, paths);
+    const double to_1pct = std::pow(std::max(worst, 0.01) / 0.01, 2.0);
+    const double to_1pct_near = std::pow(std::max(worst_near, 0.01) / 0.01, 2.0);
     state.counters["worst_rel_error"] = worst;
-    state.counters["seconds_to_1pct"] = seconds * std::pow(std::max(worst, 0.01) / 0.01, 2.0);
+    state.counters["seconds_to_1pct"] = seconds * to_1pct;
     state.counters["worst_rel_error_near"] = worst_near;
-    state.counters["seconds_to_1pct_near"] = seconds * std::pow(std::max(worst_near, 0.01) / 0.01, 2.0);
-    static const char* const kLabels[] = {"continuum flakes, next-event",
-                                          "explicit flakes, connections, 32 views",
-                                          "explicit flakes, histogram only"};
-    state.SetLabel(kLabels[state.range(1)]);
+    state.counters["seconds_to_1pct_near"] = seconds * to_1pct_near;
+    state.counters["cpu_seconds"] = cpu;
+    state.counters["cpu_seconds_to_1pct"] = cpu * to_1pct;
+    state.counters["cpu_seconds_to_1pct_near"] = cpu * to_1pct_near;
+    static const char* const kLabels[] = {"continuum flakes, next-event", "explicit flakes, connections",
+                                          "explicit flakes, histogram only",
+                                          "explicit flakes, connections of 2026-12-01"};
+    state.SetLabel(std::string(kLabels[state.range(1)]) + ", " + std::to_string(state.range(2)) +
+                   " geometries");
 }
 BENCHMARK(BM_McPearlescentOnePercent)
-    ->Args({8, 0})
-    ->Args({16, 0})
-    ->Args({8, 1})
-    ->Args({8, 2})
+    ->Args({8, 0, 6})
+    ->Args({16, 0, 6})
+    ->Args({8, 1, 6})
+    ->Args({8, 1, 4})
+    ->Args({8, 3, 6})
+    ->Args({8, 3, 4})
+    ->Args({8, 2, 6})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);
@@ -102,16 +142,23 @@ BENCHMARK(BM_McPearlescentOnePercent)
 // model"): the pearlescent demo, 8 bands, 45 degree incidence, the six
 // multi-angle geometries, 5 degree cone, a fixed number of paths per band
 // (argument 1, thousands); argument 2: one path in this many runs the
-// connections (McSettings::connection_fraction). Argument 0 picks the estimator:
-//   0 histogram only, 8 tiles (error over the batches: path + tile spread)
+// connections (McSettings::connection_fraction; with adaptive fractions, the
+// first round's). Argument 0 picks the estimator:
+//   0 histogram only (split branches, as every config but 7, 8, 12, 13), 8 tiles
+//     (error over the batches: path + tile spread)
 //   1 histogram only, 1 tile (error over paths only)
 //   2 / 3 / 4 histogram only, 8 tiles, scoring only the path class
 //     BeamFlake / Smooth / Other (mc_connection.h): each class's share
-//   5 connections (the default), 8 tiles;  6 connections, 1 tile.
-// The figures quoted in docs/PERFORMANCE.md: configs 0-6 at 100 (k paths) and
-// 1 (every path connects), 5 at 100 and 800 with 8, 6 at 800 with 8, 3 at 800.
-// Prints f, its standard error and the relative error per band and geometry
-// (stdout) and reports the worst relative error and the time 1 % would take.
+//   5 connections (the default), 8 tiles;  6 connections, 1 tile
+//   7 the connections of 2026-12-01, 8 tiles;  8 the default without split
+//     branches;  9 the default with one fraction for every cone
+//   10 / 11 histogram only, 8 tiles, class Other only: its chains of delta
+//     events from the beam / its delta events after a smooth vertex
+//   12 / 13 as 10 / 11 with split branches off
+// The figures quoted in docs/PERFORMANCE.md: see there (each row names its
+// arguments). Prints f, its standard error and the relative error per band
+// and geometry (stdout) and reports the worst relative error, the time 1 %
+// would take (wall and process CPU) and the mean square relative error.
 void BM_McExplicitBudget(benchmark::State& state) {
     const Recipe recipe = pearlescent();
     const auto wavelengths = visibleBands(8);
@@ -121,30 +168,56 @@ void BM_McExplicitBudget(benchmark::State& state) {
     s.max_paths = state.range(1) * 1000;
     s.explicit_flakes = true;
     s.histogram_cone_deg = 5.0;
-    s.connections = config >= 5;
+    s.connections = config >= 5 && config <= 9;
     s.batches = config == 1 || config == 6 ? 1 : 8;
     if (config >= 2 && config <= 4) s.histogram_classes = 1U << static_cast<unsigned>(config - 1);
+    if (config >= 10) {
+        s.histogram_classes = 8;
+        s.histogram_other = config % 2 == 0 ? 1U : 2U;
+        s.split_branches = config <= 11;
+    }
+    if (config == 7) estimatorOf20261201(s);
+    if (config == 8) s.split_branches = false;
+    if (config == 9) s.adaptive_fractions = false;
     if (state.range(2) > 0) s.connection_fraction = 1.0 / static_cast<double>(state.range(2));
     double worst = 0.0;
     double seconds = 0.0;
+    double cpu = 0.0;
+    double mean_square = 0.0;
+    int count = 0;
+    std::vector<double> worst_of(std::size(kAspecularAnglesDeg), 0.0);  // per geometry, over the bands
     std::int64_t paths = 0;
     for (auto _ : state) {
+        const double cpu_start = processCpuSeconds();
         const mc::McResult r = mc::runMonteCarlo(recipe, wavelengths, multiAngleRequest(), s);
+        cpu += processCpuSeconds() - cpu_start;
         seconds += r.seconds;
         paths += r.total_paths;
         for (std::size_t b = 0; b < r.bands.size(); ++b) {
             const auto& inc = r.bands[b][0];
             std::printf("budget config %d  %5.1f nm  %.3f s ", config, r.wavelengths_nm[b], inc.seconds);
-            for (const auto& e : inc.brdf_per_sr) {
+            for (std::size_t k = 0; k < inc.brdf_per_sr.size(); ++k) {
+                const auto& e = inc.brdf_per_sr[k];
                 std::printf(" %9.4g +- %8.2g (%5.1f %%)", e.mean, e.std_error, 100.0 * e.relError());
                 worst = std::max(worst, e.relError());
+                worst_of[k] = std::max(worst_of[k], e.relError());
+                mean_square += e.relError() * e.relError();
+                ++count;
             }
             std::printf("\n");
         }
     }
     reportPaths(state, paths);
+    const double to_1pct = std::pow(std::max(worst, 0.01) / 0.01, 2.0);
     state.counters["worst_rel_error"] = worst;
-    state.counters["seconds_to_1pct"] = seconds * std::pow(std::max(worst, 0.01) / 0.01, 2.0);
+    state.counters["seconds_to_1pct"] = seconds * to_1pct;
+    state.counters["cpu_seconds"] = cpu;
+    state.counters["cpu_seconds_to_1pct"] = cpu * to_1pct;
+    state.counters["rms_rel_error"] = std::sqrt(mean_square / std::max(1, count));
+    // Per geometry: the CPU time its worst band would need for 1 % (this run's fractions).
+    for (std::size_t k = 0; k < worst_of.size(); ++k)
+        state.counters["cpu_to_1pct_45as" + std::to_string(static_cast<int>(kAspecularAnglesDeg[k]))] =
+            cpu * std::pow(std::max(worst_of[k], 0.01) / 0.01, 2.0);
 }
 BENCHMARK(BM_McExplicitBudget)
     ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6}, {100}, {1}})
@@ -152,6 +225,9 @@ BENCHMARK(BM_McExplicitBudget)
     ->Args({5, 800, 8})
     ->Args({6, 800, 8})
     ->Args({3, 800, 1})
+    ->ArgsProduct({{5, 7, 8, 9}, {150}, {8}})
+    ->ArgsProduct({{5, 7}, {1500}, {8}})
+    ->ArgsProduct({{10, 11, 12, 13}, {1000}, {1}})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);

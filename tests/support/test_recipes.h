@@ -4,6 +4,8 @@
 
 #include "paintlab/engine/recipe.h"
 
+#include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace paintlab::test {
@@ -51,6 +53,25 @@ inline MirrorFlake mirrorFlake(double volume_fraction, double spread_deg, double
     flake.orientation_spread_deg = spread_deg;
     flake.reflectance = Spectrum(reflectance);
     return flake;
+}
+
+// The hiding effect of horizontal disk flakes (diameter d, area density A per
+// unit depth, Poisson placed) that the two-stream (independent flakes) value
+// leaves out: over the first ~d / (2 tan theta) above a flake, the ray it
+// reflects crosses space the incident ray found empty. For two straight rays
+// meeting at a reflection at polar angle theta, the expected number of disks
+// both would cross is (A / (pi a^2)) int_0^inf lens(2 s tan theta) ds with
+// lens(delta) the overlap of two disks of radius a = d / 2 at distance delta
+// (int_0^2a lens = 8 a^3 / 3), so the round trip's optical depth is smaller by
+//   dtau = 2 A d / (3 pi tan theta)
+// (0.017 for the 2 µm flakes at A = 0.04 / µm and 45 deg: measured +1.3 % in the
+// albedo, of which single reflections are most). As an allowance on a value
+// (mostly single reflections): value (exp(dtau) - 1). mu = cos theta.
+inline double hidingAllowance(double value, double area_density_per_um, double diameter_um, double mu) {
+    const double tan_theta = std::sqrt(std::max(0.0, 1.0 - mu * mu)) / mu;
+    if (!(tan_theta > 0.0)) return 0.0;
+    const double dtau = 2.0 * area_density_per_um * diameter_um / (3.0 * 3.14159265358979323846 * tan_theta);
+    return value * (std::exp(dtau) - 1.0);
 }
 
 }  // namespace paintlab::test

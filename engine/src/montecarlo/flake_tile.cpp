@@ -201,7 +201,13 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
         std::sqrt(2.0 * std::numbers::pi / (kSides * std::sin(2.0 * std::numbers::pi / kSides)));
     LateralGrid grid(L, std::max(0.5 * d_max * circumradius_factor, 1e-6));
 
-    m_impl->device = rtcNewDevice("threads=1");
+    // No "threads=N" in the configuration: with it Embree's TBB tasking installs a
+    // process-wide tbb::global_control(max_allowed_parallelism, N) for the
+    // device's lifetime (embree common/tasking/taskschedulertbb.cpp), and
+    // "threads=1" had run every explicit-flake job on one thread (measured
+    // 2026-12-02: process CPU time = wall time on two idle cores). The default
+    // leaves TBB's parallelism to the caller (McSettings::threads).
+    m_impl->device = rtcNewDevice(nullptr);
     if (m_impl->device == nullptr) throw Error("Embree: cannot create a device");
     rtcSetDeviceErrorFunction(m_impl->device, onEmbreeError, &m_impl->error);
     m_impl->scene = rtcNewScene(m_impl->device);

@@ -7,10 +7,15 @@
 // Every path yields one sample vector: [0] the weight that escapes through
 // the top, [1] the weight transmitted into a transparent substrate, then f at
 // each exit direction, then the projection's entries (mc_walk.h,
-// FourierCells). Chunk c of a job belongs to batch c mod batches; with
-// explicit flakes batch k traces its own tile realisation.
+// FourierCells), then (adaptive connection fractions) the histogram's part of
+// each f. Chunk c of a job belongs to batch c mod batches; with explicit
+// flakes batch k traces its own tile realisation. The glint samples of a chunk
+// are stratified over it and attached to some of its paths, so its paths are
+// not independent: errors over batches (of chunks) stay exact, errors over
+// paths (batches = 1) become conservative.
 
 #include "flake_tile.h"
+#include "mc_connection.h"
 #include "mc_stack.h"
 #include "mc_walk.h"
 
@@ -68,6 +73,7 @@ private:
     McSettings m_settings;
     int m_batches = 1;
     std::vector<std::vector<std::unique_ptr<FlakeTile>>> m_tiles;  // [batch][layer]
+    std::vector<std::vector<TiltIndex>> m_tilts;                   // [batch][layer], for every band
     double m_tile_side_um = 1.0;
 };
 

@@ -64,7 +64,41 @@ struct Walker {
     std::size_t j = 0;   // slice
     double depth = 0.0;  // µm below the top of the paint
     double transmitted = 0.0;
-    unsigned path_class = kClassBeam;  // what the last direction change was (mc_connection.h)
+    unsigned path_class = kClassBeam;     // what the last direction change was (mc_connection.h)
+    std::span<const double> nee_weights;  // per bin (empty: settings.connection_weight)
+    std::span<double> nee_out;            // per bin (empty: brdf_out)
+    std::int64_t events = 0;
+    std::int64_t rays = 0;
+    std::int64_t nee_rays = 0;
+    std::int64_t nee_attempts = 0;
+    bool delta_chain = true;     // no smooth vertex yet (WalkSettings::histogram_other)
+    int splits = 0;              // splits above this branch
+    double escaped_extra = 0.0;  // what split-off branches carried out through the top
+
+    // Splitting (WalkSettings::split_branches): the same expectation as choosing a
+    // branch with its probability, without that choice's noise; it matters for
+    // the chains of several delta reflections (class Other), which the choice
+    // thins by the product of the flakes' R and the top's F (docs/PERFORMANCE.md).
+    bool splitting() const { return settings.split_branches && splits < settings.max_splits; }
+
+    // Follows a copy of this path, its weight times `factor`, to its end, and keeps what it carried.
+    void runBranch(double factor) {
+        Walker branch = *this;
+        branch.weight *= factor;
+        branch.transmitted = 0.0;
+        branch.escaped_extra = 0.0;
+        branch.events = 0;
+        branch.rays = 0;
+        branch.nee_rays = 0;
+        branch.nee_attempts = 0;
+        const double escaped = branch.roulette() ? branch.run() : 0.0;
+        escaped_extra += escaped + branch.escaped_extra;
+        transmitted += branch.transmitted;
+        events += branch.events;
+        rays += branch.rays;
+        nee_rays += branch.nee_rays;
+        nee_attempts += branch.nee_attempts;
+    }
 
     void move(double t) {
         x += v.x * t;
@@ -74,7 +108,8 @@ struct Walker {
     // Left through the top (v already refracted into the ambient): the
     // histogram bins that contain the exit direction.
     void escape() {
-        if ((settings.histogram_classes & path_class) != 0U)
+        if ((settings.histogram_classes & path_class) != 0U &&
+            (path_class != kClassOther || (settings.histogram_other & (delta_chain ? 1U : 2U)) != 0U))
             for (std::size_t k = 0; k < bins.size(); ++k)
                 if (dot(v, bins[k].wo) >= bins[k].cos_cone)
                     brdf_out[k] += weight / bins[k].projected_solid_angle;
@@ -110,6 +145,16 @@ struct Walker {
         const double vn = dot(v, n);
         const double c = std::abs(vn);
         const double R = f.R(c);
+        if (splitting()) {
+            ++splits;
+            const double T = f.T(c);
+            if (T > 0.0) runBranch(T);  // passed straight on
+            if (!(R > 0.0)) return false;
+            weight *= R;
+            v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
+            path_class = path_class == kClassBeam ? kClassBeamFlake : kClassOther;
+            return roulette();
+        }
         const double u = rng.uniform();
         if (u < R) {
             v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
@@ -126,6 +171,9 @@ struct Walker {
     template <class Emitted> void coneNextEvent(const Slice& s, const Emitted& emitted) {
         const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
         for (std::size_t k = 0; k < bins.size(); ++k) {
+            const double connection_weight =
+                nee_weights.empty() ? settings.connection_weight : nee_weights[k];
+            if (!(connection_weight > 0.0)) continue;
             const HistogramBin& bin = bins[k];
             const double u1 = connection_rng->uniform();
             const Vec3 w = sampleInCone(bin, u1, connection_rng->uniform());
@@ -133,9 +181,10 @@ struct Walker {
             if (!(w.z > 0.0) || !refractPlanar(w, stack.ambient_n, s.n, u)) continue;
             const double value = emitted(u);
             if (!(value > 0.0)) continue;
-            const double t = straightToAmbient(stack, explicit_flakes, j, depth, x, y, u);
-            brdf_out[k] += settings.connection_weight * value * t * scale * w.z * bin.solid_angle /
-                           bin.projected_solid_angle;
+            ++nee_attempts;
+            const double t = straightToAmbient(stack, explicit_flakes, j, depth, x, y, u, &nee_rays);
+            (nee_out.empty() ? brdf_out : nee_out)[k] +=
+                connection_weight * value * t * scale * w.z * bin.solid_angle / bin.projected_solid_angle;
         }
     }
 
@@ -157,6 +206,7 @@ struct Walker {
         const double t_side = std::min(tx, ty);
         const double t_far = std::min({t, to_boundary, t_side});
         const FlakeHit hit = lf.tile->intersect({x, y, -depth}, v, kTileEpsilonUm, t_far);
+        ++rays;
         if (hit.kind >= 0) {
             move(hit.t);
             depth = std::clamp(depth - v.z * hit.t, s.top_um, s.bottom_um);
@@ -219,6 +269,7 @@ struct Walker {
             v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
             // A continuum flake's normal is drawn from a density (a smooth vertex), unless D is the delta.
             path_class = f.orientation.isDelta() ? kClassOther : kClassSmooth;
+            if (!f.orientation.isDelta()) delta_chain = false;
             return true;
         }
         return u < R + T;  // transmitted light goes straight on
@@ -249,6 +300,7 @@ struct Walker {
             }
             v = around(v, sampleHgCos(g, rng.uniform()), 2.0 * kPi * rng.uniform());
             path_class = kClassSmooth;
+            delta_chain = false;
         } else {
             u -= s.sigma_s_per_um;
             std::size_t k = 0;
@@ -286,6 +338,7 @@ struct Walker {
             }
             weight *= stack.lambert_albedo;
             path_class = kClassSmooth;
+            delta_chain = false;
             const double u1 = rng.uniform();
             const double phi = 2.0 * kPi * rng.uniform();
             const double r = std::sqrt(u1);
@@ -313,6 +366,7 @@ struct Walker {
     double run() {
         const std::size_t count = stack.slices.size();
         for (int event = 0; event < settings.max_events; ++event) {
+            ++events;
             const Slice& s = stack.slices[j];
             const double abs_cos = std::abs(v.z);
             if (abs_cos < 1e-12) return 0.0;  // exactly grazing: never reaches a boundary
@@ -342,6 +396,27 @@ struct Walker {
                 }
             } else {
                 depth = s.top_um;
+                if (j == 0 && splitting() && std::abs(s.n - stack.ambient_n) >= 1e-12) {
+                    // Both branches of the top interface: out with weight 1 - F, back with weight F.
+                    ++splits;
+                    const double F = fresnelDielectric(std::abs(v.z), stack.ambient_n / s.n);
+                    if (F < 1.0) {
+                        const Vec3 inside = v;
+                        const double w = weight;
+                        v = refract(v, s.n, stack.ambient_n);
+                        weight = w * (1.0 - F);
+                        escape();
+                        escaped_extra += weight;
+                        v = inside;
+                        weight = w;
+                    }
+                    if (!(F > 0.0)) return 0.0;
+                    weight *= F;
+                    v.z = -v.z;
+                    path_class = kClassOther;
+                    if (!roulette()) return 0.0;
+                    continue;
+                }
                 if (j == 0) {
                     if (crossInterface(s.n, stack.ambient_n)) {
                         escape();
@@ -374,12 +449,18 @@ PathOutcome tracePath(const PathContext& context, Vec3 v, double weight, double 
                   v,
                   weight,
                   x,
-                  y};
-    const double escaped = walker.run();
+                  y,
+                  0,
+                  0.0,
+                  0.0,
+                  kClassBeam,
+                  context.nee_weights,
+                  context.nee_out};
+    const double escaped = walker.run() + walker.escaped_extra;
     if (connect && !context.glints.empty())
         scoreGlints(context.stack, context.explicit_flakes, context.glints, context.bins,
                     context.settings.connection_weight, *connection_rng, f_out);
-    return {escaped, walker.transmitted};
+    return {escaped, walker.transmitted, walker.events, walker.rays, walker.nee_rays, walker.nee_attempts};
 }
 
 }  // namespace paintlab::mc

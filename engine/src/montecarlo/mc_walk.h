@@ -6,6 +6,7 @@
 #include "mc_random.h"
 #include "mc_stack.h"
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -16,12 +17,21 @@ struct WalkSettings {
     double roulette_weight = 0.1;
     // Histogram estimator: the path classes (mc_connection.h) whose escapes it scores.
     unsigned histogram_classes = kAllClasses;
+    // Of class Other, which part: 1 chains of delta events from the beam (no
+    // pigment, substrate or continuum-flake vertex), 2 after such a vertex.
+    unsigned histogram_other = 3;
     // Score classes Smooth and BeamFlake by connections (explicit flakes only; the
     // caller then leaves them out of histogram_classes).
     bool connections = false;
     // Connections run on a random share of the paths (McSettings::connection_fraction);
     // their scores are divided by it.
     double connection_weight = 1.0;
+    // A path follows both branches of every explicit flake it meets (reflected
+    // with weight R, passed with weight T) and of the top interface (escaped
+    // with weight 1 - F, reflected with weight F) instead of choosing one, up to
+    // max_splits deep along each branch (McSettings::split_branches).
+    bool split_branches = false;
+    int max_splits = 6;
 };
 
 // Projection of what escapes on the fast model's basis (mc_table.h): the
@@ -50,12 +60,22 @@ struct PathContext {
     WalkSettings settings;
     const FourierCells* fourier = nullptr;  // projection (null: off)
     std::span<const GlintSet> glints;       // per bin, this path's tile realisation (connections)
+    // Connections with a fraction per cone (monte_carlo.cpp): per bin, the weight of
+    // this path's next-event connections into it (0: none); empty: settings.connection_weight for all.
+    std::span<const double> nee_weights;
+    // Where the next-event connections' scores go (per bin); empty: f_out.
+    std::span<double> nee_out;
 };
 
-// What one path carries out of the paint (power per unit incident power).
+// What one path carries out of the paint (power per unit incident power),
+// and what it cost (tile intersections; the adaptive fractions' cost model).
 struct PathOutcome {
-    double escaped = 0.0;      // through the top interface
-    double transmitted = 0.0;  // into a transparent substrate
+    double escaped = 0.0;           // through the top interface
+    double transmitted = 0.0;       // into a transparent substrate
+    std::int64_t events = 0;        // free paths drawn
+    std::int64_t rays = 0;          // tile intersections of the walk itself
+    std::int64_t nee_rays = 0;      // tile intersections of its next-event connections
+    std::int64_t nee_attempts = 0;  // next-event connections traced (vertex x bin)
 };
 
 // Traces a path that has just been refracted into the top slice with

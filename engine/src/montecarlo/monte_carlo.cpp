@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <variant>
@@ -23,6 +24,28 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Per exit cone, what the adaptive connection fractions (JobRunner::adapt)
+// need besides the per-path entries: the raw next-event score of the paths
+// that ran it (unweighted by the fraction), the raw glint samples, and costs.
+struct ConeStats {
+    double nee_paths = 0.0;
+    double nee_s1 = 0.0;
+    double nee_s2 = 0.0;
+    double glint_samples = 0.0;
+    double glint_s1 = 0.0;
+    double glint_s2 = 0.0;
+    double glint_rays = 0.0;
+    void add(const ConeStats& o) {
+        nee_paths += o.nee_paths;
+        nee_s1 += o.nee_s1;
+        nee_s2 += o.nee_s2;
+        glint_samples += o.glint_samples;
+        glint_s1 += o.glint_s1;
+        glint_s2 += o.glint_s2;
+        glint_rays += o.glint_rays;
+    }
+};
+
 // Statistics of the paths of one chunk or batch per sample-vector entry
 // (mc_engine.h): mean and sum of squared deviations M2, merged by Chan et
 // al.'s pairwise update (each path's total contribution is one independent
@@ -32,9 +55,18 @@ struct Sums {
     std::int64_t paths = 0;
     std::vector<double> mean;
     std::vector<double> m2;
+    std::vector<ConeStats> cones;  // adaptive fractions only
+    double walk_cost = 0.0;        // free paths + tile intersections of the walks
+    double nee_cost = 0.0;         // tile intersections + attempts of the next-event connections
+    double nee_attempts = 0.0;
 
-    explicit Sums(std::size_t entries = 0) : mean(entries, 0.0), m2(entries, 0.0) {}
+    explicit Sums(std::size_t entries = 0, std::size_t cone_count = 0)
+        : mean(entries, 0.0), m2(entries, 0.0), cones(cone_count) {}
     void add(const Sums& other) {
+        for (std::size_t k = 0; k < cones.size() && k < other.cones.size(); ++k) cones[k].add(other.cones[k]);
+        walk_cost += other.walk_cost;
+        nee_cost += other.nee_cost;
+        nee_attempts += other.nee_attempts;
         if (other.paths == 0) return;
         const auto na = static_cast<double>(paths);
         const auto nb = static_cast<double>(other.paths);
@@ -52,6 +84,20 @@ constexpr std::size_t kEscaped = 0;
 constexpr std::size_t kTransmitted = 1;
 constexpr std::size_t kFirstExit = 2;
 constexpr std::uint64_t kConnectionStream = 0x636f6e6e656374ULL;  // "connect"
+constexpr std::uint64_t kGlintStream = 0x676c696e74ULL;           // "glint"
+// Bounds of the adaptive fractions: next-event share of paths, glint samples per path.
+constexpr double kMinFraction = 1.0 / 64.0;
+constexpr double kMaxGlintRate = 4.0;
+constexpr double kMinGlintRate = 1.0 / 64.0;
+// Their cost model (microseconds on the reference machine, measured 2026-12-02
+// with the pearlescent demo): per path, per free path or tile intersection of
+// the walk, per next-event attempt or intersection, per glint sample (its 16
+// azimuth tests) and per intersection of its traces.
+constexpr double kCostPerPath = 0.3;
+constexpr double kCostPerWalkStep = 0.4;
+constexpr double kCostPerNeeStep = 1.3;
+constexpr double kCostPerGlint = 1.0;
+constexpr double kCostPerGlintRay = 0.5;
 
 class JobRunner {
 public:
@@ -101,7 +147,25 @@ public:
         m_histogram_classes = settings.histogram_classes;
         if (m_connections) m_histogram_classes &= ~(kClassBeamFlake | kClassSmooth);
         m_connection_fraction = std::clamp(settings.connection_fraction, 1e-3, 1.0);
+        m_azimuths = m_connections && settings.glint_azimuths;
+        m_adaptive = m_azimuths && settings.adaptive_fractions;
+        m_nee_fraction.assign(m_exits, m_connection_fraction);
+        m_glint_rate.assign(m_exits, m_connection_fraction);
+        m_diagnostics = m_adaptive ? m_exits : 0;
+        m_walk.max_events = settings.max_events;
+        m_walk.roulette_weight = settings.roulette_weight;
+        m_walk.histogram_classes = m_histogram_classes;
+        m_walk.histogram_other = settings.histogram_other;
+        m_walk.connections = m_connections;
+        m_walk.connection_weight = 1.0 / m_connection_fraction;
+        m_walk.split_branches = settings.explicit_flakes && settings.split_branches;
         buildViews(settings);
+        if (m_azimuths) {
+            m_azimuth_glints.resize(band.explicit_flakes.size());
+            tbb::parallel_for(std::size_t{0}, band.explicit_flakes.size(), [&](std::size_t b) {
+                m_azimuth_glints[b] = azimuthGlintSets(stack, band.explicit_flakes[b], m_v_in, m_bins);
+            });
+        }
     }
 
     // Explicit flakes: every tile is traced at tile_views azimuths of the
@@ -135,14 +199,74 @@ public:
             const Vec3 in = turned({m_cells.cos_in, m_cells.sin_in, 0.0});
             view.cells.cos_in = in.x;
             view.cells.sin_in = in.y;
-            if (m_connections)
+            if (m_connections && !settings.glint_azimuths)
                 view.glints = glintSets(m_band.stack, m_band.explicit_flakes[b], view.v_in, view.bins);
         });
     }
 
     double specular() const { return m_specular; }
     std::size_t exitCount() const { return m_exits; }
-    std::size_t entries() const { return kFirstExit + m_exits + m_projected; }
+    // The estimates' entries end here; then, with adaptive fractions, the
+    // histogram's part of f per exit (a diagnostic for adapt()).
+    std::size_t estimateEntries() const { return kFirstExit + m_exits + m_projected; }
+    std::size_t entries() const { return estimateEntries() + m_diagnostics; }
+    std::size_t coneStats() const { return m_adaptive ? m_exits : 0; }
+
+    // The glint samples of one chunk (glint_azimuths): per exit k,
+    // S_k = floor(rate_k paths + xi) samples (E[S_k] = rate_k paths), the flake
+    // pick stratified over them (sample j in stratum j of the cumulative
+    // weight) and the polygon's fan triangle by a random permutation of the
+    // strata (Latin hypercube); sample j is added to path j paths / S_k with
+    // weight 1 / rate_k, so the chunk's mean is sum_j value_j / (rate_k paths),
+    // unbiased (E[sum_j value_j | S_k] = S_k G). Returns the per-path additions
+    // [local path][exit] and fills the cone statistics.
+    std::vector<double> chunkGlints(std::size_t batch, std::int64_t first_path, std::int64_t paths,
+                                    std::vector<ConeStats>& cones) const {
+        std::vector<double> added(static_cast<std::size_t>(paths) * m_exits, 0.0);
+        if (!m_azimuths || paths <= 0) return added;
+        const std::span<const LayerFlakes> tiles = m_band.explicit_flakes[batch];
+        const std::vector<AzimuthGlintSet>& sets = m_azimuth_glints[batch];
+        PathRng rng(m_settings.seed ^ kGlintStream, m_band_key, m_incidence_key,
+                    static_cast<std::uint64_t>(first_path));
+        std::vector<std::size_t> permutation;
+        for (std::size_t k = 0; k < m_exits; ++k) {
+            if (!(sets[k].total() > 0.0)) continue;
+            const double rate = m_glint_rate[k];
+            const auto count =
+                static_cast<std::int64_t>(std::floor(rate * static_cast<double>(paths) + rng.uniform()));
+            if (count <= 0) continue;
+            permutation.resize(static_cast<std::size_t>(count));
+            for (std::size_t j = 0; j < permutation.size(); ++j) permutation[j] = j;
+            for (std::size_t j = permutation.size(); j > 1; --j)
+                std::swap(permutation[j - 1],
+                          permutation[static_cast<std::size_t>(rng.uniform() * static_cast<double>(j))]);
+            const auto strata = static_cast<double>(count);
+            std::int64_t rays = 0;
+            for (std::int64_t j = 0; j < count; ++j) {
+                GlintUniforms u;
+                u.pick = (static_cast<double>(j) + rng.uniform()) / strata;
+                u.psi = rng.uniform();
+                u.choose = rng.uniform();
+                u.u1 =
+                    (static_cast<double>(permutation[static_cast<std::size_t>(j)]) + rng.uniform()) / strata;
+                u.u2 = rng.uniform();
+                u.u3 = rng.uniform();
+                const double value = azimuthGlintSample(m_band.stack, tiles, sets[k], m_bins[k], u, &rays);
+                const auto path = static_cast<std::size_t>(
+                    std::min<std::int64_t>(paths - 1, (2 * j + 1) * paths / (2 * count)));
+                added[path * m_exits + k] += value / rate;
+                if (!cones.empty()) {
+                    cones[k].glint_s1 += value;
+                    cones[k].glint_s2 += value * value;
+                }
+            }
+            if (!cones.empty()) {
+                cones[k].glint_samples += strata;
+                cones[k].glint_rays += static_cast<double>(rays);
+            }
+        }
+        return added;
+    }
 
     Sums runChunk(std::size_t batch, std::int64_t first_path, std::int64_t paths) const {
         // Sums of deviations from the first path's sample (exact for constant samples), then mean and M2.
@@ -150,36 +274,62 @@ public:
         std::vector<double> s1(entries(), 0.0);
         std::vector<double> s2(entries(), 0.0);
         std::vector<double> sample(entries());
+        Sums sums(entries(), coneStats());
         const std::span<double> f(sample.data() + kFirstExit, sample.size() - kFirstExit);
         const std::span<const LayerFlakes> explicit_flakes =
             m_band.explicit_flakes.empty() ? std::span<const LayerFlakes>{} : m_band.explicit_flakes[batch];
         const std::vector<View>& views = m_views[std::min(batch, m_views.size() - 1)];
+        const std::vector<double> glints = chunkGlints(batch, first_path, paths, sums.cones);
+        std::vector<double> nee(m_azimuths ? m_exits : 0);
+        std::vector<double> nee_weights(m_azimuths ? m_exits : 0);
         for (std::int64_t p = first_path; p < first_path + paths; ++p) {
             std::fill(sample.begin(), sample.end(), 0.0);
             if (m_entry_weight > 0.0) {
                 const View& view = views[static_cast<std::size_t>(p) % m_view_count];
-                const PathContext context{m_band.stack,
-                                          m_chains,
-                                          view.bins,
-                                          explicit_flakes,
-                                          WalkSettings{m_settings.max_events, m_settings.roulette_weight,
-                                                       m_histogram_classes, m_connections,
-                                                       1.0 / m_connection_fraction},
-                                          m_projected > 0 ? &view.cells : nullptr,
-                                          view.glints};
                 PathRng rng(m_settings.seed, m_band_key, m_incidence_key, static_cast<std::uint64_t>(p));
                 // The connections' own stream: the walk draws the same numbers with or without them.
                 PathRng connection_rng(m_settings.seed ^ kConnectionStream, m_band_key, m_incidence_key,
                                        static_cast<std::uint64_t>(p));
                 const double x = rng.uniform() * m_tile_side_um;
                 const double y = rng.uniform() * m_tile_side_um;
-                // Connections on a random share of the paths (all when the fraction is 1).
-                const bool connect = m_connections && (m_connection_fraction >= 1.0 ||
-                                                       connection_rng.uniform() < m_connection_fraction);
+                // Connections on a random share of the paths (all when the fraction is 1); with
+                // glint_azimuths per exit cone: cone k when u < its fraction (nested shares).
+                bool connect = false;
+                if (m_azimuths) {
+                    const double u = connection_rng.uniform();
+                    for (std::size_t k = 0; k < m_exits; ++k) {
+                        nee_weights[k] = u < m_nee_fraction[k] ? 1.0 / m_nee_fraction[k] : 0.0;
+                        connect = connect || nee_weights[k] > 0.0;
+                    }
+                    std::fill(nee.begin(), nee.end(), 0.0);
+                } else {
+                    connect = m_connections && (m_connection_fraction >= 1.0 ||
+                                                connection_rng.uniform() < m_connection_fraction);
+                }
+                const PathContext context{
+                    m_band.stack,    m_chains,    view.bins,
+                    explicit_flakes, m_walk,      m_projected > 0 ? &view.cells : nullptr,
+                    view.glints,     nee_weights, nee};
                 const PathOutcome out = tracePath(context, view.v_in, m_entry_weight, x, y, rng, f,
                                                   connect ? &connection_rng : nullptr);
                 sample[kEscaped] = out.escaped;
                 sample[kTransmitted] = out.transmitted;
+                sums.walk_cost += static_cast<double>(out.events + out.rays);
+                sums.nee_cost += static_cast<double>(out.nee_rays + out.nee_attempts);
+                sums.nee_attempts += static_cast<double>(out.nee_attempts);
+                if (m_azimuths) {
+                    const auto local = static_cast<std::size_t>(p - first_path);
+                    for (std::size_t k = 0; k < m_exits; ++k) {
+                        if (m_diagnostics > 0) sample[estimateEntries() + k] = f[k];  // the histogram's part
+                        f[k] += nee[k] + glints[local * m_exits + k];
+                        if (!sums.cones.empty() && nee_weights[k] > 0.0) {
+                            const double raw = nee[k] / nee_weights[k];
+                            sums.cones[k].nee_paths += 1.0;
+                            sums.cones[k].nee_s1 += raw;
+                            sums.cones[k].nee_s2 += raw * raw;
+                        }
+                    }
+                }
             }
             if (p == first_path) shift = sample;
             for (std::size_t k = 0; k < sample.size(); ++k) {
@@ -188,7 +338,6 @@ public:
                 s2[k] += d * d;
             }
         }
-        Sums sums(entries());
         sums.paths = paths;
         if (paths <= 0) return sums;
         const auto n = static_cast<double>(paths);
@@ -197,6 +346,96 @@ public:
             sums.m2[k] = std::max(0.0, s2[k] - s1[k] * s1[k] / n);
         }
         return sums;
+    }
+
+    // Adaptive fractions (McSettings::adaptive_fractions), from every path so
+    // far (`total`: the batches' sums merged in order, so deterministic). Per
+    // exit cone k the variance of f per path is modelled as
+    //   V_k(q, g) = A + B / q + C / g,   A = Var(histogram part) - E[X]^2,
+    // B = E[X^2] (X the raw next-event score of a path that runs it, q the share
+    // of paths that do), C = Var(raw glint sample) (g samples per path; the
+    // stratification only lowers it), and the cost per path (microseconds on
+    // the reference machine, from counted work: free paths, tile
+    // intersections, connections; docs/PERFORMANCE.md) as
+    //   c_walk + sum_k (q_k c_nee + g_k c_glint,k).
+    // The stop rule waits for the worst cone, so the fractions minimise
+    // max_k V_k / f_k^2 x cost: for a common level rho of V_k / f_k^2 each cone
+    // takes the cheapest (q, g) that reaches it (q, g proportional to
+    // sqrt(B / c_nee), sqrt(C / c_glint), clamped to [1/64, 1] and [1/64, 4]),
+    // and rho is scanned over a geometric grid. Only the next paths'
+    // fractions change, so each path's estimate stays unbiased.
+    void adapt(const Sums& total) {
+        if (!m_adaptive || total.paths < 1024 || total.cones.size() != m_exits) return;
+        const auto n = static_cast<double>(total.paths);
+        const double c_walk = kCostPerPath + kCostPerWalkStep * total.walk_cost / n;
+        double nee_paths = 0.0;
+        for (const auto& c : total.cones) nee_paths += c.nee_paths;
+        const double c_nee =
+            nee_paths > 0.0 ? std::max(0.05, kCostPerNeeStep * total.nee_cost / nee_paths) : 0.5;
+        std::vector<double> a(m_exits), b(m_exits), c(m_exits), c_glint(m_exits, kCostPerGlint), f2(m_exits);
+        for (std::size_t k = 0; k < m_exits; ++k) {
+            const ConeStats& cs = total.cones[k];
+            const std::size_t h = estimateEntries() + k;
+            const double v_hist = total.paths > 1 ? total.m2[h] / (n - 1.0) : 0.0;
+            const double mean_x = cs.nee_paths > 0.0 ? cs.nee_s1 / cs.nee_paths : 0.0;
+            b[k] = cs.nee_paths > 0.0 ? cs.nee_s2 / cs.nee_paths : 0.0;
+            if (cs.glint_samples > 1.0) {
+                const double mean_g = cs.glint_s1 / cs.glint_samples;
+                c[k] = std::max(0.0, cs.glint_s2 / cs.glint_samples - mean_g * mean_g);
+                c_glint[k] = kCostPerGlint + kCostPerGlintRay * cs.glint_rays / cs.glint_samples;
+            }
+            a[k] = std::max(0.0, v_hist - mean_x * mean_x);
+            const double f = total.mean[kFirstExit + k];
+            f2[k] = f * f;
+        }
+        // The cheapest (q, g) of cone k with V_k <= level (minimise q c_nee + g c_glint s.t. B/q + C/g <= D).
+        const auto cheapest = [&](std::size_t k, double level, double& q, double& g) {
+            q = kMinFraction;
+            g = kMinGlintRate;
+            const double d = level - a[k];
+            const double sb = std::sqrt(b[k] * c_nee);
+            const double sc = std::sqrt(c[k] * c_glint[k]);
+            if (!(d > 0.0) || sb + sc <= 0.0) {
+                if (!(d > 0.0)) {
+                    q = 1.0;
+                    g = kMaxGlintRate;
+                }
+                return;
+            }
+            q = std::clamp(std::sqrt(b[k] / c_nee) * (sb + sc) / d, kMinFraction, 1.0);
+            g = std::clamp(std::sqrt(c[k] / c_glint[k]) * (sb + sc) / d, kMinGlintRate, kMaxGlintRate);
+            // One of them at its top: the other takes what is left.
+            if (q >= 1.0 && c[k] > 0.0 && d - b[k] > 0.0)
+                g = std::clamp(c[k] / (d - b[k]), kMinGlintRate, kMaxGlintRate);
+            else if (g >= kMaxGlintRate && b[k] > 0.0 && d - c[k] / kMaxGlintRate > 0.0)
+                q = std::clamp(b[k] / (d - c[k] / kMaxGlintRate), kMinFraction, 1.0);
+        };
+        double rho_min = 0.0;  // the worst cone's relative variance at the largest fractions
+        for (std::size_t k = 0; k < m_exits; ++k)
+            if (f2[k] > 0.0) rho_min = std::max(rho_min, (a[k] + b[k] + c[k] / kMaxGlintRate) / f2[k]);
+        if (!(rho_min > 0.0)) return;
+        double best = std::numeric_limits<double>::infinity();
+        std::vector<double> q(m_exits), g(m_exits);
+        for (int step = 0; step < 200; ++step) {
+            const double rho = rho_min * std::pow(1.06, step);
+            double cost = c_walk;
+            double worst = 0.0;
+            for (std::size_t k = 0; k < m_exits; ++k) {
+                if (f2[k] > 0.0) {
+                    cheapest(k, rho * f2[k], q[k], g[k]);
+                    worst = std::max(worst, (a[k] + b[k] / q[k] + c[k] / g[k]) / f2[k]);
+                } else {
+                    q[k] = kMinFraction;
+                    g[k] = kMinGlintRate;
+                }
+                cost += q[k] * c_nee + (c[k] > 0.0 ? g[k] * c_glint[k] : 0.0);
+            }
+            if (worst * cost < best) {
+                best = worst * cost;
+                m_nee_fraction = q;
+                m_glint_rate = g;
+            }
+        }
     }
 
 private:
@@ -215,6 +454,7 @@ private:
     Vec3 m_v_in;
     bool m_connections = false;
     unsigned m_histogram_classes = kAllClasses;
+    WalkSettings m_walk;
     struct View {
         Vec3 v_in;
         std::vector<HistogramBin> bins;
@@ -224,6 +464,12 @@ private:
     std::vector<std::vector<View>> m_views;  // [batch][view]
     std::size_t m_view_count = 1;
     double m_connection_fraction = 1.0;
+    bool m_azimuths = false;  // glint_azimuths
+    bool m_adaptive = false;  // adaptive_fractions
+    std::size_t m_diagnostics = 0;
+    std::vector<double> m_nee_fraction;  // per exit: share of paths that run its next-event connections
+    std::vector<double> m_glint_rate;    // per exit: glint samples per path
+    std::vector<std::vector<AzimuthGlintSet>> m_azimuth_glints;  // [batch][exit]
 };
 
 // The estimates of a job from its batches' sums: over the batches' means
@@ -253,7 +499,7 @@ JobResult finish(const JobRunner& runner, const std::vector<Sums>& batches, bool
     inc.albedo.mean += inc.specular;  // exact, no variance
     inc.transmittance = entry(kTransmitted);
     for (std::size_t k = 0; k < runner.exitCount(); ++k) inc.brdf_per_sr.push_back(entry(kFirstExit + k));
-    for (std::size_t k = kFirstExit + runner.exitCount(); k < runner.entries(); ++k)
+    for (std::size_t k = kFirstExit + runner.exitCount(); k < runner.estimateEntries(); ++k)
         r.projection.push_back(entry(k));
     inc.paths = total.paths;
     inc.seconds = seconds;
@@ -322,6 +568,7 @@ McEngine::McEngine(const Recipe& recipe, const McSettings& settings)
     const std::size_t layers = recipe.layers.size();
     m_tiles.resize(static_cast<std::size_t>(m_batches));
     for (auto& tiles : m_tiles) tiles.resize(layers);
+    m_tilts.assign(static_cast<std::size_t>(m_batches), std::vector<TiltIndex>(layers));
     tbb::parallel_for(std::size_t{0}, m_tiles.size() * layers, [&](std::size_t index) {
         const std::size_t k = index / layers;
         const std::size_t l = index % layers;
@@ -332,6 +579,7 @@ McEngine::McEngine(const Recipe& recipe, const McSettings& settings)
         m_tiles[k][l] = std::make_unique<FlakeTile>(
             geometries[l], tops[l], tops[l] + recipe.layers[l].thickness_um, tile_seed, settings.tile_flakes,
             settings.max_tile_flakes, settings.reject_overlaps);
+        if (settings.connections && settings.glint_azimuths) m_tilts[k][l] = tiltIndex(*m_tiles[k][l]);
     });
     for (const auto& tiles : m_tiles)
         for (const auto& tile : tiles)
@@ -350,9 +598,12 @@ McEngine::Band McEngine::band(double wavelength_nm) const {
     for (std::size_t l = 0; l < m_recipe.layers.size(); ++l)
         kinds.push_back(m_tiles[0][l] ? layerFlakeKinds(m_recipe.layers[l], wavelength_nm)
                                       : std::vector<FlakeKind>{});
-    for (const auto& tiles : m_tiles) {
+    for (std::size_t b = 0; b < m_tiles.size(); ++b) {
         std::vector<LayerFlakes> layers;
-        for (std::size_t l = 0; l < tiles.size(); ++l) layers.push_back({tiles[l].get(), kinds[l]});
+        for (std::size_t l = 0; l < m_tiles[b].size(); ++l) {
+            const TiltIndex& tilts = m_tilts[b][l];
+            layers.push_back({m_tiles[b][l].get(), kinds[l], tilts.order.empty() ? nullptr : &tilts});
+        }
         band.explicit_flakes.push_back(std::move(layers));
     }
     return band;
@@ -362,12 +613,13 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
                         const JobSpec& job, double budget_seconds,
                         const std::function<bool(double)>& progress) const {
     const auto job_start = Clock::now();
-    const JobRunner runner(band, job, m_settings, m_tile_side_um, band_key, incidence_key);
+    JobRunner runner(band, job, m_settings, m_tile_side_um, band_key, incidence_key);
     const std::int64_t max_paths = std::max<std::int64_t>(1, m_settings.max_paths);
     // Small runs: chunks small enough that every batch gets paths.
     const std::int64_t chunk = std::max<std::int64_t>(
         1, std::min<std::int64_t>(m_settings.chunk_paths, (max_paths + m_batches - 1) / m_batches));
-    std::vector<Sums> batches(static_cast<std::size_t>(m_batches), Sums(runner.entries()));
+    std::vector<Sums> batches(static_cast<std::size_t>(m_batches),
+                              Sums(runner.entries(), runner.coneStats()));
     const bool over_batches = m_settings.explicit_flakes && m_batches > 1;
     std::int64_t next_chunk = 0;
     JobResult current;
@@ -387,6 +639,11 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
             batches[static_cast<std::size_t>((next_chunk + c) % m_batches)].add(
                 sums[static_cast<std::size_t>(c)]);
         next_chunk += round_chunks;
+        if (runner.coneStats() > 0) {
+            Sums all(runner.entries(), runner.coneStats());
+            for (const auto& b : batches) all.add(b);
+            runner.adapt(all);
+        }
         const double elapsed = std::chrono::duration<double>(Clock::now() - job_start).count();
         current = finish(runner, batches, over_batches, elapsed);
         const bool out_of_time = budget_seconds > 0.0 && elapsed >= budget_seconds;

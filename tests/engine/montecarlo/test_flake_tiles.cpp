@@ -191,7 +191,8 @@ TEST(TileVariance, ErrorBarsCoverTheSpreadBetweenTileSeeds) {
         batched.push_back(
             mc::runMonteCarlo(r, std::vector<double>{550.0}, req, ms).bands[0][0].brdf_per_sr[0]);
         ms.batches = 1;     // one tile; the error bar is over paths only
-        ms.tile_views = 1;  // ...and seen in its own frame only (views would average part of its arrangement)
+        ms.tile_views = 1;  // ...and seen in its own frame only (views would average part of its arrangement,
+        ms.glint_azimuths = false;  // and so would the glint connection over all its azimuths)
         one_tile.push_back(
             mc::runMonteCarlo(r, std::vector<double>{550.0}, req, ms).bands[0][0].brdf_per_sr[0]);
     }

@@ -19,6 +19,7 @@
 #include "paintlab/engine/multiangle.h"
 
 #include "test_recipes.h"
+#include "z_test.h"
 
 #include <gtest/gtest.h>
 
@@ -43,14 +44,8 @@ constexpr int kBatches = 16;
 bool verbose() { return std::getenv("PAINTLAB_MC_VERBOSE") != nullptr; }
 
 void expectWithin(double value, double se, double reference, double allowance, const std::string& what) {
-    const double sigma = std::sqrt(se * se + allowance * allowance);
-    if (verbose())
-        std::printf("  %-44s MC %.6g +- %.2g  ref %.6g (+- %.2g)  z = %+.2f\n", what.c_str(), value, se,
-                    reference, allowance, sigma > 0.0 ? (value - reference) / sigma : 0.0);
-    EXPECT_NEAR(value, reference, kZ * sigma) << what << ": MC " << value << " +- " << se << ", reference "
-                                              << reference << " (allowance " << allowance << ")";
+    test::expectClose(value, se, reference, allowance, what, kZ);
 }
-
 // What the projection converges to if `fine` were the truth: per band of
 // `grid`, f^m of `fine` (by the exact discrete cosine transform of its eval
 // over 64 azimuths, divided by the top interface's transmittances) averaged

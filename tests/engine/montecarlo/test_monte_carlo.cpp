@@ -15,6 +15,7 @@
 #include "paintlab/engine/thin_film.h"
 
 #include "test_recipes.h"
+#include "z_test.h"
 
 #include <gtest/gtest.h>
 
@@ -27,12 +28,12 @@
 namespace paintlab {
 namespace {
 
+using test::expectClose;
 using test::mirrorFlake;
 using test::oneLayerRecipe;
 using test::rawMedium;
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kZ = 4.0;
 
 mc::McSettings mcSettings(std::int64_t paths, std::uint64_t seed = 7) {
     mc::McSettings s;
@@ -59,16 +60,6 @@ std::vector<mc::IncidenceRequest> requests(const std::vector<Geometry>& geometri
 
 const std::vector<Geometry> kGeometries{{0.0, 0.0, 0.0},   {0.0, 30.0, 0.0},    {0.0, 60.0, 90.0},
                                         {45.0, 45.0, 0.0}, {45.0, 20.0, 180.0}, {45.0, 70.0, 120.0}};
-
-void expectClose(double mc, double se, double exact, double e_exact, const std::string& what) {
-    const double tol = kZ * std::sqrt(se * se + e_exact * e_exact);
-    // PAINTLAB_MC_VERBOSE=1 prints every comparison (the numbers in docs/VALIDATION.md).
-    if (std::getenv("PAINTLAB_MC_VERBOSE") != nullptr)
-        std::printf("  %-40s MC %.6g +- %.2g  ref %.6g (+- %.2g)  z = %+.2f\n", what.c_str(), mc, se, exact,
-                    e_exact, tol > 0.0 ? kZ * (mc - exact) / tol : 0.0);
-    EXPECT_NEAR(mc, exact, tol) << what << ": MC " << mc << " +- " << se << ", expected " << exact
-                                << ", z = " << (mc - exact) / std::sqrt(se * se + e_exact * e_exact);
-}
 
 // MC vs the fast model at the geometries above: albedo and f, band 0.
 void compareWithFastModel(const Recipe& recipe, std::int64_t paths, double fast_rel_error) {

@@ -38,8 +38,10 @@
 //    cone's projected solid angle: the cone average of f cos over that of cos;
 //    with explicit flakes and `connections` (default) the paths whose last
 //    direction change was a pigment or the Lambertian substrate, and the
-//    beam's single flake reflections, are scored by exact connections to the
-//    cone through the real tiles instead (mc_connection.h), same mean;
+//    beam's single flake reflections (averaged over every azimuth of each
+//    tile), are scored by exact connections to the cone through the real
+//    tiles instead (mc_connection.h), same mean; the walk splits at flakes and
+//    at the top interface instead of choosing a branch (split_branches);
 //  - a whole table on the fast model's basis: mc_table.h.
 //
 // Standard errors: over independent paths, except with explicit flakes,
@@ -59,8 +61,9 @@
 // least two flake diameters), so arrangements longer-ranged than the tile are
 // not represented; its geometry is float (Embree); flakes are thickness-less
 // 16-gons and overlap unless reject_overlaps. What the connections leave to
-// the histogram (several flake reflections, internal reflections) and the
-// tile-to-tile spread set the cost of explicit flakes (docs/PERFORMANCE.md).
+// the histogram (several flake reflections, internal reflections, a flake
+// reflection after a pigment vertex) sets the cost of explicit flakes
+// (docs/PERFORMANCE.md).
 // Settings.threads sets TBB's process-wide parallelism for the duration of the call.
 
 #include "paintlab/engine/brdf.h"
@@ -127,12 +130,44 @@ struct McSettings {
     // while the histogram's share (multiple flake reflections) needs many
     // paths: fewer connected paths buy more paths per second.
     double connection_fraction = 0.125;
+    // Explicit flakes with connections: the beam's single flake reflections
+    // (class BeamFlake) estimated over every azimuth of each tile at once, the
+    // flake drawn by importance (its reflectance and the attenuation down to
+    // it), the samples drawn per chunk of paths and stratified over it
+    // (mc_connection.h, azimuthGlintSets); false: per view of the tile, one
+    // flake per connected path in proportion to its area (the estimator of
+    // 2026-12-01; adaptive_fractions then does not apply). The stratified
+    // samples tie the paths of a chunk together: errors over batches are
+    // exact, errors over paths (batches = 1) conservative.
+    bool glint_azimuths = true;
+    // Explicit flakes with connections and glint_azimuths: per exit cone, the
+    // share of paths that run the next-event connections into it and the glint
+    // samples per path, chosen after every round of chunks from that cone's own
+    // variance so far (histogram, next-event, glint) and their cost in tile
+    // intersections (monte_carlo.cpp); the first round uses connection_fraction
+    // for both. Unbiased: a path's fractions are fixed before it runs. false:
+    // connection_fraction for every cone.
+    bool adaptive_fractions = true;
+    // Explicit flakes: a path follows both branches wherever an explicit flake
+    // reflects or passes it (weights R and T) and where the top interface
+    // reflects or lets it out (weights F and 1 - F), instead of drawing one
+    // with those probabilities; at most 6 splits deep along a branch, Russian
+    // roulette below roulette_weight as always. Same expectation; the chains of
+    // several flake reflections (class Other, what limits the explicit-flake
+    // estimate, docs/PERFORMANCE.md) are no longer thinned by the product of
+    // their reflectances. Lossless paint then no longer returns exactly 1 per
+    // path (the roulette of the split-off branches). false: the analog choice.
+    bool split_branches = true;
     // Diagnostics for error budgets: bit mask of the path classes whose
     // escapes the histogram scores (1 unscattered beam, 2 the beam's first
     // reflection off an explicit flake, 4 last direction change a pigment,
     // the Lambertian substrate or a continuum flake, 8 anything else); with
     // connections, classes 2 and 4 are scored by them and never by the histogram.
     unsigned histogram_classes = 15;
+    // Diagnostics: of class 8, the part the histogram scores: 1 chains of
+    // delta events from the beam (several flake reflections, internal
+    // reflections), 2 delta events after a pigment, substrate or continuum-flake vertex.
+    unsigned histogram_other = 3;
 };
 
 struct Estimate {

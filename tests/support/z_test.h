@@ -1,0 +1,32 @@
+#pragma once
+// The statistical comparison of the Monte Carlo tests: an estimate x with
+// standard error se against a reference y with its own uncertainty se_y
+// (another estimate's standard error, or a computed deterministic allowance),
+// passing when |x - y| <= z sqrt(se^2 + se_y^2). The default z = 4 has
+// two-sided significance ~6e-5 per comparison under a normal error (~1e-3
+// under Student t with 15 degrees of freedom: errors over 16 batches); each
+// test file states what its comparisons add up to. PAINTLAB_MC_VERBOSE=1
+// prints every comparison with its z-score (the numbers in docs/VALIDATION.md).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+namespace paintlab::test {
+
+inline constexpr double kZ = 4.0;
+
+inline void expectClose(double x, double se, double y, double se_y, const std::string& what, double z = kZ) {
+    const double sigma = std::sqrt(se * se + se_y * se_y);
+    const double score = sigma > 0.0 ? (x - y) / sigma : 0.0;
+    if (std::getenv("PAINTLAB_MC_VERBOSE") != nullptr)  // NOLINT(concurrency-mt-unsafe)
+        std::printf("  %-44s MC %.6g +- %.2g  ref %.6g (+- %.2g)  z = %+.2f\n", what.c_str(), x, se, y, se_y,
+                    score);
+    EXPECT_NEAR(x, y, z * sigma) << what << ": MC " << x << " +- " << se << ", reference " << y << " (+- "
+                                 << se_y << "), z = " << score;
+}
+
+}  // namespace paintlab::test
