@@ -38,7 +38,8 @@ packages=(
   xvfb xauth libgl1-mesa-dri libglx-mesa0
 )
 
-say() { printf '\033[1m[setup]\033[0m %s\n' "$*"; }
+# Every line carries the seconds since the start, so a CI log shows where its time went.
+say() { printf '\033[1m[setup %4ds]\033[0m %s\n' "$SECONDS" "$*"; }
 die() { printf '\033[1;31m[setup] FAILED:\033[0m %s\n' "$*" >&2; exit 1; }
 
 as_root() {
