@@ -29,11 +29,15 @@ void LatestJob::start(Work work) {
             apply = work();
         } catch (const std::exception& e) {
             error = QString::fromUtf8(e.what());
+        } catch (...) {  // nothing may escape a pool task: the program would end
+            error = QStringLiteral("the plot computation failed with an unknown error");
         }
         QMetaObject::invokeMethod(
             this,
             [this, apply = std::move(apply), error]() {
-                m_running = false;
+                // Still "running" while the result is delivered: work that a
+                // slot of applied()/failed() asks for waits as pending instead
+                // of starting beside the next job.
                 if (!error.isEmpty()) {
                     emit failed(error);
                 } else if (apply) {
@@ -45,6 +49,7 @@ void LatestJob::start(Work work) {
                     m_pending.reset();
                     start(std::move(next));
                 } else {
+                    m_running = false;
                     emit becameIdle();
                 }
             },

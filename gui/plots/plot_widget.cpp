@@ -2,6 +2,7 @@
 
 #include <QElapsedTimer>
 #include <QImage>
+#include <QOpenGLContext>
 #include <QSaveFile>
 #include <QTextStream>
 
@@ -20,6 +21,9 @@ PlotWidget::PlotWidget(QWidget* parent) : QOpenGLWidget(parent), m_vtk(std::make
 }
 
 PlotWidget::~PlotWidget() {
+    // QOpenGLWidget's own destructor, which runs after this one, destroys the
+    // context: its aboutToBeDestroyed must not reach this half-destroyed widget.
+    if (context() != nullptr) disconnect(context(), nullptr, this, nullptr);
     makeCurrent();  // VTK releases its GL resources in the widget's context
     m_vtk->window->Finalize();
     m_vtk.reset();
@@ -41,6 +45,20 @@ void PlotWidget::initializeGL() {
     // the GUI thread's 50 ms; VTK's 2D lines and text are smoothed anyway.
     w->SetMultiSamples(0);
     w->InitializeFromCurrentContext();
+    // Floating or re-docking the dock moves the widget to another top-level
+    // window: Qt destroys this context and calls initializeGL again with a new
+    // one. VTK's shaders, buffers and glyph textures belong to the old context
+    // and are given back while it is still current (as VTK's own
+    // QVTKOpenGLNativeWidget does), or the new context would use dead handles.
+    connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, &PlotWidget::releaseGraphicsResources,
+            Qt::UniqueConnection);
+}
+
+void PlotWidget::releaseGraphicsResources() {
+    if (!m_vtk) return;
+    makeCurrent();
+    m_vtk->window->ReleaseGraphicsResources(m_vtk->window);
+    doneCurrent();
 }
 
 void PlotWidget::resizeGL(int w, int h) {

@@ -61,6 +61,9 @@ protected:
     static QString csvText(const QString& text);
 
 private:
+    // Gives VTK's GL objects back to the context that is about to go (initializeGL).
+    void releaseGraphicsResources();
+
     struct Vtk;
     std::unique_ptr<Vtk> m_vtk;
     double m_paint_ms = 0.0;

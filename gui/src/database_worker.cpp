@@ -35,6 +35,9 @@ void DatabaseWorker::runErased(std::function<void(db::Database&)> work, std::fun
                 error = QString::fromUtf8(e.what());
                 if (error.isEmpty())
                     error = tr("%1: the operation failed").arg(QString::fromStdString(file.string()));
+            } catch (...) {  // nothing may escape a pool task: the program would end
+                error = tr("%1: the operation failed with an unknown error")
+                            .arg(QString::fromStdString(file.string()));
             }
             QMetaObject::invokeMethod(
                 this,

@@ -280,9 +280,10 @@ void validateRayMapSettings(const RayMapSettings& s) {
         !(s.paint_proxy_albedo->allFinite() && s.paint_proxy_albedo->minCoeff() >= 0.0 &&
           s.paint_proxy_albedo->maxCoeff() <= 1.0))
         throw InputError("<argument>", "paint_proxy_albedo", "channels must be in [0, 1]");
-    if (!(s.scene_unit_m > 0.0 && s.scene_unit_m <= 1e6))
+    // The same range as the ray-map reader's (raymap_file.cpp): a map is never written that cannot be read.
+    if (!(s.scene_unit_m >= 1e-12 && s.scene_unit_m <= 1e6))
         throw InputError("<argument>", "scene_unit_m",
-                         std::to_string(s.scene_unit_m) + " is outside (0, 1e6]");
+                         std::to_string(s.scene_unit_m) + " is outside [1e-12, 1e6]");
 }
 
 RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, const std::filesystem::path& out,

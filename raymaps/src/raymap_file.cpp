@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <numbers>
 
 namespace paintlab::raymaps {
@@ -70,7 +71,8 @@ RayMapHeader parseHeader(const std::vector<std::byte>& payload, const std::strin
                                     r.fieldPath("camera"), file);
         h.camera_position = vector3(camera, "position");
         if (!h.camera_position.allFinite()) camera.fail("position", "not finite");
-        h.pixel_angle_rad = camera.numberIn("pixel_angle_rad", 1e-9, std::numbers::pi);
+        h.pixel_angle_rad =
+            camera.numberIn("pixel_angle_rad", std::numeric_limits<double>::min(), std::numbers::pi);
         camera.finish();
         h.scene_unit_m = r.numberIn("scene_unit_m", 1e-12, 1e6);
     }

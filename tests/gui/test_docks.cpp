@@ -304,20 +304,22 @@ void DocksTest::addingAnIngredientToALayerIsUndoable() {
     const std::size_t components = before.layers.at(1).components.size();
     QVERIFY(ingredients()->selectIngredient(db::IngredientKind::Pigment, kRutile));
     QCOMPARE(ingredients()->layerChoice()->count(), 2);
+    const auto sliders_before = m_window->editorDock()->findChildren<QSlider*>().size();
     QVERIFY(ingredients()->addToLayer(1));  // the basecoat
     const paintlab::Recipe& after = m_window->document()->recipe();
     QCOMPARE(after.layers.at(1).components.size(), components + 1);
     QCOMPARE(paintlab::componentName(after.layers[1].components.back()), kRutile.toStdString());
     QCOMPARE(paintlab::componentVolumeFraction(after.layers[1].components.back()), 0.01);
     // The editor shows the new component's parameters at once.
-    QVERIFY(m_window->editorDock()->findChildren<QSlider*>().size() > 0);
     const auto sliders = m_window->editorDock()->findChildren<QSlider*>().size();
+    QVERIFY(sliders > sliders_before);
     // Adding it twice is refused with a message.
     QVERIFY(!ingredients()->addToLayer(1));
     QVERIFY(takeMessage(ingredients(), QStringLiteral("ingredient_error"), nullptr));
     m_window->document()->undoStack()->undo();
     QVERIFY(m_window->document()->recipe() == before);
-    QVERIFY(m_window->editorDock()->findChildren<QSlider*>().size() < sliders);
+    QTRY_COMPARE_WITH_TIMEOUT(m_window->editorDock()->findChildren<QSlider*>().size(), sliders_before,
+                              kWaitMs);
 }
 
 void DocksTest::diffOfTwoVersionsListsTheChangedParameter() {

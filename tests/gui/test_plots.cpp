@@ -504,6 +504,13 @@ void PlotsTest::mainWindowPlotsDockFollowsTheRecipe() {
         QVERIFY(pixelStats(image).colours > 20);
     }
     QVERIFY(window.grab().save(screenshotDir() + "/plots_main_window.png"));
+    // Floating the dock and docking it again gives its plots new GL contexts
+    // (PlotWidget::initializeGL): they keep drawing, in as many colours.
+    for (const bool floating : {true, false}) {
+        dock->setFloating(floating);
+        QVERIFY(QTest::qWaitForWindowExposed(dock->currentPlot()));
+        QTRY_VERIFY_WITH_TIMEOUT(pixelStats(dock->currentPlot()->renderImage()).colours > 20, kWaitMs);
+    }
     // Pinning, then an edit: the comparison stays, the current series follows.
     dock->pinCurrentAsComparison();
     QTRY_VERIFY_WITH_TIMEOUT(!dock->computing(), kWaitMs);

@@ -29,6 +29,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -128,6 +129,10 @@ protected:
         for (std::size_t i = 0; i < s_input->paintPixels(); ++i) {
             const std::uint32_t pixel = s_input->pixel(i);
             de.push_back(ciede2000(lab(a, pixel), lab(b, pixel)));
+        }
+        if (de.empty() || !(y_white > 0.0)) {
+            ADD_FAILURE() << "no paint pixels, or a black white point";
+            return std::numeric_limits<double>::infinity();
         }
         std::sort(de.begin(), de.end());
         return de[static_cast<std::size_t>(0.99 * static_cast<double>(de.size() - 1))];

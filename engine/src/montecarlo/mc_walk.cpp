@@ -356,7 +356,8 @@ struct Walker {
                 path_class = kClassOther;
                 return true;
             }
-            transmitted = weight;
+            // += : split branches of this path may already have transmitted (runBranch).
+            transmitted += weight;
             return false;
         }
         return false;
