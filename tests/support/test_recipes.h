@@ -43,6 +43,30 @@ inline Pigment pigment(double volume_fraction, double sigma_a_per_um, double sig
     return p;
 }
 
+// A small pearlescent for the full model's tests: a 20 µm clear coat (n 1.55)
+// over a 10 µm basecoat (n 1.5: an index step between the layers) of blue
+// interference flakes (4 %, 12 µm, 12 deg; mica 350 ± 40 nm, TiO2 120 ± 8 nm)
+// with the given pigment, over a grey Lambertian base.
+inline Recipe smallPearlescent(const Pigment& pigment, double base_albedo) {
+    Recipe r = oneLayerRecipe(1.55, 20.0, LambertianSubstrate{Spectrum(base_albedo)});
+    Layer base;
+    base.name = "basecoat";
+    base.thickness_um = 10.0;
+    base.binder.refractive_index = Spectrum(1.5);
+    InterferenceFlake pearl;
+    pearl.name = "pearl";
+    pearl.volume_fraction = 0.04;
+    pearl.diameter_um = 12.0;
+    pearl.orientation_spread_deg = 12.0;
+    pearl.mica_thickness_nm = 350.0;
+    pearl.mica_thickness_spread_nm = 40.0;
+    pearl.tio2_thickness_nm = 120.0;
+    pearl.tio2_thickness_spread_nm = 8.0;
+    base.components = {pearl, pigment};
+    r.layers.push_back(base);
+    return r;
+}
+
 // Flakes 15 µm across and 0.5 µm thick with a normal-incidence reflectance.
 inline MirrorFlake mirrorFlake(double volume_fraction, double spread_deg, double reflectance) {
     MirrorFlake flake;

@@ -148,22 +148,7 @@ TEST(MonteCarloConnections, AgreeWithTheHistogramOnAPearlescentPaint) {
     // The histogram alone and the connections estimate the same cone average;
     // independent seeds (so different tiles too), errors over 16 batches each
     // (tile spread included), so their difference is tested in combined errors.
-    Recipe r = test::oneLayerRecipe(1.55, 20.0, LambertianSubstrate{Spectrum(0.5)});
-    Layer base;
-    base.name = "basecoat";
-    base.thickness_um = 10.0;
-    base.binder.refractive_index = Spectrum(1.5);
-    InterferenceFlake pearl;
-    pearl.name = "pearl";
-    pearl.volume_fraction = 0.04;
-    pearl.diameter_um = 12.0;
-    pearl.orientation_spread_deg = 12.0;
-    pearl.mica_thickness_nm = 350.0;
-    pearl.mica_thickness_spread_nm = 40.0;
-    pearl.tio2_thickness_nm = 120.0;
-    pearl.tio2_thickness_spread_nm = 8.0;
-    base.components = {pearl, test::pigment(0.01, 5.0, 10.0, 0.3)};
-    r.layers.push_back(base);
+    const Recipe r = test::smallPearlescent(test::pigment(0.01, 5.0, 10.0, 0.3), 0.5);
     const double cone_deg = 8.0;
     const Direction wi = directionFromAnglesDeg(45.0, 0.0);
     const std::vector<mc::IncidenceRequest> req{
@@ -195,22 +180,7 @@ TEST(MonteCarloConnections, AgreeWithTheEstimatorOf2026_12_01) {
     // plus a flop geometry; independent seeds, errors over 16 batches each, in
     // combined errors at kZ = 4 (t with 15 degrees of freedom per error:
     // two-sided ~1e-3 per comparison, five comparisons).
-    Recipe r = test::oneLayerRecipe(1.55, 20.0, LambertianSubstrate{Spectrum(0.5)});
-    Layer base;
-    base.name = "basecoat";
-    base.thickness_um = 10.0;
-    base.binder.refractive_index = Spectrum(1.5);
-    InterferenceFlake pearl;
-    pearl.name = "pearl";
-    pearl.volume_fraction = 0.04;
-    pearl.diameter_um = 12.0;
-    pearl.orientation_spread_deg = 12.0;
-    pearl.mica_thickness_nm = 350.0;
-    pearl.mica_thickness_spread_nm = 40.0;
-    pearl.tio2_thickness_nm = 120.0;
-    pearl.tio2_thickness_spread_nm = 8.0;
-    base.components = {pearl, test::pigment(0.01, 5.0, 10.0, 0.3)};
-    r.layers.push_back(base);
+    const Recipe r = test::smallPearlescent(test::pigment(0.01, 5.0, 10.0, 0.3), 0.5);
     const Direction wi = directionFromAnglesDeg(45.0, 0.0);
     const std::vector<mc::IncidenceRequest> req{
         {wi,

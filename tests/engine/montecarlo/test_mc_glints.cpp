@@ -14,6 +14,7 @@
 
 #include "paintlab/engine/montecarlo/monte_carlo.h"
 
+#include "test_recipes.h"
 #include "z_test.h"
 
 #include <gtest/gtest.h>
@@ -28,37 +29,12 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-// A small pearlescent: 20 µm clear coat over a 10 µm basecoat of blue
-// interference flakes (12 µm, 12 deg) with an absorbing pigment, ~1500 flakes per tile.
+// The small pearlescent (test_recipes.h) with an absorbing, weakly scattering
+// black over a 0.3 grey base; ~1500 flakes per tile.
 Recipe pearlescent() {
-    Recipe r;
-    r.name = "pearl";
-    Layer clear;
-    clear.name = "clear";
-    clear.thickness_um = 20.0;
-    clear.binder.refractive_index = Spectrum(1.55);
-    Layer base;
-    base.name = "basecoat";
-    base.thickness_um = 10.0;
-    base.binder.refractive_index = Spectrum(1.5);
-    InterferenceFlake pearl;
-    pearl.name = "pearl";
-    pearl.volume_fraction = 0.04;
-    pearl.diameter_um = 12.0;
-    pearl.orientation_spread_deg = 12.0;
-    pearl.mica_thickness_nm = 350.0;
-    pearl.mica_thickness_spread_nm = 40.0;
-    pearl.tio2_thickness_nm = 120.0;
-    pearl.tio2_thickness_spread_nm = 8.0;
-    Pigment black;
+    Pigment black = test::pigment(0.01, 10.0, 0.5, 0.0);
     black.name = "black";
-    black.volume_fraction = 0.01;
-    black.sigma_a_per_um = Spectrum(10.0);
-    black.sigma_s_per_um = Spectrum(0.5);
-    base.components = {pearl, black};
-    r.layers = {clear, base};
-    r.substrate = LambertianSubstrate{Spectrum(0.3)};
-    return r;
+    return test::smallPearlescent(black, 0.3);
 }
 
 struct Fixture {
