@@ -37,6 +37,8 @@ packages=(
   qt6-base-dev libqt6opengl6-dev qt6-svg-dev libvtk9-dev libgl-dev
   # headless GUI tests and screenshots
   xvfb xauth libgl1-mesa-dri libglx-mesa0
+  # the plots' text (gui/plots/plot_widget.h: VTK's built-in font draws 0 like D)
+  fonts-dejavu-core
 )
 
 # Every line carries the seconds since the start, so a CI log shows where its time went.

@@ -107,6 +107,7 @@ AbChart::AbChart(QWidget* parent) : PlotWidget(parent), m_vtk(std::make_unique<V
     m_vtk->view->SetRenderWindow(renderWindow());
     m_vtk->view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
     m_vtk->view->GetScene()->AddItem(m_vtk->chart);
+    useReadableFont(m_vtk->chart);
     m_vtk->chart->SetTitle("CIELAB a*b* at the multi-angle geometries (D65/10 deg), flop path");
     m_vtk->chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("a*");
     m_vtk->chart->GetAxis(vtkAxis::LEFT)->SetTitle("b*");

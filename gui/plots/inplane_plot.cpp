@@ -87,6 +87,7 @@ InplanePlot::InplanePlot(QWidget* parent) : PlotWidget(parent), m_vtk(std::make_
     m_vtk->view->SetRenderWindow(renderWindow());
     m_vtk->view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
     m_vtk->view->GetScene()->AddItem(m_vtk->chart);
+    useReadableFont(m_vtk->chart);
     m_vtk->chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("view angle (deg, negative: light side)");
     m_vtk->chart->GetAxis(vtkAxis::LEFT)->SetTitle("pi f");
     m_vtk->chart->SetShowLegend(true);

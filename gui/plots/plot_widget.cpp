@@ -6,9 +6,14 @@
 #include <QSaveFile>
 #include <QTextStream>
 
+#include <vtkAxis.h>
+#include <vtkChartXY.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkNew.h>
 #include <vtkOpenGLState.h>
+#include <vtkTextProperty.h>
+
+#include <filesystem>
 
 namespace paintlab::gui {
 
@@ -31,6 +36,20 @@ PlotWidget::~PlotWidget() {
 }
 
 vtkGenericOpenGLRenderWindow* PlotWidget::renderWindow() const { return m_vtk->window; }
+
+void PlotWidget::useReadableFont(vtkChartXY* chart) {
+    static const char* const kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+    std::error_code error;
+    if (!std::filesystem::exists(kFont, error)) return;
+    const auto use = [](vtkTextProperty* text) {
+        text->SetFontFamily(VTK_FONT_FILE);
+        text->SetFontFile(kFont);
+    };
+    // The axes' numbers only: titles and legends keep the built-in font, whose
+    // letters read well (DejaVu's thin l and d strokes fade at these sizes).
+    for (int axis = vtkAxis::LEFT; axis <= vtkAxis::TOP; ++axis)
+        use(chart->GetAxis(axis)->GetLabelProperties());
+}
 
 void PlotWidget::initializeGL() {
     // Qt owns the context; VTK draws into whatever framebuffer is bound when

@@ -17,6 +17,7 @@
 #include <memory>
 #include <vector>
 
+class vtkChartXY;
 class vtkGenericOpenGLRenderWindow;
 
 namespace paintlab::gui {
@@ -58,6 +59,11 @@ protected:
     static bool writeCsv(const QString& path, const QStringList& header,
                          const std::vector<QStringList>& rows);
     static QString csvNumber(double value);  // round-trips exactly
+    // The chart's axis numbers in DejaVu Sans (Debian's fonts-dejavu-core)
+    // instead of VTK's built-in Arial, whose zero is drawn like a "D" at
+    // chart sizes ("D.1D" for 0.10); the built-in font stays if the file is
+    // missing.
+    static void useReadableFont(vtkChartXY* chart);
     static QString csvText(const QString& text);
 
 private:
