@@ -122,8 +122,8 @@ run_tests() {
   say "all tests passed"
 }
 
-# The sanitizer pass is not part of `test`: on 2 cores its build alone takes
-# ~22 min, and `test` must stay under CI's 40 minutes (docs/PERFORMANCE.md,
+# The sanitizer pass is not part of `test`: on 2 cores its build alone took
+# ~35 min (with the GUI), and `test` must stay under CI's 40 minutes (docs/PERFORMANCE.md,
 # "Build, test and CI time"). Run it before merging work that touches memory
 # or threads.
 run_sanitized_tests() {

@@ -74,7 +74,6 @@ void PlotWidget::initializeGL() {
 }
 
 void PlotWidget::releaseGraphicsResources() {
-    if (!m_vtk) return;
     makeCurrent();
     m_vtk->window->ReleaseGraphicsResources(m_vtk->window);
     doneCurrent();

@@ -62,16 +62,20 @@ public:
     bool notify(QObject* receiver, QEvent* event) override {
         if (!recording || depth > 0) return QApplication::notify(receiver, event);
         ++depth;
+        // Taken before the dispatch (it may delete the receiver), cheaply: the
+        // text is made only for the slow ones, not for every event timed.
+        const char* const type_name = receiver->metaObject()->className();
+        const QString object_name = receiver->objectName();  // implicitly shared: no copy
+        const int type = static_cast<int>(event->type());
         QElapsedTimer timer;
         timer.start();
-        const QString what =
-            QStringLiteral("%1 '%2', event %3")
-                .arg(QString::fromLatin1(receiver->metaObject()->className()), receiver->objectName())
-                .arg(static_cast<int>(event->type()));
         const bool handled = QApplication::notify(receiver, event);
         --depth;
         const double ms = static_cast<double>(timer.nsecsElapsed()) * 1e-6;
-        if (ms > 20.0) slow.push_back({ms, what});
+        if (ms > 20.0)
+            slow.push_back({ms, QStringLiteral("%1 '%2', event %3")
+                                    .arg(QString::fromLatin1(type_name), object_name)
+                                    .arg(type)});
         return handled;
     }
     bool recording = false;

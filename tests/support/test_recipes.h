@@ -43,6 +43,20 @@ inline Pigment pigment(double volume_fraction, double sigma_a_per_um, double sig
     return p;
 }
 
+// Pearl flakes (TiO2 on mica) of the given size, spread and layer thicknesses;
+// thickness spreads 0 unless set afterwards. Non-absorbing: R + T = 1.
+inline InterferenceFlake interferenceFlake(double volume_fraction, double diameter_um, double spread_deg,
+                                           double mica_nm, double tio2_nm) {
+    InterferenceFlake flake;
+    flake.name = "pearl";
+    flake.volume_fraction = volume_fraction;
+    flake.diameter_um = diameter_um;
+    flake.orientation_spread_deg = spread_deg;
+    flake.mica_thickness_nm = mica_nm;
+    flake.tio2_thickness_nm = tio2_nm;
+    return flake;
+}
+
 // A small pearlescent for the full model's tests: a 20 µm clear coat (n 1.55)
 // over a 10 µm basecoat (n 1.5: an index step between the layers) of blue
 // interference flakes (4 %, 12 µm, 12 deg; mica 350 ± 40 nm, TiO2 120 ± 8 nm)
@@ -53,14 +67,8 @@ inline Recipe smallPearlescent(const Pigment& pigment, double base_albedo) {
     base.name = "basecoat";
     base.thickness_um = 10.0;
     base.binder.refractive_index = Spectrum(1.5);
-    InterferenceFlake pearl;
-    pearl.name = "pearl";
-    pearl.volume_fraction = 0.04;
-    pearl.diameter_um = 12.0;
-    pearl.orientation_spread_deg = 12.0;
-    pearl.mica_thickness_nm = 350.0;
+    InterferenceFlake pearl = interferenceFlake(0.04, 12.0, 12.0, 350.0, 120.0);
     pearl.mica_thickness_spread_nm = 40.0;
-    pearl.tio2_thickness_nm = 120.0;
     pearl.tio2_thickness_spread_nm = 8.0;
     base.components = {pearl, pigment};
     r.layers.push_back(base);

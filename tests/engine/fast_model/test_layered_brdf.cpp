@@ -229,14 +229,8 @@ TEST(FastModelEnergy, NonAbsorbingInterferenceFlakesConserveEnergy) {
     // the albedo is 1 in every direction at every band (the flakes' R + T = 1
     // and the kernel's energy bookkeeping both tested at once).
     Recipe r = oneLayerRecipe(1.5, 15.0, LambertianSubstrate{Spectrum(1.0)});
-    InterferenceFlake pearl;
-    pearl.name = "pearl";
-    pearl.volume_fraction = 0.06;
-    pearl.diameter_um = 18.0;
-    pearl.orientation_spread_deg = 10.0;
-    pearl.mica_thickness_nm = 350.0;
+    InterferenceFlake pearl = test::interferenceFlake(0.06, 18.0, 10.0, 350.0, 120.0);
     pearl.mica_thickness_spread_nm = 40.0;
-    pearl.tio2_thickness_nm = 120.0;
     pearl.tio2_thickness_spread_nm = 8.0;
     r.layers[0].components = {pearl};
     FastModelSettings s = settings();

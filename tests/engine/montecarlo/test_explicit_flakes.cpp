@@ -80,14 +80,7 @@ TEST(MonteCarloExplicitFlakes, LosslessPearlFlakesOverGlassReflectOrTransmitEver
     // default: a flake's transmitted part is a branch of its own) in
     // expectation, which is where a branch's transmission could be lost.
     Recipe r = test::oneLayerRecipe(1.5, 20.0, TransparentSubstrate{1.5});
-    InterferenceFlake flake;
-    flake.name = "pearl";
-    flake.volume_fraction = 0.03;
-    flake.diameter_um = 12.0;
-    flake.orientation_spread_deg = 15.0;
-    flake.mica_thickness_nm = 400.0;
-    flake.tio2_thickness_nm = 100.0;
-    r.layers[0].components = {flake};
+    r.layers[0].components = {test::interferenceFlake(0.03, 12.0, 15.0, 400.0, 100.0)};
     const std::vector<mc::IncidenceRequest> req{{directionFromAnglesDeg(20.0, 0.0), {}},
                                                 {directionFromAnglesDeg(60.0, 0.0), {}}};
     // 1,000 paths: the sum's error ~0.002, against the 8 % a lost branch cost (z ~ -30 at 4,000).

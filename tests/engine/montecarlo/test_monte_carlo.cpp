@@ -270,14 +270,7 @@ TEST(MonteCarloEnergy, LosslessInterferenceFlakesConserveEnergy) {
     // Non-absorbing pearl flakes (R + T = 1 at every angle) and a white base:
     // every path returns, path by path.
     Recipe r = oneLayerRecipe(1.5, 20.0, LambertianSubstrate{Spectrum(1.0)});
-    InterferenceFlake flake;
-    flake.name = "pearl";
-    flake.volume_fraction = 0.02;
-    flake.diameter_um = 15.0;
-    flake.orientation_spread_deg = 10.0;
-    flake.mica_thickness_nm = 400.0;
-    flake.tio2_thickness_nm = 100.0;
-    r.layers[0].components = {flake};
+    r.layers[0].components = {test::interferenceFlake(0.02, 15.0, 10.0, 400.0, 100.0)};
     const auto req = requests(kGeometries);
     const mc::McResult mc = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, mcSettings(4000));
     for (const auto& inc : mc.bands[0]) EXPECT_NEAR(inc.albedo.mean, 1.0, 1e-9);
