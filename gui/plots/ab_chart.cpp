@@ -103,24 +103,25 @@ struct AbChart::Vtk {
     vtkNew<PointLabels> labels;
 };
 
-AbChart::AbChart(QWidget* parent) : PlotWidget(parent), m_vtk(std::make_unique<Vtk>()) {
-    m_vtk->view->SetRenderWindow(renderWindow());
-    m_vtk->view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
-    m_vtk->view->GetScene()->AddItem(m_vtk->chart);
-    useReadableFont(m_vtk->chart);
-    m_vtk->chart->SetTitle("CIELAB a*b* at the multi-angle geometries (D65/10 deg), flop path");
-    m_vtk->chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("a*");
-    m_vtk->chart->GetAxis(vtkAxis::LEFT)->SetTitle("b*");
-    m_vtk->chart->SetShowLegend(true);
-    m_vtk->labels->chart = m_vtk->chart;
-    m_vtk->view->GetScene()->AddItem(m_vtk->labels);  // over the chart
+AbChart::AbChart(QWidget* parent) : PlotWidget(parent) {
+    runOnRenderThread([this] {
+        m_vtk = std::make_unique<Vtk>();
+        m_vtk->view->SetRenderWindow(renderWindow());
+        m_vtk->view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
+        m_vtk->view->GetScene()->AddItem(m_vtk->chart);
+        useReadableFont(m_vtk->chart);
+        m_vtk->chart->SetTitle("CIELAB a*b* at the multi-angle geometries (D65/10 deg), flop path");
+        m_vtk->chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("a*");
+        m_vtk->chart->GetAxis(vtkAxis::LEFT)->SetTitle("b*");
+        m_vtk->chart->SetShowLegend(true);
+        m_vtk->labels->chart = m_vtk->chart;
+        m_vtk->view->GetScene()->AddItem(m_vtk->labels);  // over the chart
+    });
     updateChart();
 }
 
 AbChart::~AbChart() {
-    makeCurrent();
-    m_vtk.reset();
-    doneCurrent();
+    runOnRenderThread([this] { m_vtk.reset(); });
 }
 
 void AbChart::setBrdf(const SpectralBrdf& brdf) { setReport(multiAngleColours(brdf)); }
@@ -148,86 +149,90 @@ void AbChart::clearComparison() {
 
 std::vector<double> AbChart::pathAspecularDeg() const {
     std::vector<double> out;
-    for (vtkIdType row = 0; row < m_vtk->path->GetNumberOfRows(); ++row)
-        out.push_back(m_vtk->path->GetValue(row, 0).ToDouble());
+    runOnRenderThread([this, &out] {
+        for (vtkIdType row = 0; row < m_vtk->path->GetNumberOfRows(); ++row)
+            out.push_back(m_vtk->path->GetValue(row, 0).ToDouble());
+    });
     return out;
 }
 
 void AbChart::updateChart() {
-    fillPath(m_vtk->path, m_report);
-    fillPath(m_vtk->comparison, m_comparison);
-    vtkChartXY* chart = m_vtk->chart;
-    chart->ClearPlots();
+    // The render thread draws copies: the GUI thread may change the reports meanwhile.
+    onRenderThread([this, report = m_report, comparison = m_comparison, label = m_comparison_label] {
+        fillPath(m_vtk->path, report);
+        fillPath(m_vtk->comparison, comparison);
+        vtkChartXY* chart = m_vtk->chart;
+        chart->ClearPlots();
 
-    if (!m_report.colours.empty()) {
-        vtkPlot* line = chart->AddPlot(vtkChart::LINE);
-        line->SetInputData(m_vtk->path, 1, 2);
-        line->SetColor(60, 60, 60, 255);
-        line->SetWidth(2.0F);
-        line->SetLabel("current");
-    }
-    if (!m_comparison.colours.empty()) {
-        vtkPlot* line = chart->AddPlot(vtkChart::LINE);
-        line->SetInputData(m_vtk->comparison, 1, 2);
-        line->SetColor(60, 60, 60, 255);
-        line->SetWidth(2.0F);
-        line->GetPen()->SetLineType(vtkPen::DASH_LINE);
-        line->SetLabel(m_comparison_label.toStdString());
-        if (auto* points = vtkPlotPoints::SafeDownCast(line)) {
-            points->SetMarkerStyle(vtkPlotPoints::CROSS);
-            points->SetMarkerSize(9.0F);
+        if (!report.colours.empty()) {
+            vtkPlot* line = chart->AddPlot(vtkChart::LINE);
+            line->SetInputData(m_vtk->path, 1, 2);
+            line->SetColor(60, 60, 60, 255);
+            line->SetWidth(2.0F);
+            line->SetLabel("current");
         }
-    }
-    // Each geometry's point in its own colour (hue and saturation: plot_data.h
-    // displayColour; XYZ for the 10° observer through the sRGB matrix, for display only).
-    m_vtk->point_tables.clear();
-    m_vtk->labels->points.clear();
-    m_vtk->labels->labels.clear();
-    for (const MultiAngleColour& c : m_report.colours) {
-        auto table = vtkSmartPointer<vtkTable>::New();
-        for (const char* name : {"a", "b"}) {
-            vtkNew<vtkDoubleArray> column;
-            column->SetName(name);
-            table->AddColumn(column);
+        if (!comparison.colours.empty()) {
+            vtkPlot* line = chart->AddPlot(vtkChart::LINE);
+            line->SetInputData(m_vtk->comparison, 1, 2);
+            line->SetColor(60, 60, 60, 255);
+            line->SetWidth(2.0F);
+            line->GetPen()->SetLineType(vtkPen::DASH_LINE);
+            line->SetLabel(label.toStdString());
+            if (auto* points = vtkPlotPoints::SafeDownCast(line)) {
+                points->SetMarkerStyle(vtkPlotPoints::CROSS);
+                points->SetMarkerSize(9.0F);
+            }
         }
-        table->SetNumberOfRows(1);
-        table->SetValue(0, 0, c.lab.a);
-        table->SetValue(0, 1, c.lab.b);
-        vtkPlot* point = chart->AddPlot(vtkChart::POINTS);
-        point->SetInputData(table, 0, 1);
-        const Rgb8 colour = displayColour(xyzToLinearSrgb(c.xyz));
-        point->SetColor(colour.r, colour.g, colour.b, 255);
-        point->SetLegendVisibility(false);
-        if (auto* p = vtkPlotPoints::SafeDownCast(point)) {
-            p->SetMarkerStyle(vtkPlotPoints::CIRCLE);
-            p->SetMarkerSize(14.0F);
+        // Each geometry's point in its own colour (hue and saturation: plot_data.h
+        // displayColour; XYZ for the 10° observer through the sRGB matrix, for display only).
+        m_vtk->point_tables.clear();
+        m_vtk->labels->points.clear();
+        m_vtk->labels->labels.clear();
+        for (const MultiAngleColour& c : report.colours) {
+            auto table = vtkSmartPointer<vtkTable>::New();
+            for (const char* name : {"a", "b"}) {
+                vtkNew<vtkDoubleArray> column;
+                column->SetName(name);
+                table->AddColumn(column);
+            }
+            table->SetNumberOfRows(1);
+            table->SetValue(0, 0, c.lab.a);
+            table->SetValue(0, 1, c.lab.b);
+            vtkPlot* point = chart->AddPlot(vtkChart::POINTS);
+            point->SetInputData(table, 0, 1);
+            const Rgb8 colour = displayColour(xyzToLinearSrgb(c.xyz));
+            point->SetColor(colour.r, colour.g, colour.b, 255);
+            point->SetLegendVisibility(false);
+            if (auto* p = vtkPlotPoints::SafeDownCast(point)) {
+                p->SetMarkerStyle(vtkPlotPoints::CIRCLE);
+                p->SetMarkerSize(14.0F);
+            }
+            m_vtk->point_tables.push_back(table);
+            m_vtk->labels->points.emplace_back(c.lab.a, c.lab.b);
+            m_vtk->labels->labels.push_back(geometryName(c.aspecular_deg));
         }
-        m_vtk->point_tables.push_back(table);
-        m_vtk->labels->points.emplace_back(c.lab.a, c.lab.b);
-        m_vtk->labels->labels.push_back(geometryName(c.aspecular_deg));
-    }
 
-    // The same span on both axes, the origin (neutral grey) always in view.
-    double lo_a = 0.0;
-    double hi_a = 0.0;
-    double lo_b = 0.0;
-    double hi_b = 0.0;
-    for (const MultiAngleReport* r : {&m_report, &m_comparison})
-        for (const MultiAngleColour& c : r->colours) {
-            lo_a = std::min(lo_a, c.lab.a);
-            hi_a = std::max(hi_a, c.lab.a);
-            lo_b = std::min(lo_b, c.lab.b);
-            hi_b = std::max(hi_b, c.lab.b);
+        // The same span on both axes, the origin (neutral grey) always in view.
+        double lo_a = 0.0;
+        double hi_a = 0.0;
+        double lo_b = 0.0;
+        double hi_b = 0.0;
+        for (const MultiAngleReport* r : {&report, &comparison})
+            for (const MultiAngleColour& c : r->colours) {
+                lo_a = std::min(lo_a, c.lab.a);
+                hi_a = std::max(hi_a, c.lab.a);
+                lo_b = std::min(lo_b, c.lab.b);
+                hi_b = std::max(hi_b, c.lab.b);
+            }
+        const double half = std::max({hi_a - lo_a, hi_b - lo_b, 10.0}) * 0.6;
+        const double mid_a = 0.5 * (lo_a + hi_a);
+        const double mid_b = 0.5 * (lo_b + hi_b);
+        for (auto [axis, mid] : {std::pair{vtkAxis::BOTTOM, mid_a}, std::pair{vtkAxis::LEFT, mid_b}}) {
+            vtkAxis* a = chart->GetAxis(axis);
+            a->SetBehavior(vtkAxis::FIXED);
+            a->SetRange(mid - half, mid + half);
         }
-    const double half = std::max({hi_a - lo_a, hi_b - lo_b, 10.0}) * 0.6;
-    const double mid_a = 0.5 * (lo_a + hi_a);
-    const double mid_b = 0.5 * (lo_b + hi_b);
-    for (auto [axis, mid] : {std::pair{vtkAxis::BOTTOM, mid_a}, std::pair{vtkAxis::LEFT, mid_b}}) {
-        vtkAxis* a = chart->GetAxis(axis);
-        a->SetBehavior(vtkAxis::FIXED);
-        a->SetRange(mid - half, mid + half);
-    }
-    update();
+    });
     emit dataChanged();
 }
 

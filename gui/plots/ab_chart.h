@@ -48,7 +48,7 @@ public:
 private:
     void updateChart();
     struct Vtk;
-    std::unique_ptr<Vtk> m_vtk;
+    std::unique_ptr<Vtk> m_vtk;  // render thread only (plot_widget.h)
     MultiAngleReport m_report;
     MultiAngleReport m_comparison;
     QString m_comparison_label;

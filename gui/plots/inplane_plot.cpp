@@ -83,21 +83,22 @@ void fillTable(vtkTable* t, const std::vector<InplaneCurve>& curves, std::size_t
 
 }  // namespace
 
-InplanePlot::InplanePlot(QWidget* parent) : PlotWidget(parent), m_vtk(std::make_unique<Vtk>()) {
-    m_vtk->view->SetRenderWindow(renderWindow());
-    m_vtk->view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
-    m_vtk->view->GetScene()->AddItem(m_vtk->chart);
-    useReadableFont(m_vtk->chart);
-    m_vtk->chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("view angle (deg, negative: light side)");
-    m_vtk->chart->GetAxis(vtkAxis::LEFT)->SetTitle("pi f");
-    m_vtk->chart->SetShowLegend(true);
+InplanePlot::InplanePlot(QWidget* parent) : PlotWidget(parent) {
+    runOnRenderThread([this] {
+        m_vtk = std::make_unique<Vtk>();
+        m_vtk->view->SetRenderWindow(renderWindow());
+        m_vtk->view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
+        m_vtk->view->GetScene()->AddItem(m_vtk->chart);
+        useReadableFont(m_vtk->chart);
+        m_vtk->chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("view angle (deg, negative: light side)");
+        m_vtk->chart->GetAxis(vtkAxis::LEFT)->SetTitle("pi f");
+        m_vtk->chart->SetShowLegend(true);
+    });
     updateChart();
 }
 
 InplanePlot::~InplanePlot() {
-    makeCurrent();  // VTK releases its GL resources in the widget's context
-    m_vtk.reset();
-    doneCurrent();
+    runOnRenderThread([this] { m_vtk.reset(); });
 }
 
 void InplanePlot::compute(const LayeredBrdf& brdf) {
@@ -172,40 +173,44 @@ void InplanePlot::updateChart() {
         std::find_if(m_curves.begin(), m_curves.end(),
                      [this](const Curve& c) { return c.theta_i_deg == m_curve.theta_i_deg; }) -
         m_curves.begin());
-    fillTable(m_vtk->table, m_curves, primary, m_log_scale, QString());
-    fillTable(m_vtk->comparison, m_comparison, m_comparison.size(), m_log_scale,
-              QStringLiteral(" (%1)").arg(m_comparison_label));
-    vtkChartXY* chart = m_vtk->chart;
-    chart->ClearPlots();
-    chart->SetTitle(m_curves.size() == 1 ? QStringLiteral("In-plane reflectance factor, light at %1")
-                                               .arg(degrees(m_curve.theta_i_deg))
-                                               .toStdString()
-                                         : std::string("In-plane reflectance factor at several incidences"));
-    const auto addLines = [&](vtkTable* t, const std::vector<Curve>& curves, bool dashed, bool channels) {
-        if (curves.empty()) return;
-        vtkIdType col = 1;
-        for (std::size_t k = 0; k < curves.size(); ++k) {
-            vtkPlot* line = chart->AddPlot(vtkChart::LINE);
-            line->SetInputData(t, 0, col++);
-            const auto c = incidenceColour(k, curves.size());
-            line->SetColor(c[0], c[1], c[2], 255);
-            line->SetWidth(curves[k].theta_i_deg == kPrimaryIncidenceDeg ? 2.5F : 1.8F);
-            if (dashed) line->GetPen()->SetLineType(vtkPen::DASH_LINE);
-        }
-        if (!channels) return;
-        const unsigned char rgb[3][3] = {{200, 30, 30}, {30, 150, 30}, {30, 60, 200}};
-        for (const auto& c : rgb) {
-            vtkPlot* line = chart->AddPlot(vtkChart::LINE);
-            line->SetInputData(t, 0, col++);
-            line->SetColor(c[0], c[1], c[2], 255);
-            line->SetWidth(1.2F);
-        }
-    };
-    addLines(m_vtk->table, m_curves, false, true);
-    addLines(m_vtk->comparison, m_comparison, true, false);
-    chart->GetAxis(vtkAxis::LEFT)->SetLogScale(m_log_scale);
-    chart->RecalculateBounds();
-    update();
+    const std::string title = m_curves.size() == 1
+                                  ? QStringLiteral("In-plane reflectance factor, light at %1")
+                                        .arg(degrees(m_curve.theta_i_deg))
+                                        .toStdString()
+                                  : std::string("In-plane reflectance factor at several incidences");
+    // The render thread draws copies: the GUI thread may change the curves meanwhile.
+    onRenderThread([this, curves = m_curves, comparison = m_comparison, primary, title,
+                    log_scale = m_log_scale, suffix = QStringLiteral(" (%1)").arg(m_comparison_label)] {
+        fillTable(m_vtk->table, curves, primary, log_scale, QString());
+        fillTable(m_vtk->comparison, comparison, comparison.size(), log_scale, suffix);
+        vtkChartXY* chart = m_vtk->chart;
+        chart->ClearPlots();
+        chart->SetTitle(title);
+        const auto addLines = [&](vtkTable* t, const std::vector<Curve>& drawn, bool dashed, bool channels) {
+            if (drawn.empty()) return;
+            vtkIdType col = 1;
+            for (std::size_t k = 0; k < drawn.size(); ++k) {
+                vtkPlot* line = chart->AddPlot(vtkChart::LINE);
+                line->SetInputData(t, 0, col++);
+                const auto c = incidenceColour(k, drawn.size());
+                line->SetColor(c[0], c[1], c[2], 255);
+                line->SetWidth(drawn[k].theta_i_deg == kPrimaryIncidenceDeg ? 2.5F : 1.8F);
+                if (dashed) line->GetPen()->SetLineType(vtkPen::DASH_LINE);
+            }
+            if (!channels) return;
+            const unsigned char rgb[3][3] = {{200, 30, 30}, {30, 150, 30}, {30, 60, 200}};
+            for (const auto& c : rgb) {
+                vtkPlot* line = chart->AddPlot(vtkChart::LINE);
+                line->SetInputData(t, 0, col++);
+                line->SetColor(c[0], c[1], c[2], 255);
+                line->SetWidth(1.2F);
+            }
+        };
+        addLines(m_vtk->table, curves, false, true);
+        addLines(m_vtk->comparison, comparison, true, false);
+        chart->GetAxis(vtkAxis::LEFT)->SetLogScale(log_scale);
+        chart->RecalculateBounds();
+    });
     emit dataChanged();
 }
 

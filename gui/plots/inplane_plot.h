@@ -65,7 +65,7 @@ private:
     void pickPrimary();
     void updateChart();
     struct Vtk;
-    std::unique_ptr<Vtk> m_vtk;
+    std::unique_ptr<Vtk> m_vtk;  // render thread only (plot_widget.h)
     std::shared_ptr<const LayeredBrdf> m_brdf;
     std::vector<double> m_incidences{45.0};
     std::vector<Curve> m_curves;

@@ -90,51 +90,54 @@ struct LobePlot::Vtk {
           mirror(renderer, 0.45, 0.45, 0.45, 2.0F) {}
 };
 
-LobePlot::LobePlot(QWidget* parent) : PlotWidget(parent), m_vtk(std::make_unique<Vtk>()) {
-    Vtk& v = *m_vtk;
-    renderWindow()->AddRenderer(v.renderer);
-    v.renderer->SetBackground(1.0, 1.0, 1.0);
-    v.renderer->SetBackground2(0.86, 0.89, 0.93);
-    v.renderer->GradientBackgroundOn();
+LobePlot::LobePlot(QWidget* parent) : PlotWidget(parent) {
+    runOnRenderThread([this] {
+        m_vtk = std::make_unique<Vtk>();
+        Vtk& v = *m_vtk;
+        renderWindow()->AddRenderer(v.renderer);
+        v.renderer->SetBackground(1.0, 1.0, 1.0);
+        v.renderer->SetBackground2(0.86, 0.89, 0.93);
+        v.renderer->GradientBackgroundOn();
 
-    v.normals->SetInputData(v.lobe);
-    v.normals->SplittingOff();
-    v.normals->ConsistencyOn();
-    v.lobe_mapper->SetInputConnection(v.normals->GetOutputPort());
-    v.lobe_mapper->SetColorModeToDirectScalars();
-    v.lobe_mapper->ScalarVisibilityOn();
-    v.lobe_actor->SetMapper(v.lobe_mapper);
-    v.lobe_actor->GetProperty()->SetAmbient(0.35);
-    v.lobe_actor->GetProperty()->SetDiffuse(0.7);
-    v.lobe_actor->GetProperty()->SetSpecular(0.15);
-    v.renderer->AddActor(v.lobe_actor);
+        v.normals->SetInputData(v.lobe);
+        v.normals->SplittingOff();
+        v.normals->ConsistencyOn();
+        v.lobe_mapper->SetInputConnection(v.normals->GetOutputPort());
+        v.lobe_mapper->SetColorModeToDirectScalars();
+        v.lobe_mapper->ScalarVisibilityOn();
+        v.lobe_actor->SetMapper(v.lobe_mapper);
+        v.lobe_actor->GetProperty()->SetAmbient(0.35);
+        v.lobe_actor->GetProperty()->SetDiffuse(0.7);
+        v.lobe_actor->GetProperty()->SetSpecular(0.15);
+        v.renderer->AddActor(v.lobe_actor);
 
-    // The surface: a grey disk just below z = 0 and its rim at radius 1.
-    v.disk->SetNumberOfSides(96);
-    v.disk->SetRadius(1.0);
-    v.disk->SetCenter(0.0, 0.0, -0.002);
-    v.disk_mapper->SetInputConnection(v.disk->GetOutputPort());
-    v.disk_actor->SetMapper(v.disk_mapper);
-    v.disk_actor->GetProperty()->SetColor(0.8, 0.8, 0.8);
-    v.disk_actor->GetProperty()->SetLighting(false);
-    v.renderer->AddActor(v.disk_actor);
-    v.rim->SetNumberOfSides(96);
-    v.rim->SetRadius(1.0);
-    v.rim->GeneratePolygonOff();
-    v.rim->GeneratePolylineOn();
-    v.rim_mapper->SetInputConnection(v.rim->GetOutputPort());
-    v.rim_actor->SetMapper(v.rim_mapper);
-    v.rim_actor->GetProperty()->SetColor(0.35, 0.35, 0.35);
-    v.rim_actor->GetProperty()->SetLighting(false);
-    v.renderer->AddActor(v.rim_actor);
+        // The surface: a grey disk just below z = 0 and its rim at radius 1.
+        v.disk->SetNumberOfSides(96);
+        v.disk->SetRadius(1.0);
+        v.disk->SetCenter(0.0, 0.0, -0.002);
+        v.disk_mapper->SetInputConnection(v.disk->GetOutputPort());
+        v.disk_actor->SetMapper(v.disk_mapper);
+        v.disk_actor->GetProperty()->SetColor(0.8, 0.8, 0.8);
+        v.disk_actor->GetProperty()->SetLighting(false);
+        v.renderer->AddActor(v.disk_actor);
+        v.rim->SetNumberOfSides(96);
+        v.rim->SetRadius(1.0);
+        v.rim->GeneratePolygonOff();
+        v.rim->GeneratePolylineOn();
+        v.rim_mapper->SetInputConnection(v.rim->GetOutputPort());
+        v.rim_actor->SetMapper(v.rim_mapper);
+        v.rim_actor->GetProperty()->SetColor(0.35, 0.35, 0.35);
+        v.rim_actor->GetProperty()->SetLighting(false);
+        v.renderer->AddActor(v.rim_actor);
 
-    label(v.normal_label, v.renderer, "normal");
-    label(v.light_label, v.renderer, "light");
-    label(v.mirror_label, v.renderer, "mirror");
-    v.title->GetTextProperty()->SetFontSize(15);
-    v.title->GetTextProperty()->SetColor(0.1, 0.1, 0.1);
-    v.title->SetDisplayPosition(10, 10);
-    v.renderer->AddActor2D(v.title);
+        label(v.normal_label, v.renderer, "normal");
+        label(v.light_label, v.renderer, "light");
+        label(v.mirror_label, v.renderer, "mirror");
+        v.title->GetTextProperty()->SetFontSize(15);
+        v.title->GetTextProperty()->SetColor(0.1, 0.1, 0.1);
+        v.title->SetDisplayPosition(10, 10);
+        v.renderer->AddActor2D(v.title);
+    });
 
     setFocusPolicy(Qt::StrongFocus);
     setMouseTracking(true);  // moves reach the widget whatever the event's button state says
@@ -143,9 +146,7 @@ LobePlot::LobePlot(QWidget* parent) : PlotWidget(parent), m_vtk(std::make_unique
 }
 
 LobePlot::~LobePlot() {
-    makeCurrent();
-    m_vtk.reset();
-    doneCurrent();
+    runOnRenderThread([this] { m_vtk.reset(); });
 }
 
 void LobePlot::compute(const LayeredBrdf& brdf) { m_grid = lobeGrid(brdf, m_theta_i_deg, m_phi_i_deg); }
@@ -195,87 +196,89 @@ void LobePlot::setLogRadius(bool log_radius) {
 }
 
 void LobePlot::resetView() {
-    vtkCamera* camera = m_vtk->renderer->GetActiveCamera();
-    camera->SetFocalPoint(0.0, 0.0, 0.4);
-    camera->SetPosition(1.4, -4.0, 2.5);
-    camera->SetViewUp(0.0, 0.0, 1.0);
-    camera->SetViewAngle(30.0);
-    m_vtk->renderer->ResetCameraClippingRange();
-    update();
+    onRenderThread([this] {
+        vtkCamera* camera = m_vtk->renderer->GetActiveCamera();
+        camera->SetFocalPoint(0.0, 0.0, 0.4);
+        camera->SetPosition(1.4, -4.0, 2.5);
+        camera->SetViewUp(0.0, 0.0, 1.0);
+        camera->SetViewAngle(30.0);
+        m_vtk->renderer->ResetCameraClippingRange();
+    });
 }
 
 std::array<double, 3> LobePlot::cameraPosition() const {
     std::array<double, 3> p{};
-    m_vtk->renderer->GetActiveCamera()->GetPosition(p.data());
+    runOnRenderThread([this, &p] { m_vtk->renderer->GetActiveCamera()->GetPosition(p.data()); });
     return p;
 }
 
 void LobePlot::updateScene() {
-    Vtk& v = *m_vtk;
-    const LobeGrid& g = m_grid;
-    const std::size_t rings = g.theta_o_deg.size();
-    const std::size_t azimuths = g.phi_o_deg.size();
-    vtkNew<vtkPoints> points;
-    vtkNew<vtkUnsignedCharArray> colours;
-    colours->SetName("colour");
-    colours->SetNumberOfComponents(3);
-    vtkNew<vtkCellArray> triangles;
-    if (rings >= 2 && azimuths >= 2 && g.y.size() == rings * azimuths) {
-        const auto count = static_cast<vtkIdType>(rings) * static_cast<vtkIdType>(azimuths);
-        points->SetNumberOfPoints(count);
-        colours->SetNumberOfTuples(count);
-        for (std::size_t t = 0; t < rings; ++t) {
-            const double theta = g.theta_o_deg[t] * kDeg;
-            for (std::size_t p = 0; p < azimuths; ++p) {
-                const std::size_t k = t * azimuths + p;
-                double r = g.max_y > 0.0 ? g.y[k] / g.max_y : 0.0;
-                if (m_log_radius) r = r > 0.0 ? std::max(0.0, 1.0 + std::log10(r) / kLogDecades) : 0.0;
-                const double phi = g.phi_o_deg[p] * kDeg;
-                const auto id = static_cast<vtkIdType>(k);
-                points->SetPoint(id, r * std::sin(theta) * std::cos(phi), r * std::sin(theta) * std::sin(phi),
-                                 r * std::cos(theta));
-                const Rgb8 c = displayColour(g.linear_srgb[k]);
-                const unsigned char rgb[3] = {c.r, c.g, c.b};
-                colours->SetTypedTuple(id, rgb);
-            }
-        }
-        const auto vertex = [azimuths](std::size_t t, std::size_t p) {
-            return static_cast<vtkIdType>(t) * static_cast<vtkIdType>(azimuths) +
-                   static_cast<vtkIdType>(p % azimuths);
-        };
-        for (std::size_t t = 0; t + 1 < rings; ++t)
-            for (std::size_t p = 0; p < azimuths; ++p) {
-                const vtkIdType a[3] = {vertex(t, p), vertex(t + 1, p), vertex(t + 1, p + 1)};
-                const vtkIdType b[3] = {vertex(t, p), vertex(t + 1, p + 1), vertex(t, p + 1)};
-                triangles->InsertNextCell(3, a);
-                triangles->InsertNextCell(3, b);
-            }
-    }
-    v.lobe->SetPoints(points);
-    v.lobe->SetPolys(triangles);
-    v.lobe->GetPointData()->SetScalars(colours);
-    v.lobe->Modified();
-
-    const Direction wi = directionFromAnglesDeg(m_theta_i_deg, m_phi_i_deg);
-    const double origin[3] = {0.0, 0.0, 0.0};
-    const double up[3] = {0.0, 0.0, 1.25};
-    const double light[3] = {1.3 * wi.x, 1.3 * wi.y, 1.3 * wi.z};
-    const double mirror[3] = {-1.15 * wi.x, -1.15 * wi.y, 1.15 * wi.z};
-    v.normal.set(origin, up);
-    v.light.set(origin, light);
-    v.mirror.set(origin, mirror);
-    v.normal_label->SetPosition(0.0, 0.0, 1.35);
-    v.light_label->SetPosition(1.42 * wi.x, 1.42 * wi.y, 1.42 * wi.z);
-    v.mirror_label->SetPosition(-1.27 * wi.x, -1.27 * wi.y, 1.27 * wi.z);
     const QString title =
         tr("BRDF lobe, light at theta %1 deg, phi %2 deg\nradius: Y of pi f%3 (peak %4); colour: its hue")
             .arg(m_theta_i_deg, 0, 'g', 3)
             .arg(m_phi_i_deg, 0, 'g', 3)
             .arg(m_log_radius ? tr(", log over 3 decades") : QString())
-            .arg(g.max_y, 0, 'g', 3);
-    v.title->SetInput(title.toUtf8().constData());
-    v.renderer->ResetCameraClippingRange();
-    update();
+            .arg(m_grid.max_y, 0, 'g', 3);
+    // The render thread builds the surface from copies: the GUI thread may change them meanwhile.
+    onRenderThread([this, g = m_grid, log_radius = m_log_radius,
+                    wi = directionFromAnglesDeg(m_theta_i_deg, m_phi_i_deg), title = title.toStdString()] {
+        Vtk& v = *m_vtk;
+        const std::size_t rings = g.theta_o_deg.size();
+        const std::size_t azimuths = g.phi_o_deg.size();
+        vtkNew<vtkPoints> points;
+        vtkNew<vtkUnsignedCharArray> colours;
+        colours->SetName("colour");
+        colours->SetNumberOfComponents(3);
+        vtkNew<vtkCellArray> triangles;
+        if (rings >= 2 && azimuths >= 2 && g.y.size() == rings * azimuths) {
+            const auto count = static_cast<vtkIdType>(rings) * static_cast<vtkIdType>(azimuths);
+            points->SetNumberOfPoints(count);
+            colours->SetNumberOfTuples(count);
+            for (std::size_t t = 0; t < rings; ++t) {
+                const double theta = g.theta_o_deg[t] * kDeg;
+                for (std::size_t p = 0; p < azimuths; ++p) {
+                    const std::size_t k = t * azimuths + p;
+                    double r = g.max_y > 0.0 ? g.y[k] / g.max_y : 0.0;
+                    if (log_radius) r = r > 0.0 ? std::max(0.0, 1.0 + std::log10(r) / kLogDecades) : 0.0;
+                    const double phi = g.phi_o_deg[p] * kDeg;
+                    const auto id = static_cast<vtkIdType>(k);
+                    points->SetPoint(id, r * std::sin(theta) * std::cos(phi),
+                                     r * std::sin(theta) * std::sin(phi), r * std::cos(theta));
+                    const Rgb8 c = displayColour(g.linear_srgb[k]);
+                    const unsigned char rgb[3] = {c.r, c.g, c.b};
+                    colours->SetTypedTuple(id, rgb);
+                }
+            }
+            const auto vertex = [azimuths](std::size_t t, std::size_t p) {
+                return static_cast<vtkIdType>(t) * static_cast<vtkIdType>(azimuths) +
+                       static_cast<vtkIdType>(p % azimuths);
+            };
+            for (std::size_t t = 0; t + 1 < rings; ++t)
+                for (std::size_t p = 0; p < azimuths; ++p) {
+                    const vtkIdType a[3] = {vertex(t, p), vertex(t + 1, p), vertex(t + 1, p + 1)};
+                    const vtkIdType b[3] = {vertex(t, p), vertex(t + 1, p + 1), vertex(t, p + 1)};
+                    triangles->InsertNextCell(3, a);
+                    triangles->InsertNextCell(3, b);
+                }
+        }
+        v.lobe->SetPoints(points);
+        v.lobe->SetPolys(triangles);
+        v.lobe->GetPointData()->SetScalars(colours);
+        v.lobe->Modified();
+
+        const double origin[3] = {0.0, 0.0, 0.0};
+        const double up[3] = {0.0, 0.0, 1.25};
+        const double light[3] = {1.3 * wi.x, 1.3 * wi.y, 1.3 * wi.z};
+        const double mirror[3] = {-1.15 * wi.x, -1.15 * wi.y, 1.15 * wi.z};
+        v.normal.set(origin, up);
+        v.light.set(origin, light);
+        v.mirror.set(origin, mirror);
+        v.normal_label->SetPosition(0.0, 0.0, 1.35);
+        v.light_label->SetPosition(1.42 * wi.x, 1.42 * wi.y, 1.42 * wi.z);
+        v.mirror_label->SetPosition(-1.27 * wi.x, -1.27 * wi.y, 1.27 * wi.z);
+        v.title->SetInput(title.c_str());
+        v.renderer->ResetCameraClippingRange();
+    });
     emit dataChanged();
 }
 
@@ -289,20 +292,21 @@ void LobePlot::mouseMoveEvent(QMouseEvent* event) {
     const QPoint now = event->position().toPoint();
     const QPoint d = now - m_last_mouse;
     m_last_mouse = now;
-    vtkCamera* camera = m_vtk->renderer->GetActiveCamera();
     if (m_drag == Qt::LeftButton) {
         // As vtkInteractorStyleTrackballCamera::Rotate: a full widget height is 180 degrees.
         const double per_pixel = 180.0 / std::max(1, height());
-        camera->Azimuth(-d.x() * per_pixel);
-        camera->Elevation(d.y() * per_pixel);
-        camera->OrthogonalizeViewUp();
+        onRenderThread([this, azimuth = -d.x() * per_pixel, elevation = d.y() * per_pixel] {
+            vtkCamera* camera = m_vtk->renderer->GetActiveCamera();
+            camera->Azimuth(azimuth);
+            camera->Elevation(elevation);
+            camera->OrthogonalizeViewUp();
+            m_vtk->renderer->ResetCameraClippingRange();
+        });
     } else if (m_drag == Qt::RightButton) {
-        camera->Dolly(std::pow(1.01, -d.y()));
+        dolly(std::pow(1.01, -d.y()));
     } else {
         return;
     }
-    m_vtk->renderer->ResetCameraClippingRange();
-    update();
     event->accept();
 }
 
@@ -317,10 +321,15 @@ void LobePlot::mouseDoubleClickEvent(QMouseEvent* event) {
 }
 
 void LobePlot::wheelEvent(QWheelEvent* event) {
-    m_vtk->renderer->GetActiveCamera()->Dolly(std::pow(1.1, event->angleDelta().y() / 120.0));
-    m_vtk->renderer->ResetCameraClippingRange();
-    update();
+    dolly(std::pow(1.1, event->angleDelta().y() / 120.0));
     event->accept();
+}
+
+void LobePlot::dolly(double factor) {
+    onRenderThread([this, factor] {
+        m_vtk->renderer->GetActiveCamera()->Dolly(factor);
+        m_vtk->renderer->ResetCameraClippingRange();
+    });
 }
 
 bool LobePlot::exportCsv(const QString& path) const {

@@ -52,7 +52,8 @@ public:
     void resetView();
 
     const LobeGrid& grid() const { return m_grid; }
-    // GUI-thread time of the last update (grid and VTK geometry), ms.
+    // GUI-thread time of the last update (the grid, when computed here, and
+    // copying it for the render thread, which builds the VTK geometry), ms.
     double lastUpdateMs() const { return m_update_ms; }
     std::array<double, 3> cameraPosition() const;
     // Columns theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,R,G,B,Y (linear sRGB
@@ -67,10 +68,11 @@ protected:
     void wheelEvent(QWheelEvent* event) override;
 
 private:
+    void dolly(double factor);  // camera towards (> 1) or away from the focal point
     void compute(const LayeredBrdf& brdf);
     void updateScene();
     struct Vtk;
-    std::unique_ptr<Vtk> m_vtk;
+    std::unique_ptr<Vtk> m_vtk;  // render thread only (plot_widget.h)
     std::shared_ptr<const LayeredBrdf> m_brdf;
     LobeGrid m_grid;
     double m_theta_i_deg = 45.0;

@@ -1,8 +1,12 @@
 #include "plot_widget.h"
 
+#include "plot_render_thread.h"
+
 #include <QElapsedTimer>
-#include <QImage>
+#include <QOffscreenSurface>
 #include <QOpenGLContext>
+#include <QOpenGLFramebufferObject>
+#include <QPainter>
 #include <QSaveFile>
 #include <QTextStream>
 
@@ -17,25 +21,183 @@
 
 namespace paintlab::gui {
 
-struct PlotWidget::Vtk {
+// Everything here belongs to the render thread: created, used and destroyed there.
+struct PlotWidget::Gl {
+    QOpenGLContext context;
+    std::unique_ptr<QOpenGLFramebufferObject> framebuffer;
     vtkNew<vtkGenericOpenGLRenderWindow> window;
 };
 
-PlotWidget::PlotWidget(QWidget* parent) : QOpenGLWidget(parent), m_vtk(std::make_unique<Vtk>()) {
+PlotWidget::PlotWidget(QWidget* parent) : QWidget(parent) {
     setMinimumSize(320, 240);
+    setAttribute(Qt::WA_OpaquePaintEvent);  // paintEvent covers every pixel
+    m_surface = new QOffscreenSurface(nullptr, this);
+    m_surface->setFormat(QSurfaceFormat::defaultFormat());
+    m_surface->create();
+    runOnRenderThread([this] {
+        auto gl = std::make_unique<Gl>();
+        gl->context.setFormat(QSurfaceFormat::defaultFormat());
+        if (!gl->context.create() || !gl->context.makeCurrent(m_surface)) {
+            m_failure = tr("OpenGL %1.%2 is not available for the plots")
+                            .arg(QSurfaceFormat::defaultFormat().majorVersion())
+                            .arg(QSurfaceFormat::defaultFormat().minorVersion());
+        } else {
+            // Qt owns the context; VTK draws into whatever framebuffer is bound
+            // when it renders (ours) and loads its GL functions from this context.
+            vtkGenericOpenGLRenderWindow* w = gl->window;
+            w->SetOwnContext(0);
+            w->SetReadyForRendering(true);
+            w->SetIsCurrent(true);
+            w->SetFrameBlitModeToBlitToCurrent();
+            // No multisampling: under Mesa's software rasteriser 8x MSAA made
+            // every frame 3-4x slower (a chart: ~100 ms instead of ~25 ms); VTK's
+            // 2D lines and text are smoothed anyway.
+            w->SetMultiSamples(0);
+            w->InitializeFromCurrentContext();
+        }
+        m_gl = std::move(gl);
+    });
 }
 
 PlotWidget::~PlotWidget() {
-    // QOpenGLWidget's own destructor, which runs after this one, destroys the
-    // context: its aboutToBeDestroyed must not reach this half-destroyed widget.
-    if (context() != nullptr) disconnect(context(), nullptr, this, nullptr);
-    makeCurrent();  // VTK releases its GL resources in the widget's context
-    m_vtk->window->Finalize();
-    m_vtk.reset();
-    doneCurrent();
+    // Subclasses have destroyed their VTK objects on the render thread; the
+    // window gives its GL resources back while its context is still current.
+    runOnRenderThread([this] {
+        if (m_failure.isEmpty()) m_gl->window->Finalize();
+        m_gl->framebuffer.reset();
+        m_gl->context.doneCurrent();
+        m_gl.reset();
+    });
 }
 
-vtkGenericOpenGLRenderWindow* PlotWidget::renderWindow() const { return m_vtk->window; }
+vtkGenericOpenGLRenderWindow* PlotWidget::renderWindow() const { return m_gl->window; }
+
+void PlotWidget::onRenderThread(std::function<void()> vtk_work) {
+    PlotRenderThread::instance().post([this, work = std::move(vtk_work)] {
+        if (m_failure.isEmpty()) m_gl->context.makeCurrent(m_surface);
+        work();
+    });
+    scheduleRender();
+}
+
+void PlotWidget::runOnRenderThread(const std::function<void()>& vtk_work) const {
+    PlotRenderThread::instance().run([this, &vtk_work] {
+        if (m_gl && m_failure.isEmpty()) m_gl->context.makeCurrent(m_surface);
+        vtk_work();
+    });
+}
+
+void PlotWidget::noteSize() {
+    const double ratio = devicePixelRatioF();
+    const QSize size = this->size().expandedTo(minimumSize());
+    m_pixel_ratio = ratio;
+    m_width_px = static_cast<int>(size.width() * ratio);
+    m_height_px = static_cast<int>(size.height() * ratio);
+}
+
+void PlotWidget::scheduleRender() {
+    // A hidden plot (another tab) is drawn when it is shown, not on every change.
+    if (!isVisible()) {
+        m_dirty_while_hidden = true;
+        return;
+    }
+    noteSize();
+    if (m_render_queued.exchange(true)) return;  // the queued one will draw the latest state
+    PlotRenderThread::instance().post([this] {
+        m_render_queued = false;
+        const QImage image = drawNow();
+        // Delivered on the GUI thread; dropped if the widget is gone by then.
+        QMetaObject::invokeMethod(
+            this, [this, image] { showImage(image); }, Qt::QueuedConnection);
+    });
+}
+
+QSize PlotWidget::devicePixels() const {
+    return {std::max(1, m_width_px.load()), std::max(1, m_height_px.load())};
+}
+
+QImage PlotWidget::drawNow() {
+    if (!m_failure.isEmpty()) return {};
+    QElapsedTimer timer;
+    timer.start();
+    Gl& gl = *m_gl;
+    if (!gl.context.makeCurrent(m_surface)) return {};
+    const QSize size = devicePixels();
+    if (!gl.framebuffer || gl.framebuffer->size() != size)
+        gl.framebuffer =
+            std::make_unique<QOpenGLFramebufferObject>(size, QOpenGLFramebufferObject::CombinedDepthStencil);
+    gl.framebuffer->bind();
+    vtkGenericOpenGLRenderWindow* w = gl.window;
+    w->SetSize(size.width(), size.height());
+    w->SetIsCurrent(true);
+    // Other plots' windows share nothing with this one, but Qt binds and
+    // recreates framebuffers behind VTK's state cache: record it afresh.
+    vtkOpenGLState* state = w->GetState();
+    state->Reset();
+    state->Push();
+    w->Render();
+    state->Pop();
+    QImage image = gl.framebuffer->toImage(true);  // top row first; also waits for the rasteriser
+    gl.framebuffer->release();
+    // VTK's 2D charts leave alpha at 0 where they draw no ink, over colour
+    // that is already the background's: the plot is opaque, as a
+    // QOpenGLWidget showed it, so the alpha channel is dropped, not applied.
+    switch (image.format()) {
+    case QImage::Format_RGBA8888:
+    case QImage::Format_RGBA8888_Premultiplied:
+        image.reinterpretAsFormat(QImage::Format_RGBX8888);
+        break;
+    case QImage::Format_ARGB32:
+    case QImage::Format_ARGB32_Premultiplied:
+        image.reinterpretAsFormat(QImage::Format_RGB32);
+        break;
+    default:
+        break;
+    }
+    image.setDevicePixelRatio(m_pixel_ratio.load());
+    m_paint_ms = static_cast<double>(timer.nsecsElapsed()) * 1e-6;
+    return image;
+}
+
+void PlotWidget::showImage(const QImage& image) {
+    m_image = image;
+    update();
+}
+
+QImage PlotWidget::renderImage() {
+    noteSize();
+    QImage image;
+    runOnRenderThread([this, &image] { image = drawNow(); });
+    showImage(image);
+    return image;
+}
+
+void PlotWidget::paintEvent(QPaintEvent* /*event*/) {
+    QElapsedTimer timer;
+    timer.start();
+    QPainter painter(this);
+    if (m_image.isNull()) {
+        painter.fillRect(rect(), Qt::white);
+        if (!m_failure.isEmpty()) painter.drawText(rect(), Qt::AlignCenter | Qt::TextWordWrap, m_failure);
+    } else {
+        // Until the drawing at a new size arrives, the last one is stretched to fit.
+        painter.drawImage(rect(), m_image);
+    }
+    m_show_ms = static_cast<double>(timer.nsecsElapsed()) * 1e-6;
+}
+
+void PlotWidget::resizeEvent(QResizeEvent* event) {
+    QWidget::resizeEvent(event);
+    scheduleRender();
+}
+
+void PlotWidget::showEvent(QShowEvent* event) {
+    QWidget::showEvent(event);
+    if (m_dirty_while_hidden || m_image.isNull()) {
+        m_dirty_while_hidden = false;
+        scheduleRender();
+    }
+}
 
 void PlotWidget::useReadableFont(vtkChartXY* chart) {
     static const char* const kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
@@ -50,56 +212,6 @@ void PlotWidget::useReadableFont(vtkChartXY* chart) {
     for (int axis = vtkAxis::LEFT; axis <= vtkAxis::TOP; ++axis)
         use(chart->GetAxis(axis)->GetLabelProperties());
 }
-
-void PlotWidget::initializeGL() {
-    // Qt owns the context; VTK draws into whatever framebuffer is bound when
-    // it renders (the widget's) and loads its GL functions from this context.
-    vtkGenericOpenGLRenderWindow* w = m_vtk->window;
-    w->SetOwnContext(0);
-    w->SetReadyForRendering(true);
-    w->SetIsCurrent(true);
-    w->SetFrameBlitModeToBlitToCurrent();
-    // No multisampling: under Mesa's software rasteriser (Xvfb, CI) 8x MSAA
-    // made every frame 3-4x slower (a chart: ~100 ms instead of ~25 ms), past
-    // the GUI thread's 50 ms; VTK's 2D lines and text are smoothed anyway.
-    w->SetMultiSamples(0);
-    w->InitializeFromCurrentContext();
-    // Floating or re-docking the dock moves the widget to another top-level
-    // window: Qt destroys this context and calls initializeGL again with a new
-    // one. VTK's shaders, buffers and glyph textures belong to the old context
-    // and are given back while it is still current (as VTK's own
-    // QVTKOpenGLNativeWidget does), or the new context would use dead handles.
-    connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, &PlotWidget::releaseGraphicsResources,
-            Qt::UniqueConnection);
-}
-
-void PlotWidget::releaseGraphicsResources() {
-    makeCurrent();
-    m_vtk->window->ReleaseGraphicsResources(m_vtk->window);
-    doneCurrent();
-}
-
-void PlotWidget::resizeGL(int w, int h) {
-    const double ratio = devicePixelRatioF();
-    m_vtk->window->SetSize(static_cast<int>(w * ratio), static_cast<int>(h * ratio));
-}
-
-void PlotWidget::paintGL() {
-    QElapsedTimer timer;
-    timer.start();
-    vtkGenericOpenGLRenderWindow* w = m_vtk->window;
-    w->SetIsCurrent(true);
-    // Qt changes GL state (the bound framebuffer is recreated on resize, for
-    // instance) behind VTK's cache: record it afresh, and give it back as found.
-    vtkOpenGLState* state = w->GetState();
-    state->Reset();
-    state->Push();
-    w->Render();
-    state->Pop();
-    m_paint_ms = static_cast<double>(timer.nsecsElapsed()) * 1e-6;
-}
-
-QImage PlotWidget::renderImage() { return grabFramebuffer(); }
 
 bool PlotWidget::exportPng(const QString& path) {
     const QImage image = renderImage();

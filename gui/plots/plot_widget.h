@@ -1,28 +1,38 @@
 #pragma once
-// What every VTK plot of the workstation shares: VTK draws into a Qt6
-// QOpenGLWidget through a vtkGenericOpenGLRenderWindow (Debian 12's VTK Qt
-// module is Qt5-only, shared/notes/debian12-stack.md, trap 1). initializeGL
-// makes the VTK window ready and current and initialises it from the widget's
-// context; resizeGL sizes it; paintGL renders, and VTK blits into the
-// framebuffer Qt has bound (the widget's, or grabFramebuffer's). Every plot
-// exports what it shows as PNG and the numbers behind it as CSV.
+// What every VTK plot of the workstation shares. VTK draws offscreen, on the
+// plot render thread (plot_render_thread.h), into a framebuffer object of a
+// context of the plot's own, through a vtkGenericOpenGLRenderWindow (Debian
+// 12's VTK Qt module is Qt5-only, shared/notes/debian12-stack.md, trap 1);
+// the image read back is what this plain QWidget paints. The GUI thread never
+// waits for VTK, and the main window holds no OpenGL widget, so Qt composes
+// it in the raster backing store instead of through OpenGL.
 //
-// Only a forward declaration of the VTK window appears here, for subclasses;
-// no VTK header is included.
+// Rules for subclasses: every VTK object is created, changed, queried and
+// destroyed in a task given to onRenderThread (queued; a redraw follows) or
+// runOnRenderThread (waited for: construction, destruction, queries). A task
+// must not read the widget's own data, which the GUI thread may change
+// meanwhile: it captures a copy. Every plot exports what it shows as PNG and
+// the numbers behind it as CSV.
+//
+// Only forward declarations of VTK types appear here; no VTK header is included.
 
-#include <QOpenGLWidget>
+#include <QImage>
 #include <QString>
 #include <QStringList>
+#include <QWidget>
 
+#include <atomic>
+#include <functional>
 #include <memory>
 #include <vector>
 
+class QOffscreenSurface;
 class vtkChartXY;
 class vtkGenericOpenGLRenderWindow;
 
 namespace paintlab::gui {
 
-class PlotWidget : public QOpenGLWidget {
+class PlotWidget : public QWidget {
     Q_OBJECT
 public:
     explicit PlotWidget(QWidget* parent = nullptr);
@@ -32,8 +42,8 @@ public:
     PlotWidget(PlotWidget&&) = delete;
     PlotWidget& operator=(PlotWidget&&) = delete;
 
-    // The plot as drawn, at the widget's size in device pixels; null if the
-    // widget has never been shown (a QOpenGLWidget has no framebuffer before).
+    // The plot drawn now, at the widget's size in device pixels, with every
+    // change made so far (waits for the render thread); null if OpenGL failed.
     QImage renderImage();
     // Writes renderImage() as PNG; false (and no file) if there is no image or
     // the file cannot be written.
@@ -41,18 +51,30 @@ public:
     // Writes the plotted numbers as CSV (full double precision); false (and
     // nothing half written) on failure.
     virtual bool exportCsv(const QString& path) const = 0;
-    // GUI-thread time of the last paintGL (VTK's render and blit), ms.
-    double lastPaintMs() const { return m_paint_ms; }
+    // Render-thread time of the last draw (VTK's render and the read-back), ms.
+    double lastPaintMs() const { return m_paint_ms.load(); }
+    // GUI-thread time of the last paintEvent (drawing the image), ms.
+    double lastShowMs() const { return m_show_ms; }
+    // Why there is no image, if OpenGL could not be set up (empty otherwise).
+    const QString& failure() const { return m_failure; }
 
 signals:
     // The plotted data changed (after setBrdf and the like).
     void dataChanged();
 
 protected:
+    // Render thread only.
     vtkGenericOpenGLRenderWindow* renderWindow() const;
-    void initializeGL() override;
-    void resizeGL(int w, int h) override;
-    void paintGL() override;
+    // Queues VTK work (with this plot's context current) and then a redraw.
+    void onRenderThread(std::function<void()> vtk_work);
+    // Runs VTK work with this plot's context current and waits for it.
+    void runOnRenderThread(const std::function<void()>& vtk_work) const;
+    // Queues a redraw (several queued ones draw once).
+    void scheduleRender();
+
+    void paintEvent(QPaintEvent* event) override;
+    void resizeEvent(QResizeEvent* event) override;
+    void showEvent(QShowEvent* event) override;
 
     // One CSV file: a header line and rows of already formatted cells
     // (quoted where needed), atomically replaced (QSaveFile).
@@ -62,17 +84,28 @@ protected:
     // The chart's axis numbers in DejaVu Sans (Debian's fonts-dejavu-core)
     // instead of VTK's built-in Arial, whose zero is drawn like a "D" at
     // chart sizes ("D.1D" for 0.10); the built-in font stays if the file is
-    // missing.
+    // missing. Render thread only.
     static void useReadableFont(vtkChartXY* chart);
     static QString csvText(const QString& text);
 
 private:
-    // Gives VTK's GL objects back to the context that is about to go (initializeGL).
-    void releaseGraphicsResources();
+    struct Gl;         // render-thread objects: context, framebuffer, VTK window
+    QImage drawNow();  // render thread
+    void showImage(const QImage& image);
+    QSize devicePixels() const;
+    void noteSize();  // GUI thread: the size the next drawing has
 
-    struct Vtk;
-    std::unique_ptr<Vtk> m_vtk;
-    double m_paint_ms = 0.0;
+    QOffscreenSurface* m_surface = nullptr;  // created and destroyed on the GUI thread, as Qt requires
+    std::unique_ptr<Gl> m_gl;
+    QImage m_image;  // the latest drawing, shown by paintEvent
+    std::atomic<int> m_width_px{0};
+    std::atomic<int> m_height_px{0};
+    std::atomic<double> m_pixel_ratio{1.0};
+    std::atomic<bool> m_render_queued{false};
+    std::atomic<double> m_paint_ms{0.0};
+    double m_show_ms = 0.0;
+    bool m_dirty_while_hidden = false;
+    QString m_failure;  // set once, in the constructor
 };
 
 }  // namespace paintlab::gui

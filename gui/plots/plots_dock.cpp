@@ -216,9 +216,10 @@ void PlotsDock::requestUpdate() {
             m_ab->setReport(std::move(result->report));
             m_update_ms = static_cast<double>(timer.nsecsElapsed()) * 1e-6;
             m_compute_ms = result->seconds * 1e3;
-            m_status->setText(tr("data %1 ms (worker), drawn %2 ms")
-                                  .arg(m_compute_ms, 0, 'f', 1)
-                                  .arg(m_update_ms, 0, 'f', 1));
+            m_status->setText(
+                tr("data %1 ms (worker), handed to the plots in %2 ms (they draw on the plot render thread)")
+                    .arg(m_compute_ms, 0, 'f', 1)
+                    .arg(m_update_ms, 0, 'f', 1));
             emit updated();
         });
     });

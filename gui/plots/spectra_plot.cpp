@@ -41,20 +41,21 @@ constexpr std::array<std::array<unsigned char, 3>, 9> kPalette{{{0, 114, 178},
 
 }  // namespace
 
-SpectraPlot::SpectraPlot(QWidget* parent) : PlotWidget(parent), m_vtk(std::make_unique<Vtk>()) {
-    m_vtk->view->SetRenderWindow(renderWindow());
-    m_vtk->view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
-    m_vtk->view->GetScene()->AddItem(m_vtk->chart);
-    useReadableFont(m_vtk->chart);
-    m_vtk->chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("wavelength (nm)");
-    m_vtk->chart->SetShowLegend(true);
+SpectraPlot::SpectraPlot(QWidget* parent) : PlotWidget(parent) {
+    runOnRenderThread([this] {
+        m_vtk = std::make_unique<Vtk>();
+        m_vtk->view->SetRenderWindow(renderWindow());
+        m_vtk->view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
+        m_vtk->view->GetScene()->AddItem(m_vtk->chart);
+        useReadableFont(m_vtk->chart);
+        m_vtk->chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("wavelength (nm)");
+        m_vtk->chart->SetShowLegend(true);
+    });
     updateChart();
 }
 
 SpectraPlot::~SpectraPlot() {
-    makeCurrent();
-    m_vtk.reset();
-    doneCurrent();
+    runOnRenderThread([this] { m_vtk.reset(); });
 }
 
 void SpectraPlot::setBrdf(const SpectralBrdf& brdf) {
@@ -93,37 +94,38 @@ std::vector<NamedSpectrum> SpectraPlot::shownSpectra() const {
 }
 
 void SpectraPlot::updateChart() {
-    vtkChartXY* chart = m_vtk->chart;
-    chart->ClearPlots();
-    m_vtk->tables.clear();
-    chart->SetTitle(m_title.toStdString());
-    chart->GetAxis(vtkAxis::LEFT)->SetTitle(m_quantity);
-    const std::vector<NamedSpectrum> shown = shownSpectra();
-    for (std::size_t k = 0; k < shown.size(); ++k) {
-        const Spectrum& s = shown[k].spectrum;
-        auto table = vtkSmartPointer<vtkTable>::New();
-        vtkNew<vtkDoubleArray> wavelength;
-        wavelength->SetName("wavelength_nm");
-        table->AddColumn(wavelength);
-        vtkNew<vtkDoubleArray> value;
-        value->SetName(shown[k].name.c_str());
-        table->AddColumn(value);
-        // A constant spectrum (one sample) is drawn across the visible range.
-        const std::vector<double> nm =
-            s.isConstant() ? std::vector<double>{kVisibleMinNm, kVisibleMaxNm} : s.wavelengthsNm();
-        table->SetNumberOfRows(static_cast<vtkIdType>(nm.size()));
-        for (std::size_t i = 0; i < nm.size(); ++i) {
-            table->SetValue(static_cast<vtkIdType>(i), 0, nm[i]);
-            table->SetValue(static_cast<vtkIdType>(i), 1, s(nm[i]));
+    // The render thread draws copies: the GUI thread may change the spectra meanwhile.
+    onRenderThread([this, shown = shownSpectra(), title = m_title.toStdString(), quantity = m_quantity] {
+        vtkChartXY* chart = m_vtk->chart;
+        chart->ClearPlots();
+        m_vtk->tables.clear();
+        chart->SetTitle(title);
+        chart->GetAxis(vtkAxis::LEFT)->SetTitle(quantity);
+        for (std::size_t k = 0; k < shown.size(); ++k) {
+            const Spectrum& s = shown[k].spectrum;
+            auto table = vtkSmartPointer<vtkTable>::New();
+            vtkNew<vtkDoubleArray> wavelength;
+            wavelength->SetName("wavelength_nm");
+            table->AddColumn(wavelength);
+            vtkNew<vtkDoubleArray> value;
+            value->SetName(shown[k].name.c_str());
+            table->AddColumn(value);
+            // A constant spectrum (one sample) is drawn across the visible range.
+            const std::vector<double> nm =
+                s.isConstant() ? std::vector<double>{kVisibleMinNm, kVisibleMaxNm} : s.wavelengthsNm();
+            table->SetNumberOfRows(static_cast<vtkIdType>(nm.size()));
+            for (std::size_t i = 0; i < nm.size(); ++i) {
+                table->SetValue(static_cast<vtkIdType>(i), 0, nm[i]);
+                table->SetValue(static_cast<vtkIdType>(i), 1, s(nm[i]));
+            }
+            vtkPlot* line = chart->AddPlot(vtkChart::LINE);
+            line->SetInputData(table, 0, 1);
+            const auto& c = kPalette[k % kPalette.size()];
+            line->SetColor(c[0], c[1], c[2], 255);
+            line->SetWidth(2.0F);
+            m_vtk->tables.push_back(table);
         }
-        vtkPlot* line = chart->AddPlot(vtkChart::LINE);
-        line->SetInputData(table, 0, 1);
-        const auto& c = kPalette[k % kPalette.size()];
-        line->SetColor(c[0], c[1], c[2], 255);
-        line->SetWidth(2.0F);
-        m_vtk->tables.push_back(table);
-    }
-    update();
+    });
     emit dataChanged();
 }
 

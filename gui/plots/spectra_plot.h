@@ -50,7 +50,7 @@ signals:
 private:
     void updateChart();
     struct Vtk;
-    std::unique_ptr<Vtk> m_vtk;
+    std::unique_ptr<Vtk> m_vtk;  // render thread only (plot_widget.h)
     std::vector<NamedSpectrum> m_spectra;
     std::string m_quantity;
     QString m_title;

@@ -3,6 +3,7 @@
 // cached; every recipe edit re-shades only the paint.
 
 #include "main_window.h"
+#include "plot_render_thread.h"
 
 #include <QApplication>
 #include <QCommandLineParser>
@@ -82,6 +83,8 @@ int main(int argc, char** argv) {
         QObject::connect(window.scheduler(), &paintlab::gui::RenderScheduler::becameIdle, &window,
                          [&window, file]() {
                              if (window.renderDock()->image().isNull()) return;  // still tracing
+                             // The plots' latest drawings (plot render thread) into their widgets.
+                             paintlab::gui::PlotRenderThread::instance().settle();
                              const int code = window.grab().save(file) ? 0 : 1;
                              if (code != 0)
                                  std::fprintf(stderr, "paintlab: cannot write %s\n", qPrintable(file));

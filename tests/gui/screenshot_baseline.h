@@ -6,6 +6,7 @@
 // PAINTLAB_UPDATE_BASELINES=1 in the environment writes the baselines
 // instead (after a deliberate change of the GUI; review them before committing).
 
+#include "plot_render_thread.h"
 #include "ssim.h"
 
 #include <QDir>
@@ -36,9 +37,11 @@ struct BaselineComparison {
     QString message;
 };
 
-// Grabs `widget` (QWidget::grab composes QOpenGLWidget children too) and
-// compares it with its baseline; ok if the mean SSIM is at least `threshold`.
+// Grabs `widget`, with the plots' latest drawings (the plot render thread's
+// queue is drained first), and compares it with its baseline; ok if the mean
+// SSIM is at least `threshold`.
 inline BaselineComparison compareWithBaseline(QWidget& widget, const QString& name, double threshold) {
+    paintlab::gui::PlotRenderThread::instance().settle();
     const QImage shot = widget.grab().toImage();
     QDir().mkpath(QStringLiteral("screenshots"));
     const QString shot_file = QStringLiteral("screenshots/%1.png").arg(name);

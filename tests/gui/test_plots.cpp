@@ -17,6 +17,7 @@
 #include "lobe_plot.h"
 #include "main_window.h"
 #include "plot_data.h"
+#include "plot_render_thread.h"
 #include "plots_dock.h"
 #include "spectra_plot.h"
 
@@ -239,6 +240,13 @@ void PlotsTest::eachPlotDrawsThePearlescentPaint() {
             if (c.red() > c.blue() + 40) ++red;
         }
     QVERIFY2(blue > 500 && blue > 4 * red, qPrintable(QStringLiteral("blue %1, red %2").arg(blue).arg(red)));
+    // Upright, as on screen: the lobe's gradient background runs from white at
+    // the bottom to grey-blue (0.86, 0.89, 0.93) at the top, and an image read
+    // back from OpenGL bottom row first would show it the other way up.
+    const QColor top = lobe.pixelColor(2, 2);
+    const QColor bottom = lobe.pixelColor(2, lobe.height() - 3);
+    QVERIFY2(top.red() < 235 && bottom.red() > 245,
+             qPrintable(QStringLiteral("top red %1, bottom red %2").arg(top.red()).arg(bottom.red())));
 }
 
 void PlotsTest::verifyInplaneCsv(const QString& path, const LayeredBrdf& brdf, const QString& series) {
@@ -503,13 +511,17 @@ void PlotsTest::mainWindowPlotsDockFollowsTheRecipe() {
         const QImage image = dock->currentPlot()->renderImage();
         QVERIFY(pixelStats(image).colours > 20);
     }
+    PlotRenderThread::instance().settle();
     QVERIFY(window.grab().save(screenshotDir() + "/plots_main_window.png"));
-    // Floating the dock and docking it again gives its plots new GL contexts
-    // (PlotWidget::initializeGL): they keep drawing, in as many colours.
+    // Floating the dock and docking it again moves its plots to another
+    // top-level window: they keep drawing, in as many colours, and the widget
+    // shows what was drawn (its own paint, not the render thread's image).
     for (const bool floating : {true, false}) {
         dock->setFloating(floating);
         QVERIFY(QTest::qWaitForWindowExposed(dock->currentPlot()));
         QTRY_VERIFY_WITH_TIMEOUT(pixelStats(dock->currentPlot()->renderImage()).colours > 20, kWaitMs);
+        PlotRenderThread::instance().settle();
+        QVERIFY(pixelStats(dock->currentPlot()->grab().toImage()).colours > 20);
     }
     // Pinning, then an edit: the comparison stays, the current series follows.
     dock->pinCurrentAsComparison();

@@ -277,8 +277,10 @@ void WorkstationTest::draggingNeverFreezesTheGuiThread() {
     QTimer watchdog;
     watchdog.setInterval(5);
     double longest_plot_paint_ms = 0.0;
+    double longest_plot_show_ms = 0.0;
     connect(&watchdog, &QTimer::timeout, this, [&]() {
         longest_plot_paint_ms = std::max(longest_plot_paint_ms, m_window->plot()->lastPaintMs());
+        longest_plot_show_ms = std::max(longest_plot_show_ms, m_window->plot()->lastShowMs());
         const qint64 now = clock.elapsed();
         gaps_ms.push_back(now - last_ms);
         last_ms = now;
@@ -306,7 +308,10 @@ void WorkstationTest::draggingNeverFreezesTheGuiThread() {
     std::sort(slow.begin(), slow.end(), [](const auto& a, const auto& b) { return a.ms > b.ms; });
     for (std::size_t i = 0; i < std::min<std::size_t>(slow.size(), 8); ++i)
         qInfo("  slow dispatch %.1f ms: %s", slow[i].ms, qPrintable(slow[i].what));
-    qInfo("  of which the central in-plane plot's VTK paint: at most %.1f ms", longest_plot_paint_ms);
+    qInfo(
+        "  the central in-plane plot: VTK draw on the plot render thread at most %.1f ms, showing the image "
+        "on the GUI thread at most %.1f ms",
+        longest_plot_paint_ms, longest_plot_show_ms);
     QVERIFY(!gaps_ms.empty());
     std::sort(gaps_ms.begin(), gaps_ms.end());
     const qint64 p99 = gaps_ms[gaps_ms.size() * 99 / 100];
