@@ -223,11 +223,11 @@ void PlotsTest::eachPlotDrawsThePearlescentPaint() {
             s.foreground > s.total / 100,
             qPrintable(QStringLiteral("%1: %2 of %3 pixels drawn").arg(name).arg(s.foreground).arg(s.total)));
         QVERIFY2(s.colours > 20, qPrintable(QStringLiteral("%1: %2 colours").arg(name).arg(s.colours)));
-        // The first paint compiles shaders and rasterises glyphs; later ones are what an update costs.
+        // The first draw compiles shaders and rasterises glyphs; later ones are what an update costs.
         const double first = plot->lastPaintMs();
         plot->renderImage();
-        qInfo("%s: paintGL %.1f ms (first), %.1f ms (next) at %dx%d", name, first, plot->lastPaintMs(),
-              image.width(), image.height());
+        qInfo("%s: draw %.1f ms (first), %.1f ms (next) at %dx%d on the plot render thread", name, first,
+              plot->lastPaintMs(), image.width(), image.height());
     }
     // The blue pearl's lobe is blue where it is bright: many more bluish than reddish pixels.
     const QImage lobe = m_lobe->renderImage().convertToFormat(QImage::Format_RGB32);

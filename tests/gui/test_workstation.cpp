@@ -33,6 +33,7 @@
 #include <QSurfaceFormat>
 #include <QTemporaryDir>
 #include <QTest>
+#include <QThread>
 #include <QTimer>
 
 #include <nlohmann/json.hpp>
@@ -60,7 +61,10 @@ public:
         QString what;
     };
     bool notify(QObject* receiver, QEvent* event) override {
-        if (!recording || depth > 0) return QApplication::notify(receiver, event);
+        // notify() runs for every thread's events: only the GUI thread's are
+        // timed (the plot render thread's draws are meant to be long).
+        if (!recording || depth > 0 || QThread::currentThread() != thread())
+            return QApplication::notify(receiver, event);
         ++depth;
         // Taken before the dispatch (it may delete the receiver), cheaply: the
         // text is made only for the slow ones, not for every event timed.
