@@ -29,4 +29,25 @@ inline void expectClose(double x, double se, double y, double se_y, const std::s
                                  << se_y << "), z = " << score;
 }
 
+// As expectClose, for a reference that a known systematic effect moves by an
+// amount between `low` and `high` (deterministic bounds, not errors): passes
+// when y + low - z sigma <= x <= y + high + z sigma, sigma = sqrt(se^2 + se_y^2).
+// The bounds widen the interval once; put into sigma as an allowance they
+// would be multiplied by z, letting ~4 times the effect through.
+inline void expectWithin(double x, double se, double y, double se_y, double low, double high,
+                         const std::string& what, double z = kZ) {
+    const double sigma = std::sqrt(se * se + se_y * se_y);
+    const double lo = y + low;
+    const double hi = y + high;
+    const double outside = x < lo ? x - lo : x > hi ? x - hi : 0.0;
+    const double score = sigma > 0.0 ? outside / sigma : 0.0;
+    if (std::getenv("PAINTLAB_MC_VERBOSE") != nullptr)  // NOLINT(concurrency-mt-unsafe)
+        std::printf("  %-44s MC %.6g +- %.2g  ref %.6g in [%+.2g, %+.2g]  z beyond = %+.2f\n", what.c_str(),
+                    x, se, y, low, high, score);
+    EXPECT_GE(x, lo - z * sigma) << what << ": MC " << x << " +- " << se << ", reference " << y << " + ["
+                                 << low << ", " << high << "], z beyond = " << score;
+    EXPECT_LE(x, hi + z * sigma) << what << ": MC " << x << " +- " << se << ", reference " << y << " + ["
+                                 << low << ", " << high << "], z beyond = " << score;
+}
+
 }  // namespace paintlab::test

@@ -126,10 +126,13 @@ TEST(MonteCarloExplicitFlakes, HorizontalMirrorsTwoStreamObliqueAndRetracedColum
         }
         const auto& e = result.bands[0][i].albedo;
         // Finite tile: the flake count is rounded (relative 1/(2N), N ~ 2000) and the
-        // float geometry; 1e-3 absolute covers both. Oblique: the hiding effect, which
-        // the two-stream value leaves out (test_recipes.h, hidingAllowance).
-        const double allowance = std::hypot(1e-3, i > 0 ? test::hidingAllowance(expected, A, 2.0, mu) : 0.0);
-        expectClose(e.mean, e.std_error, expected, allowance, "albedo at mu " + std::to_string(mu));
+        // float geometry; +-1e-3 absolute covers both. Oblique: the hiding effect,
+        // which the two-stream value leaves out, raises the albedo by 0 to
+        // test_recipes.h's hidingAllowance (its single-reflection estimate;
+        // measured: about 3/4 of it at 45 deg, none at 70 deg).
+        const double hiding = i > 0 ? test::hidingAllowance(expected, A, 2.0, mu) : 0.0;
+        test::expectWithin(e.mean, e.std_error, expected, 0.0, -1e-3, hiding + 1e-3,
+                           "albedo at mu " + std::to_string(mu));
     }
 }
 
