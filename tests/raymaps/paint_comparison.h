@@ -87,9 +87,13 @@ inline std::vector<char> interiorPaintMask(const RayMap& map,
 // are the sun's glint: a subpixel image of a 0.5-degree disk, found by one
 // mirror ray of the precompute or by chance in the reference. Like sparkle,
 // it is no part of the smooth-shading budget; this predicate leaves it out.
+// `sun_images`: further directions (unit, towards them) where a sun is seen,
+// e.g. its image in a plane mirror of the scene, whose glints in the coat
+// are left out the same way.
 inline std::function<bool(const PaintSample&)>
-notSunGlint(const RayMap& map, double degrees, const std::function<bool(const PaintSample&)>& and_also = {}) {
-    std::vector<Eigen::Vector3f> suns;
+notSunGlint(const RayMap& map, double degrees, const std::function<bool(const PaintSample&)>& and_also = {},
+            const std::vector<Eigen::Vector3f>& sun_images = {}) {
+    std::vector<Eigen::Vector3f> suns = sun_images;
     for (const ExplicitLight& l : map.header().lights)
         if (l.kind == ExplicitLight::Kind::Sun) suns.push_back(l.vector.cast<float>());
     const auto cos_limit = static_cast<float>(std::cos(degrees * 3.14159265358979 / 180.0));

@@ -20,6 +20,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -41,12 +42,14 @@ struct Comparison {
     RgbImage relit;
     RgbImage relit_b;  // from a map of another seed: the precompute's noise
     ReferenceImage reference;
+    std::vector<Eigen::Vector3f> sun_images;  // suns seen in the scene's plane mirrors
 
     // Relit against reference over the interior paint pixels away from sun
     // glints, optionally only those `which` accepts.
     compare::PaintComparison paint(const std::function<bool(const PaintSample&)>& which = {}) const {
         return compare::comparePaint(
-            relit, reference, compare::interiorPaintMask(*map, compare::notSunGlint(*map, kGlintDeg, which)),
+            relit, reference,
+            compare::interiorPaintMask(*map, compare::notSunGlint(*map, kGlintDeg, which, sun_images)),
             relit_b);
     }
 };
@@ -78,6 +81,23 @@ Comparison relightAndReference(const test::TempDir& dir, const Scene& scene,
     return c;
 }
 
+int qualifiedSpp() {
+    const char* text =
+        std::getenv("PAINTLAB_REFERENCE_SPP");  // NOLINT(concurrency-mt-unsafe): read before any thread
+    if (text == nullptr) return 0;
+    const int spp = std::atoi(text);  // NOLINT(cert-err34-c): 0 (ignored) on garbage
+    return spp > 0 && spp <= (1 << 20) ? spp : 0;
+}
+
+// The reference's samples per pixel: `ci_spp` unless PAINTLAB_REFERENCE_SPP
+// asks for more. CI's 256 spp resolve a systematic error of 4.5-7 % only;
+// the report run (docs/RAYMAPS.md) sets 16384 to resolve the 2 % goal:
+//   PAINTLAB_REFERENCE_SPP=16384 test_raymaps_reference --gtest_filter='RelightVsReference.*'
+int referenceSpp(int ci_spp) {
+    const int asked = qualifiedSpp();
+    return asked > 0 ? asked : ci_spp;
+}
+
 std::string testName() { return ::testing::UnitTest::GetInstance()->current_test_info()->name(); }
 
 // Checks a comparison against `budget` (relative excess RMSE) and the mean
@@ -106,7 +126,7 @@ TEST(RelightVsReference, DemoScene) {
     scene.camera.width = 64;
     scene.camera.height = 36;
     const Comparison c =
-        relightAndReference(dir, scene, kDemo / "recipes" / "pearlescent-two-layer.json", 256);
+        relightAndReference(dir, scene, kDemo / "recipes" / "pearlescent-two-layer.json", referenceSpp(256));
     const auto result = c.paint();
     expectWithin("demo scene", result, 0.02, 0.03, c, 200);
 }
@@ -123,7 +143,7 @@ TEST(RelightVsReference, SunLitSphere) {
                    "transform": {"translate": [0, 0.8, 0]}},
                   {"name": "floor", "plane": {"size": 30}, "material": "ground"}]})",
                                        "sphere_sun.json");
-    const Comparison c = relightAndReference(dir, scene, kFlakePaint, 256);
+    const Comparison c = relightAndReference(dir, scene, kFlakePaint, referenceSpp(256));
     const auto result = c.paint();
     expectWithin("sun-lit sphere", result, 0.02, 0.03, c, 300);
 }
@@ -154,7 +174,11 @@ TEST(RelightVsReference, PaintThroughGlassAndInAMirror) {
                   {"name": "mirror", "plane": {"size": 3}, "material": "mirror",
                    "transform": {"rotate_deg": [0, 0, 90], "translate": [0.9, 1.0, 1.0]}}]})",
                                        "glass_mirror.json");
-    const Comparison c = relightAndReference(dir, scene, kFlakePaint, 256);
+    Comparison c = relightAndReference(dir, scene, kFlakePaint, referenceSpp(256));
+    // The sun's image in the mirror (its plane x = 0.9: the direction's x
+    // flips) glints in the coat too, where a pixel's mirror direction meets
+    // it by way of the mirror; left out like the sun's own glint.
+    c.sun_images.emplace_back(Eigen::Vector3f(0.4F, 0.8F, 0.45F).normalized());
     const auto direct = [](const PaintSample& s) { return s.weight.minCoeff() > 0.99F; };
     const auto glass = [](const PaintSample& s) {
         return s.weight.minCoeff() > 0.85F && s.weight.maxCoeff() < 0.97F;
