@@ -13,8 +13,7 @@ namespace paintlab::mc {
 
 namespace {
 
-constexpr int kFlakeTableSize = 257;  // interference R, T tabulated in cos (linear in between)
-constexpr int kNormalPolar = 32;      // stratified flake normals for E_D[(1 - T)|v.n|]
+constexpr int kNormalPolar = 32;  // stratified flake normals for E_D[(1 - T)|v.n|]
 constexpr int kNormalAzimuth = 64;
 constexpr int kRateTableSize = 1025;  // flake collision rate in |cos| (smooth; linear error ~1e-7)
 
@@ -69,7 +68,7 @@ FlakeKind mirrorKind(const MirrorFlakeContent& f, double binder_n, const FlakeKi
 }
 
 FlakeKind interferenceKind(const InterferenceFlakeContent& f, double binder_n, double wavelength_nm,
-                           const FlakeKind* same = nullptr) {
+                           int table_cosines, const FlakeKind* same = nullptr) {
     FlakeKind k;
     k.area_density_per_um = f.area_density_per_um;
     k.orientation = FlakeOrientation(f.orientation_spread_deg);
@@ -83,9 +82,9 @@ FlakeKind interferenceKind(const InterferenceFlakeContent& f, double binder_n, d
     optics.mica_thickness_spread_nm = f.mica_thickness_spread_nm;
     optics.tio2_thickness_nm = f.tio2_thickness_nm;
     optics.tio2_thickness_spread_nm = f.tio2_thickness_spread_nm;
-    std::vector<double> cosines(kFlakeTableSize);
-    for (int i = 0; i < kFlakeTableSize; ++i)
-        cosines[static_cast<std::size_t>(i)] = static_cast<double>(i) / (kFlakeTableSize - 1);
+    const int size = std::max(table_cosines, 2);
+    std::vector<double> cosines(static_cast<std::size_t>(size));
+    for (int i = 0; i < size; ++i) cosines[static_cast<std::size_t>(i)] = static_cast<double>(i) / (size - 1);
     k.table_R.assign(cosines.size(), 0.0);
     k.table_T.assign(cosines.size(), 0.0);
     tabulateInterferenceFlake(optics, wavelength_nm, cosines, k.table_R, k.table_T);
@@ -172,12 +171,12 @@ std::vector<FlakeKind> layerFlakeKinds(const Layer& layer, double wavelength_nm)
     std::vector<FlakeKind> kinds;
     for (const auto& f : o.mirror_flakes) kinds.push_back(mirrorKind(f, o.binder_index));
     for (const auto& f : o.interference_flakes)
-        kinds.push_back(interferenceKind(f, o.binder_index, wavelength_nm));
+        kinds.push_back(interferenceKind(f, o.binder_index, wavelength_nm, kFlakeTableCosines));
     return kinds;
 }
 
 PaintStack buildPaintStack(const Recipe& recipe, double wavelength_nm, int slices_per_profiled_layer,
-                           const PaintStack* same_recipe) {
+                           const PaintStack* same_recipe, int flake_table_cosines) {
     PaintStack stack;
     stack.wavelength_nm = wavelength_nm;
     stack.ambient_n = recipe.ambient_refractive_index;
@@ -209,8 +208,8 @@ PaintStack buildPaintStack(const Recipe& recipe, double wavelength_nm, int slice
             for (const auto& f : o.mirror_flakes)
                 slice.flakes.push_back(mirrorKind(f, o.binder_index, sameKind(slice.flakes.size())));
             for (const auto& f : o.interference_flakes)
-                slice.flakes.push_back(
-                    interferenceKind(f, o.binder_index, wavelength_nm, sameKind(slice.flakes.size())));
+                slice.flakes.push_back(interferenceKind(f, o.binder_index, wavelength_nm, flake_table_cosines,
+                                                        sameKind(slice.flakes.size())));
             stack.slices.push_back(std::move(slice));
         }
         depth += layer.thickness_um;

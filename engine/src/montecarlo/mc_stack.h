@@ -14,6 +14,12 @@
 
 namespace paintlab::mc {
 
+// Cosines of the full model's interference-flake R and T tables (evenly
+// from 0 to 1, linear in between): a flake's fringes are a few periods over
+// the whole range, so 256 intervals leave interpolation far below the
+// Monte Carlo's statistical error.
+inline constexpr int kFlakeTableCosines = 257;
+
 struct Vec3 {
     double x = 0.0, y = 0.0, z = 0.0;
 };
@@ -89,8 +95,12 @@ std::vector<FlakeKind> layerFlakeKinds(const Layer& layer, double wavelength_nm)
 // whose flakes' collision-rate tables and stratified normals (which depend
 // on the flakes' area density and orientation, not on the wavelength) are
 // reused where they match; the result is the same as without it.
+// `flake_table_cosines`: the cosines (0 to 1, evenly) at which interference
+// flakes' R and T are tabulated, linear in between; fewer for a quick
+// estimate (the effect planner's sparkle model), see kFlakeTableCosines.
 PaintStack buildPaintStack(const Recipe& recipe, double wavelength_nm, int slices_per_profiled_layer,
-                           const PaintStack* same_recipe = nullptr);
+                           const PaintStack* same_recipe = nullptr,
+                           int flake_table_cosines = kFlakeTableCosines);
 
 // Henyey-Greenstein phase function (1/sr) of the cosine between propagation directions.
 double henyeyGreenstein(double g, double cos_theta);

@@ -105,7 +105,7 @@ double texturePercentile99(const SparkleStats& stats) {
 PlanDecision sparkleDecision(const Recipe& recipe, const PlanScene& scene, EffectPlan& p) {
     PlanDecision d;
     d.effect = "sparkle";
-    const SparkleModel model(recipe, {.bands = 3, .chain_nodes = 31});
+    const SparkleModel model(recipe, {.bands = 3, .chain_nodes = 31, .flake_table_cosines = 65});
     if (!model.hasFlakes()) {
         d.simulate = false;
         d.setting = "none";

@@ -160,6 +160,9 @@ SparkleModel::SparkleModel(const Recipe& recipe, const SparkleSettings& settings
     if (settings.chain_nodes < 3 || settings.chain_nodes > 1025)
         throw InputError("<argument>", "sparkle chain_nodes",
                          std::to_string(settings.chain_nodes) + " is not in [3, 1025]");
+    if (settings.flake_table_cosines < 9 || settings.flake_table_cosines > 4097)
+        throw InputError("<argument>", "sparkle flake_table_cosines",
+                         std::to_string(settings.flake_table_cosines) + " is not in [9, 4097]");
     Impl& m = *m_impl;
     m.settings = settings;
 
@@ -199,7 +202,7 @@ SparkleModel::SparkleModel(const Recipe& recipe, const SparkleSettings& settings
         Band& band = m.bands[b];
         band.wavelength_nm = m.wavelengths[b];
         band.stack = mc::buildPaintStack(paint, band.wavelength_nm, settings.slices_per_profiled_layer,
-                                         b == 0 ? nullptr : &m.bands[0].stack);
+                                         b == 0 ? nullptr : &m.bands[0].stack, settings.flake_table_cosines);
         const auto nodes = static_cast<std::size_t>(settings.chain_nodes);
         band.up.assign(nodes * slice_count, 0.0);
         band.extinction.assign(nodes * slice_count, 0.0);

@@ -86,6 +86,11 @@ struct SparkleSettings {
     int bands = 16;                     // wavelengths, evenly over 380-780 nm
     int slices_per_profiled_layer = 4;  // depth slices of a layer whose flakes vary in depth
     int chain_nodes = 91;               // ambient polar angles of the exit-chain table (uniform in theta)
+    // Cosines at which interference flakes' R and T are tabulated (evenly
+    // over 0..1, linear in between): the full model's 257 by default; the
+    // effect planner's quick estimate takes fewer (its thin-film work is most
+    // of a plan's time).
+    int flake_table_cosines = 257;
     // beta: the spread of one flake's own normals (degrees, in the binder). It
     // leaves the mean (the BRDF) alone and sets how many flakes share a glint.
     // 1 deg is our assumption for wavy milled aluminium, not a measured value;
