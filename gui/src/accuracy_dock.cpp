@@ -15,6 +15,15 @@ namespace {
 
 QString qs(const std::string& s) { return QString::fromStdString(s); }
 
+// A word-wrapped label's minimum width follows its text (QLabel picks a
+// width for a pleasant line count): with the measured times in it, the dock
+// and the window's layout would change from one recompute to the next. The
+// dock's width is the user's; the label wraps to it.
+void keepWidthFree(QLabel* label) {
+    label->setMinimumWidth(120);
+    label->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+}
+
 }  // namespace
 
 AccuracyDock::AccuracyDock(QWidget* parent) : QDockWidget(tr("Accuracy"), parent) {
@@ -37,6 +46,7 @@ AccuracyDock::AccuracyDock(QWidget* parent) : QDockWidget(tr("Accuracy"), parent
     m_plan_summary = new QLabel(tr("No plan yet"), body);
     m_plan_summary->setObjectName("plan_summary");
     m_plan_summary->setWordWrap(true);
+    keepWidthFree(m_plan_summary);
     layout->addWidget(m_plan_summary);
     m_plan_table = new QTableWidget(0, 4, body);
     m_plan_table->setObjectName("plan_decisions");
@@ -56,10 +66,12 @@ AccuracyDock::AccuracyDock(QWidget* parent) : QDockWidget(tr("Accuracy"), parent
                       "standard \u2264 0.08, reference converged (< 1e-4 in reflectance)."),
                    body);
     expected->setWordWrap(true);
+    keepWidthFree(expected);
     layout->addWidget(expected);
     m_last = new QLabel(tr("No recompute yet"), body);
     m_last->setObjectName("last_recompute");
-    m_last->setWordWrap(true);  // the dock's width is the user's, not the text's
+    m_last->setWordWrap(true);
+    keepWidthFree(m_last);
     layout->addWidget(m_last);
     setWidget(body);
     connect(m_policy, &QComboBox::currentIndexChanged, this, &AccuracyDock::policyChanged);

@@ -67,9 +67,12 @@ RenderDock::RenderDock(QWidget* parent) : QDockWidget(tr("Render"), parent) {
     layout->addLayout(controls);
     m_status = new QLabel(body);
     m_status->setObjectName("render_status");
+    // The times change with every recompute: their text must not resize the dock.
+    m_status->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
     layout->addWidget(m_status);
     m_comparison_status = new QLabel(body);
     m_comparison_status->setObjectName("comparison_status");
+    m_comparison_status->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
     m_comparison_status->hide();
     layout->addWidget(m_comparison_status);
     setWidget(body);
