@@ -400,6 +400,30 @@ void WorkstationTest::accuracyDockListsThePlanWithReasons() {
     QCOMPARE(ran.bands, planned.bands);
     QCOMPARE(ran.slices, planned.slices);
     QCOMPARE(result.sparkle, result.plan->sparkle);
+    qInfo("pearl, standard, 64 x 36: plan %.1f ms, fast model %.1f ms, relight tables %.1f ms, relight %.2f "
+          "ms, "
+          "sparkle %s",
+          result.plan_ms, result.brdf_ms, result.tables_ms, result.relight_ms, result.sparkle ? "on" : "off");
+
+    // Without a scene: the plan for the BRDF alone (a collimated light,
+    // spectral): no order or band dropped, no image to draw glints on.
+    paintlab::gui::RenderScheduler brdf_only;
+    QSignalSpy done(&brdf_only, &paintlab::gui::RenderScheduler::finished);
+    brdf_only.request(m_window->document()->recipe(), paintlab::Preset::Standard);
+    QVERIFY(done.wait(kWaitMs));
+    const auto alone = done.takeFirst().at(0).value<paintlab::gui::RenderResult>();
+    QVERIFY(alone.plan.has_value());
+    QVERIFY(alone.image.isNull());
+    QVERIFY(!alone.sparkle);
+    QVERIFY2(alone.plan_scene.contains(QStringLiteral("BRDF alone")), qPrintable(alone.plan_scene));
+    const paintlab::FastModelSettings standard = paintlab::presetSettings(paintlab::Preset::Standard);
+    QCOMPARE(alone.brdf->settings().orders, standard.orders);
+    QCOMPARE(alone.brdf->settings().bands, standard.bands);
+    paintlab::gui::AccuracyDock dock;
+    dock.showResult(alone);
+    QCOMPARE(dock.planTable()->rowCount(), static_cast<int>(alone.plan->decisions.size()));
+    QVERIFY2(dock.planSummary()->text().contains(QStringLiteral("BRDF alone")),
+             qPrintable(dock.planSummary()->text()));
 }
 
 // The silver metallic in the demo scene: the plan drops bands (smooth
