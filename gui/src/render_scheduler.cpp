@@ -104,6 +104,7 @@ void RenderScheduler::start(Job job) {
                 const raymaps::RelightTables tables(*r.brdf, map->map()->header().cells,
                                                     map->map()->header().orders);
                 r.tables_ms = millisecondsSince(t0);
+                // The first relight of a map includes decoding its records (once per map).
                 t0 = std::chrono::steady_clock::now();
                 raymaps::RgbImage image = raymaps::relight(map->input(), tables);
                 r.relight_ms = millisecondsSince(t0);

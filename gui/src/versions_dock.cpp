@@ -288,7 +288,7 @@ bool VersionsDock::compareInRender(int version) {
     if (m_db == nullptr) return false;
     try {
         const db::StoredRecipeVersion stored = db::loadRecipeVersion(*m_db, m_name.toStdString(), version);
-        emit comparisonRequested(stored.recipe, tr("%1 v%2").arg(m_name).arg(version));
+        emit comparisonRequested(stored.recipe, tr("%1, version %2").arg(m_name).arg(version));
         return true;
     } catch (const std::exception& e) {
         showError(tr("Cannot compare with the version"), QString::fromUtf8(e.what()));

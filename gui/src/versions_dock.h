@@ -65,7 +65,7 @@ signals:
     void saveRequested(const QString& note);
     // A revert saved this version (the main window lists and opens it).
     void versionCreated(const QString& recipe, int version);
-    // Render this recipe beside the edited one; label: "<name> v<version>".
+    // Render this recipe beside the edited one; label: "<name>, version <n>" (as the edited side's).
     void comparisonRequested(const paintlab::Recipe& recipe, const QString& label);
 
 private:

@@ -469,7 +469,8 @@ void WorkstationTest::splitViewHalvesEqualTheSingleRenders() {
     dock->setMode(paintlab::gui::CompareMode::Split);
     QVERIFY(m_window->versionsDock()->compareInRender(1));
     waitComparison();
-    QVERIFY2(dock->comparisonLabel().contains(QStringLiteral("v1")), qPrintable(dock->comparisonLabel()));
+    QVERIFY2(dock->comparisonLabel().endsWith(QStringLiteral(", version 1")),
+             qPrintable(dock->comparisonLabel()));
 
     auto db = paintlab::db::Database::open((m_dir.path() + "/lab.db").toStdString());
     const paintlab::Recipe version1 = paintlab::db::loadRecipeVersion(db, kPearl.toStdString(), 1).recipe;
@@ -547,7 +548,8 @@ void WorkstationTest::switchingVersionsRendersTheOtherVersion() {
     QVERIFY(dock->comparisonImage().isNull());  // not the old version's image meanwhile
     waitComparison();
     QCOMPARE(rendered.count(), 1);
-    QVERIFY2(dock->comparisonLabel().contains(QStringLiteral("v3")), qPrintable(dock->comparisonLabel()));
+    QVERIFY2(dock->comparisonLabel().endsWith(QStringLiteral(", version 3")),
+             qPrintable(dock->comparisonLabel()));
     QVERIFY(dock->comparisonImage() != version1);
     auto db = paintlab::db::Database::open((m_dir.path() + "/lab.db").toStdString());
     const paintlab::Recipe version3 = paintlab::db::loadRecipeVersion(db, kPearl.toStdString(), 3).recipe;
