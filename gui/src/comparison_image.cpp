@@ -52,13 +52,13 @@ QImage captionedImage(const QImage& pixels, const QString& left_label, const QSt
     painter.setFont(font);
     painter.setPen(Qt::white);
     const QRect text(4, 0, pixels.width() - 8, strip);
-    // Each label keeps to its half, shortened in the middle (the version number stays).
+    // Each label keeps to its half, shortened at the front (the version at the end stays).
     const QFontMetrics metrics(font);
     const int half = std::max(20, pixels.width() / 2 - 8);
     painter.drawText(text, Qt::AlignLeft | Qt::AlignVCenter,
-                     metrics.elidedText(left_label, Qt::ElideMiddle, half));
+                     metrics.elidedText(left_label, Qt::ElideLeft, half));
     painter.drawText(text, Qt::AlignRight | Qt::AlignVCenter,
-                     metrics.elidedText(right_label, Qt::ElideMiddle, half));
+                     metrics.elidedText(right_label, Qt::ElideLeft, half));
     if (divider_column >= 0) painter.fillRect(divider_column - 1, strip / 2, 2, strip - strip / 2, Qt::white);
     return out;
 }

@@ -66,9 +66,9 @@ void ComparisonView::paintEvent(QPaintEvent* /*event*/) {
     const QFontMetrics metrics(font());
     const auto label = [&](const QString& full, bool right) {
         if (full.isEmpty()) return;
-        // Each label keeps to its half of the image, shortened in the middle
-        // (the version number at the end stays readable).
-        const QString text = metrics.elidedText(full, Qt::ElideMiddle, std::max(20, target.width() / 2 - 14));
+        // Each label keeps to its half of the image, shortened at the front
+        // (the version at the end stays readable).
+        const QString text = metrics.elidedText(full, Qt::ElideLeft, std::max(20, target.width() / 2 - 14));
         const int w = metrics.horizontalAdvance(text) + 8;
         const QRect box(right ? target.right() - w - 3 : target.left() + 3, target.top() + 3, w,
                         metrics.height() + 4);

@@ -165,6 +165,9 @@ void RenderDock::updateView() {
     m_view->setPicture(pixels, comparing ? m_current_label : QString(),
                        comparing ? m_comparison_label : QString(),
                        split ? splitColumn(m_image.width(), m_split) : -1);
+    // The labels on the picture are shortened to fit; the tooltip has them whole.
+    m_view->setToolTip(comparing ? tr("Left: %1\nRight: %2").arg(m_current_label, m_comparison_label)
+                                 : QString());
     if (mode() != CompareMode::Single && m_comparison_label.isEmpty())
         m_comparison_status->setText(tr("No comparison: pick a version in the Versions dock "
                                         "(Compare in render) or pin the current recipe"));
