@@ -9,6 +9,7 @@
 #include "paintlab/engine/plan.h"
 #include "paintlab/engine/recipe_json.h"
 #include "paintlab/raymaps/paint_proxy.h"
+#include "paintlab/raymaps/planned_relight.h"
 #include "paintlab/raymaps/raymap.h"
 #include "paintlab/raymaps/reference.h"
 #include "paintlab/raymaps/relight.h"
@@ -147,7 +148,7 @@ int relightMap(const RelightOptions& o, const std::filesystem::path& map_path) {
         start = Clock::now();
     }
     const FastModelSettings settings =
-        o.sparkle.plan ? applyPlan(*effect_plan, presetSettings(preset)) : presetSettings(preset);
+        o.sparkle.plan ? raymaps::plannedSettings(*effect_plan) : presetSettings(preset);
     const LayeredBrdf brdf = computeLayeredBrdf(recipe, settings);
     const double brdf_s = secondsSince(start);
     start = Clock::now();

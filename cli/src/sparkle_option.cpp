@@ -3,9 +3,7 @@
 #include "sparkle_option.h"
 
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/sparkle.h"
-#include "paintlab/raymaps/plan_scene.h"
-#include "paintlab/raymaps/sparkle_pass.h"
+#include "paintlab/raymaps/planned_relight.h"
 
 #include <CLI/CLI.hpp>
 
@@ -34,7 +32,7 @@ void addSparkleOptions(CLI::App* command, SparkleOption& o) {
 
 EffectPlan planForMap(const SparkleOption& o, const raymaps::RayMap& map, const Recipe& recipe,
                       Preset preset) {
-    return plan(recipe, raymaps::summariseRayMap(map, {.scene_unit_m = o.sceneUnit()}), preset);
+    return raymaps::planForRayMap(map, recipe, preset, {.scene_unit_m = o.sceneUnit()});
 }
 
 std::vector<std::string> appliedPlanLines(const SparkleOption& o, const EffectPlan& plan) {
@@ -75,17 +73,9 @@ std::string applySparkle(const SparkleOption& o, const raymaps::RayMap& map, con
     if (mode == "off") return "";
     if (mode == "plan") {
         if (plan == nullptr) throw Error("applySparkle: --sparkle plan without a plan");
-        if (!plan->sparkle) {
-            std::string why;
-            for (const auto& d : plan->decisions)
-                if (d.effect == "sparkle") why = d.reason;
-            return "sparkle: skipped by the plan (" + why + ")";
-        }
+        if (!plan->sparkle) return "sparkle: skipped by the plan (" + raymaps::sparkleSkipReason(*plan) + ")";
     }
-    raymaps::SparklePassSettings settings;
-    settings.scene_unit_m = o.sceneUnit();
-    const SparkleModel model(recipe);
-    const raymaps::SparklePassStats s = raymaps::addSparkle(map, model, image, settings);
+    const raymaps::SparklePassStats s = raymaps::addRecipeSparkle(map, recipe, image, o.sceneUnit());
     char text[256];
     std::snprintf(text, sizeof text,
                   "sparkle: %llu paint pixels, %llu with glints, %.3g glinting flakes per pixel, %.1f ms",

@@ -71,6 +71,7 @@ MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMa
             });
     connect(m_render, &RenderDock::exposureChanged, this, [this](double ev) {
         m_scheduler.setExposure(ev);
+        m_compare_scheduler.setExposure(ev);
         requestRender(false);
     });
     connect(m_render, &RenderDock::saveImageRequested, this, &MainWindow::saveImage);
@@ -84,6 +85,7 @@ MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMa
     restoreGeometry(settings.value("window/geometry").toByteArray());
     restoreState(settings.value("window/state").toByteArray());
 
+    connectComparison();
     openDatabase(options.database);
     connectDatabaseDocks();
     if (options.open_scene)
@@ -186,6 +188,7 @@ void MainWindow::openScene(const std::filesystem::path& scene, const std::filesy
     const auto openMap = [this, map_file]() {
         try {
             m_scheduler.setRayMap(std::shared_ptr<const raymaps::RayMap>(raymaps::RayMap::open(map_file)));
+            m_compare_scheduler.shareRayMap(m_scheduler);
             m_render->showMessage(tr("Ray map %1").arg(QString::fromStdString(map_file.string())));
             requestRender(false);
         } catch (const std::exception& e) {
@@ -252,7 +255,10 @@ void MainWindow::openScene(const std::filesystem::path& scene, const std::filesy
 void MainWindow::requestRender(bool interactive) {
     if (!m_document.hasRecipe()) return;
     m_last_interactive = interactive;
-    m_scheduler.request(m_document.recipe(), m_accuracy->presetFor(interactive));
+    m_scheduler.setFollowPlan(m_accuracy->followPlan());
+    m_last_preset = m_accuracy->presetFor(interactive);
+    m_scheduler.request(m_document.recipe(), m_last_preset);
+    requestComparison(false);
 }
 
 void MainWindow::saveVersion() {
@@ -285,9 +291,10 @@ bool MainWindow::saveVersionAs(const QString& note) {
 }
 
 void MainWindow::saveImage() {
-    if (m_render->image().isNull()) return;
+    const QImage image = m_render->imageToSave();  // what is shown: a comparison with its labels
+    if (image.isNull()) return;
     const QString path = QFileDialog::getSaveFileName(this, tr("Save image"), {}, tr("Images (*.png)"));
-    if (!path.isEmpty() && !m_render->image().save(path))
+    if (!path.isEmpty() && !image.save(path))
         showError(tr("Cannot save the image"), tr("%1: cannot be written").arg(path));
 }
 

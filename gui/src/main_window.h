@@ -66,6 +66,13 @@ public:
 
     RecipeDocument* document() { return &m_document; }
     RenderScheduler* scheduler() { return &m_scheduler; }
+    AccuracyDock* accuracyDock() { return m_accuracy; }
+    // The comparison shown beside the edited recipe in the render dock
+    // (main_window_compare.cpp): rendered on its own scheduler, with the same
+    // ray map, exposure, preset and plan setting as the edited recipe.
+    void compareWith(const Recipe& recipe, const QString& label);
+    void clearComparison();
+    RenderScheduler* comparisonScheduler() { return &m_compare_scheduler; }
     RenderDock* renderDock() { return m_render; }
     RecipeEditorDock* editorDock() { return m_editor; }
     InplanePlot* plot() { return m_plot; }
@@ -92,9 +99,27 @@ private:
     void addRecentFile(const QString& path);
     // The Plots dock and its wiring (main_window_plots.cpp).
     void addPlotsDock();
+    // The render dock's comparison and its wiring (main_window_compare.cpp).
+    void connectComparison();
+    // Renders the comparison again if it was rendered with other settings
+    // than the edited recipe's last request (or `always`).
+    void requestComparison(bool always);
+    QString currentLabel();
 
     RecipeDocument m_document;
     RenderScheduler m_scheduler;
+    RenderScheduler m_compare_scheduler;
+    std::optional<Recipe> m_comparison;
+    // What the comparison was last requested with: preset, plan, exposure, map.
+    struct ComparisonKey {
+        Preset preset = Preset::Standard;
+        bool follow_plan = true;
+        double exposure_ev = 0.0;
+        const void* map = nullptr;
+        bool operator==(const ComparisonKey&) const = default;
+    };
+    std::optional<ComparisonKey> m_comparison_key;
+    Preset m_last_preset = Preset::Standard;
     std::optional<db::Database> m_db;
     QListWidget* m_recipes = nullptr;
     RecipeEditorDock* m_editor = nullptr;

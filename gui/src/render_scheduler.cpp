@@ -1,7 +1,11 @@
 #include "render_scheduler.h"
 
+#include "brdf_plan_scene.h"
+
 #include "paintlab/engine/error.h"
 #include "paintlab/raymaps/display_image.h"
+#include "paintlab/raymaps/plan_scene.h"
+#include "paintlab/raymaps/planned_relight.h"
 #include "paintlab/raymaps/relight.h"
 
 #include <chrono>
@@ -29,6 +33,18 @@ QImage displayImage(const raymaps::RgbImage& image, double exposure_ev) {
 
 }  // namespace
 
+const raymaps::RelightInput& OpenRayMap::input() const {
+    const std::lock_guard lock(m_mutex);
+    if (!m_input) m_input.emplace(*m_map);
+    return *m_input;
+}
+
+const PlanScene& OpenRayMap::planScene() const {
+    const std::lock_guard lock(m_mutex);
+    if (!m_plan_scene) m_plan_scene = raymaps::summariseRayMap(*m_map);
+    return *m_plan_scene;
+}
+
 RenderScheduler::RenderScheduler(QObject* parent) : QObject(parent) {
     qRegisterMetaType<paintlab::gui::RenderResult>();
     m_pool.setMaxThreadCount(1);
@@ -40,11 +56,13 @@ RenderScheduler::~RenderScheduler() {
     m_pool.waitForDone();
 }
 
-void RenderScheduler::setRayMap(std::shared_ptr<const raymaps::RayMap> map) { m_map = std::move(map); }
+void RenderScheduler::setRayMap(std::shared_ptr<const raymaps::RayMap> map) {
+    m_map = map ? std::make_shared<const OpenRayMap>(std::move(map)) : nullptr;
+}
 
 quint64 RenderScheduler::request(const Recipe& recipe, Preset preset) {
     const quint64 generation = m_latest->fetch_add(1) + 1;
-    Job job{generation, recipe, preset};
+    Job job{generation, recipe, preset, m_follow_plan};
     if (m_running) {
         m_pending = std::move(job);  // replaces an older pending request
     } else {
@@ -66,18 +84,37 @@ void RenderScheduler::start(Job job) {
             RenderResult r;
             r.generation = job.generation;
             r.preset = job.preset;
+            r.follow_plan = job.follow_plan;
+            FastModelSettings settings = presetSettings(job.preset);
             auto t0 = std::chrono::steady_clock::now();
-            r.brdf = std::make_shared<const LayeredBrdf>(
-                computeLayeredBrdf(job.recipe, presetSettings(job.preset), alive));
+            if (job.follow_plan) {
+                const PlanScene& scene = map ? map->planScene() : brdfPlanScene();
+                r.plan_scene = map ? QObject::tr("the ray map %1")
+                                         .arg(QString::fromStdString(map->map()->path().filename().string()))
+                                   : QString::fromStdString(scene.source);
+                r.plan = plan(job.recipe, scene, job.preset);
+                settings = raymaps::plannedSettings(*r.plan);
+                r.plan_ms = millisecondsSince(t0);
+            }
+            t0 = std::chrono::steady_clock::now();
+            r.brdf = std::make_shared<const LayeredBrdf>(computeLayeredBrdf(job.recipe, settings, alive));
             r.brdf_ms = millisecondsSince(t0);
             if (map && alive(1.0)) {
                 t0 = std::chrono::steady_clock::now();
-                const raymaps::RelightTables tables(*r.brdf, map->header().cells, map->header().orders);
+                const raymaps::RelightTables tables(*r.brdf, map->map()->header().cells,
+                                                    map->map()->header().orders);
                 r.tables_ms = millisecondsSince(t0);
+                // The first relight of a map includes decoding its records (once per map).
                 t0 = std::chrono::steady_clock::now();
-                const raymaps::RgbImage image = raymaps::relight(*map, tables);
-                r.image = displayImage(image, exposure_ev);
+                raymaps::RgbImage image = raymaps::relight(map->input(), tables);
                 r.relight_ms = millisecondsSince(t0);
+                if (r.plan && r.plan->sparkle && alive(1.0)) {
+                    t0 = std::chrono::steady_clock::now();
+                    raymaps::addRecipeSparkle(*map->map(), job.recipe, image);
+                    r.sparkle = true;
+                    r.sparkle_ms = millisecondsSince(t0);
+                }
+                r.image = displayImage(image, exposure_ev);
             }
             if (alive(1.0)) result = std::move(r);
         } catch (const Error& e) {

@@ -73,7 +73,11 @@ VersionsDock::VersionsDock(RecipeDocument* document, QWidget* parent)
     m_open->setToolTip(tr("Edit the selected version"));
     m_revert = new QPushButton(tr("Revert to"), body);
     m_revert->setToolTip(tr("Save the selected version's contents as a new version (versions never change)"));
-    for (QPushButton* b : {m_save, m_compare, m_open, m_revert}) buttons->addWidget(b);
+    m_compare_render = new QPushButton(tr("Compare in render"), body);
+    m_compare_render->setObjectName("compare_in_render");
+    m_compare_render->setToolTip(tr("Render the selected version beside the edited recipe (Render dock: "
+                                    "side by side or split)"));
+    for (QPushButton* b : {m_save, m_compare, m_open, m_revert, m_compare_render}) buttons->addWidget(b);
     buttons->addStretch(1);
     layout->addLayout(buttons);
     setWidget(body);
@@ -85,6 +89,10 @@ VersionsDock::VersionsDock(RecipeDocument* document, QWidget* parent)
         if (!v.empty()) openVersion(v.back());
     });
     connect(m_revert, &QPushButton::clicked, this, &VersionsDock::revertSelected);
+    connect(m_compare_render, &QPushButton::clicked, this, [this]() {
+        const std::vector<int> v = selectedVersions();
+        if (v.size() == 1) compareInRender(v.front());
+    });
     connect(m_table, &QTableWidget::itemSelectionChanged, this, &VersionsDock::updateButtons);
     // Queued: opening a version refills the table whose signal this is.
     connect(
@@ -165,6 +173,7 @@ void VersionsDock::updateButtons() {
     m_compare->setEnabled(selected == 2 || (selected == 1 && selectedVersions().front() > 1));
     m_open->setEnabled(selected == 1);
     m_revert->setEnabled(selected == 1);
+    m_compare_render->setEnabled(selected == 1);
 }
 
 void VersionsDock::saveNewVersion(const QString& note) {
@@ -271,6 +280,18 @@ bool VersionsDock::openVersion(int version) {
         return true;
     } catch (const std::exception& e) {
         showError(tr("Cannot open the version"), QString::fromUtf8(e.what()));
+        return false;
+    }
+}
+
+bool VersionsDock::compareInRender(int version) {
+    if (m_db == nullptr) return false;
+    try {
+        const db::StoredRecipeVersion stored = db::loadRecipeVersion(*m_db, m_name.toStdString(), version);
+        emit comparisonRequested(stored.recipe, tr("%1, version %2").arg(m_name).arg(version));
+        return true;
+    } catch (const std::exception& e) {
+        showError(tr("Cannot compare with the version"), QString::fromUtf8(e.what()));
         return false;
     }
 }

@@ -3,7 +3,8 @@
 // (version, author, time, note; the checksum as tooltip), saving a new
 // version with a note, the differences between two versions (a table of the
 // values that changed: path, old, new; recipe_diff.h), opening an old
-// version in the editor and reverting to one. Versions are immutable: a
+// version in the editor and reverting to one, and rendering one beside the
+// edited recipe (the render dock's comparison). Versions are immutable: a
 // revert saves the old contents as a new version.
 //
 // Every operation is one or two small queries on the GUI thread's connection
@@ -53,6 +54,9 @@ public:
     std::optional<int> revertTo(int version);
     // Loads a version into the editor.
     bool openVersion(int version);
+    // Asks for a version to be rendered as the comparison (comparisonRequested);
+    // false (and a message) if it cannot be read.
+    bool compareInRender(int version);
 
     QTableWidget* historyTable() const { return m_table; }
     QTableWidget* diffTable() const { return m_diff_table; }
@@ -61,6 +65,8 @@ signals:
     void saveRequested(const QString& note);
     // A revert saved this version (the main window lists and opens it).
     void versionCreated(const QString& recipe, int version);
+    // Render this recipe beside the edited one; label: "<name>, version <n>" (as the edited side's).
+    void comparisonRequested(const paintlab::Recipe& recipe, const QString& label);
 
 private:
     std::vector<int> selectedVersions() const;
@@ -81,6 +87,7 @@ private:
     QPushButton* m_compare = nullptr;
     QPushButton* m_open = nullptr;
     QPushButton* m_revert = nullptr;
+    QPushButton* m_compare_render = nullptr;
     QLabel* m_diff_title = nullptr;
     QTableWidget* m_diff_table = nullptr;
 };

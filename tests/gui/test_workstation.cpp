@@ -2,18 +2,26 @@
 // in xvfb-run): it starts on the demo database, shows plots and a relit image
 // of the pearlescent demo, follows a flake-concentration slider, undoes
 // exactly, saves a version, reports a malformed recipe file in a dialog, and
-// survives 200 rapid edits with a final image equal to a fresh render.
+// survives 200 rapid edits with a final image equal to a fresh render; the
+// accuracy dock lists the effect plan, and turning the plan off changes what
+// is computed; the render dock compares the edited recipe with a saved
+// version side by side and split, pixel for pixel equal to single renders.
 //
 // The scene is the demo car scene at 64 x 36 pixels (written by the test) so
 // that tracing and relighting take well under a second even under ASan.
 // Times are not asserted (speed is measured in benchmarks, docs/PERFORMANCE.md);
 // every wait has a generous timeout so a loaded CI machine does not fail it.
 
+#include "accuracy_dock.h"
+#include "comparison_view.h"
 #include "inplane_plot.h"
 #include "main_window.h"
 #include "recipe_editor_dock.h"
 #include "render_dock.h"
 #include "screenshot_baseline.h"
+#include "versions_dock.h"
+
+#include "paintlab/raymaps/planned_relight.h"
 
 #include "paintlab/database/database.h"
 #include "paintlab/database/recipes.h"
@@ -26,11 +34,13 @@
 #include <QListWidget>
 #include <QMessageBox>
 #include <QPainter>
+#include <QPushButton>
 #include <QRandomGenerator>
 #include <QRegularExpression>
 #include <QSignalSpy>
 #include <QSlider>
 #include <QSurfaceFormat>
+#include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTest>
 #include <QThread>
@@ -39,6 +49,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <memory>
 #include <vector>
@@ -104,10 +115,21 @@ private slots:
     void malformedRecipeFileGivesAnErrorDialog();
     void rapidEditsEndOnTheFinalRecipe();
     void draggingNeverFreezesTheGuiThread();
+    void accuracyDockListsThePlanWithReasons();
+    void turningThePlanOffChangesWhatIsComputed();
+    void splitViewHalvesEqualTheSingleRenders();
+    void sideBySideShowsBoth();
+    void switchingVersionsRendersTheOtherVersion();
     void cleanupTestCase();
 
 private:
     void waitIdle();
+    void waitComparison();
+    // A fresh render of `recipe` on a scheduler of its own, with the window's
+    // ray map, exposure and plan setting at `preset`.
+    paintlab::gui::RenderResult singleRender(const paintlab::Recipe& recipe, paintlab::Preset preset);
+    // The recipe's latest render by the window's scheduler (a new request).
+    paintlab::gui::RenderResult renderNow();
     QTemporaryDir m_dir;
     std::unique_ptr<MainWindow> m_window;
 };
@@ -116,6 +138,34 @@ void WorkstationTest::waitIdle() {
     // Idle and not tracing: the scheduler has nothing computing or pending.
     QTRY_VERIFY_WITH_TIMEOUT(m_window->scheduler()->idle() && m_window->scheduler()->rayMap() != nullptr,
                              kWaitMs);
+}
+
+void WorkstationTest::waitComparison() {
+    waitIdle();
+    QTRY_VERIFY_WITH_TIMEOUT(m_window->comparisonScheduler()->idle() &&
+                                 !m_window->renderDock()->comparisonImage().isNull(),
+                             kWaitMs);
+}
+
+paintlab::gui::RenderResult WorkstationTest::singleRender(const paintlab::Recipe& recipe,
+                                                          paintlab::Preset preset) {
+    paintlab::gui::RenderScheduler scheduler;
+    scheduler.setRayMap(m_window->scheduler()->rayMap());
+    scheduler.setExposure(m_window->scheduler()->exposure());
+    scheduler.setFollowPlan(m_window->scheduler()->followPlan());
+    QSignalSpy rendered(&scheduler, &paintlab::gui::RenderScheduler::finished);
+    scheduler.request(recipe, preset);
+    if (!rendered.wait(kWaitMs)) return {};
+    return rendered.takeFirst().at(0).value<paintlab::gui::RenderResult>();
+}
+
+paintlab::gui::RenderResult WorkstationTest::renderNow() {
+    waitIdle();
+    QSignalSpy rendered(m_window->scheduler(), &paintlab::gui::RenderScheduler::finished);
+    m_window->document()->settle();  // announces the recipe again: a new request as the GUI makes it
+    if (!rendered.wait(kWaitMs)) return {};
+    waitIdle();
+    return rendered.takeLast().at(0).value<paintlab::gui::RenderResult>();
 }
 
 void WorkstationTest::initTestCase() {
@@ -323,6 +373,205 @@ void WorkstationTest::draggingNeverFreezesTheGuiThread() {
           "ms",
           edits, gaps_ms.size(), static_cast<long long>(gaps_ms.back()), static_cast<long long>(p99));
     QVERIFY2(gaps_ms.back() < 10000, "the GUI thread froze");
+}
+
+// The pearl in the demo scene: one row per decision of the planner, each
+// with what runs, the error it accepts and a reason; the interference flakes
+// make the interference optics run.
+void WorkstationTest::accuracyDockListsThePlanWithReasons() {
+    QVERIFY(m_window->selectRecipe(kPearl));
+    const paintlab::gui::RenderResult result = renderNow();
+    QVERIFY(result.follow_plan);
+    QVERIFY(result.plan.has_value());
+    QTableWidget* table = m_window->accuracyDock()->planTable();
+    QCOMPARE(table->rowCount(), static_cast<int>(result.plan->decisions.size()));
+    QStringList effects;
+    for (int row = 0; row < table->rowCount(); ++row) {
+        effects << table->item(row, 0)->text();
+        QVERIFY2(!table->item(row, 1)->text().isEmpty(), qPrintable(effects.back()));
+        bool number = false;
+        table->item(row, 2)->text().toDouble(&number);
+        QVERIFY2(number, qPrintable(table->item(row, 2)->text()));
+        QVERIFY2(table->item(row, 3)->text().size() > 10, qPrintable(effects.back()));
+    }
+    QCOMPARE(effects, QStringList({"interference", "sparkle", "angular", "bands", "slices", "full_model"}));
+    QCOMPARE(table->item(0, 1)->text(), QStringLiteral("on"));
+    QVERIFY2(table->item(0, 3)->text().contains(QStringLiteral("interference flake")),
+             qPrintable(table->item(0, 3)->text()));
+    const QString summary = m_window->accuracyDock()->planSummary()->text();
+    QVERIFY2(summary.contains(QStringLiteral("ray map")) &&
+                 summary.contains(QStringLiteral("expected error")),
+             qPrintable(summary));
+    // What ran is what the plan says, as the CLI's relight --plan runs it.
+    const paintlab::FastModelSettings ran = result.brdf->settings();
+    const paintlab::FastModelSettings planned = paintlab::raymaps::plannedSettings(*result.plan);
+    QCOMPARE(ran.orders, planned.orders);
+    QCOMPARE(ran.bands, planned.bands);
+    QCOMPARE(ran.slices, planned.slices);
+    QCOMPARE(result.sparkle, result.plan->sparkle);
+    qInfo("pearl, standard, 64 x 36: plan %.1f ms, fast model %.1f ms, relight tables %.1f ms, relight %.2f "
+          "ms, "
+          "sparkle %s",
+          result.plan_ms, result.brdf_ms, result.tables_ms, result.relight_ms, result.sparkle ? "on" : "off");
+
+    // Without a scene: the plan for the BRDF alone (a collimated light,
+    // spectral): no order or band dropped, no image to draw glints on.
+    paintlab::gui::RenderScheduler brdf_only;
+    QSignalSpy done(&brdf_only, &paintlab::gui::RenderScheduler::finished);
+    brdf_only.request(m_window->document()->recipe(), paintlab::Preset::Standard);
+    QVERIFY(done.wait(kWaitMs));
+    const auto alone = done.takeFirst().at(0).value<paintlab::gui::RenderResult>();
+    QVERIFY(alone.plan.has_value());
+    QVERIFY(alone.image.isNull());
+    QVERIFY(!alone.sparkle);
+    QVERIFY2(alone.plan_scene.contains(QStringLiteral("BRDF alone")), qPrintable(alone.plan_scene));
+    const paintlab::FastModelSettings standard = paintlab::presetSettings(paintlab::Preset::Standard);
+    QCOMPARE(alone.brdf->settings().orders, standard.orders);
+    QCOMPARE(alone.brdf->settings().bands, standard.bands);
+    paintlab::gui::AccuracyDock dock;
+    dock.showResult(alone);
+    QCOMPARE(dock.planTable()->rowCount(), static_cast<int>(alone.plan->decisions.size()));
+    QVERIFY2(dock.planSummary()->text().contains(QStringLiteral("BRDF alone")),
+             qPrintable(dock.planSummary()->text()));
+}
+
+// The silver metallic in the demo scene: the plan drops bands (smooth
+// spectra under RGB lighting; at this tiny image's footprints it skips the
+// glints too); the plain preset computes all of the preset's bands and no
+// sparkle.
+void WorkstationTest::turningThePlanOffChangesWhatIsComputed() {
+    QVERIFY(m_window->selectRecipe(QStringLiteral("Silver metallic (aluminium flakes)")));
+    const paintlab::gui::RenderResult planned = renderNow();
+    QVERIFY(planned.plan.has_value());
+    const paintlab::FastModelSettings preset = paintlab::presetSettings(planned.preset);
+    QVERIFY2(planned.brdf->settings().bands < preset.bands,
+             qPrintable(QString::number(planned.brdf->settings().bands)));
+    QCOMPARE(planned.sparkle, planned.plan->sparkle);
+
+    m_window->accuracyDock()->setFollowPlan(false);  // requests a render itself
+    waitIdle();
+    const paintlab::gui::RenderResult plain = renderNow();
+    QVERIFY(!plain.follow_plan);
+    QVERIFY(!plain.plan.has_value());
+    QVERIFY(!plain.sparkle);
+    QCOMPARE(plain.brdf->settings().bands, preset.bands);
+    QVERIFY(plain.image != planned.image);
+    QVERIFY(m_window->accuracyDock()->planTable()->rowCount() == 0);
+    QVERIFY2(m_window->accuracyDock()->planSummary()->text().contains(QStringLiteral("off")),
+             qPrintable(m_window->accuracyDock()->planSummary()->text()));
+
+    m_window->accuracyDock()->setFollowPlan(true);
+    waitIdle();
+    QCOMPARE(renderNow().brdf->settings().bands, planned.brdf->settings().bands);
+}
+
+// The pearl as edited (left) against its saved version 1 (right): each side
+// of the split view is the single render of its recipe at the same
+// settings, pixel for pixel, wherever the divider is dragged.
+void WorkstationTest::splitViewHalvesEqualTheSingleRenders() {
+    QVERIFY(m_window->selectRecipe(kPearl));  // version 2 (the thicker clear coat)
+    QSlider* slider = m_window->editorDock()->sliderFor("volume_fraction");
+    QVERIFY(slider != nullptr);
+    slider->setValue(slider->value() / 2 + 5);  // an unsaved edit
+    waitIdle();
+    paintlab::gui::RenderDock* dock = m_window->renderDock();
+    dock->setMode(paintlab::gui::CompareMode::Split);
+    QVERIFY(m_window->versionsDock()->compareInRender(1));
+    waitComparison();
+    QVERIFY2(dock->comparisonLabel().endsWith(QStringLiteral(", version 1")),
+             qPrintable(dock->comparisonLabel()));
+
+    auto db = paintlab::db::Database::open((m_dir.path() + "/lab.db").toStdString());
+    const paintlab::Recipe version1 = paintlab::db::loadRecipeVersion(db, kPearl.toStdString(), 1).recipe;
+    const paintlab::Preset preset = m_window->accuracyDock()->presetFor(false);
+    const QImage left = singleRender(m_window->document()->recipe(), preset).image;
+    const QImage right = singleRender(version1, preset).image;
+    QVERIFY(!left.isNull() && !right.isNull());
+    QVERIFY(left != right);  // else the comparison below could not fail
+    QVERIFY(dock->image() == left);
+    QVERIFY(dock->comparisonImage() == right);
+
+    // Dragging the divider with the mouse: from the middle to a quarter of the width.
+    auto* view = dock->findChild<paintlab::gui::ComparisonView*>();
+    QVERIFY(view != nullptr);
+    const QRect area = view->imageRect();
+    QVERIFY(!area.isEmpty());
+    QTest::mousePress(view, Qt::LeftButton, {}, QPoint(area.center().x(), area.center().y()));
+    QTest::mouseMove(view, QPoint(area.left() + area.width() / 4, area.center().y()));
+    QTest::mouseRelease(view, Qt::LeftButton, {}, QPoint(area.left() + area.width() / 4, area.center().y()));
+    QVERIFY2(std::abs(dock->splitFraction() - 0.25) < 0.05,
+             qPrintable(QString::number(dock->splitFraction())));
+
+    for (const double fraction : {dock->splitFraction(), 0.5, 0.8}) {
+        dock->setSplitFraction(fraction);
+        const QImage shown = dock->shownPixels().convertToFormat(QImage::Format_RGB888);
+        QCOMPARE(shown.size(), left.size());
+        const int column = paintlab::gui::splitColumn(left.width(), fraction);
+        QVERIFY(column > 0 && column < left.width());
+        QVERIFY(shown.copy(0, 0, column, shown.height()) ==
+                left.convertToFormat(QImage::Format_RGB888).copy(0, 0, column, left.height()));
+        QVERIFY(shown.copy(column, 0, shown.width() - column, shown.height()) ==
+                right.convertToFormat(QImage::Format_RGB888)
+                    .copy(column, 0, right.width() - column, right.height()));
+    }
+    // Saving saves what is shown: the split pixels under a caption strip.
+    const QImage saved = dock->imageToSave().convertToFormat(QImage::Format_RGB888);
+    const int strip = saved.height() - left.height();
+    QVERIFY(strip > 0);
+    QVERIFY(saved.copy(0, strip, saved.width(), left.height()) ==
+            dock->shownPixels().convertToFormat(QImage::Format_RGB888));
+    dock->grab().save(QStringLiteral("screenshots/render-split.png"));
+}
+
+void WorkstationTest::sideBySideShowsBoth() {
+    waitComparison();
+    paintlab::gui::RenderDock* dock = m_window->renderDock();
+    dock->setMode(paintlab::gui::CompareMode::SideBySide);
+    const QImage left = dock->image().convertToFormat(QImage::Format_RGB888);
+    const QImage right = dock->comparisonImage().convertToFormat(QImage::Format_RGB888);
+    const QImage shown = dock->shownPixels().convertToFormat(QImage::Format_RGB888);
+    QCOMPARE(shown.width(), left.width() + paintlab::gui::kSideBySideGap + right.width());
+    QCOMPARE(shown.height(), left.height());
+    QVERIFY(shown.copy(0, 0, left.width(), left.height()) == left);
+    QVERIFY(shown.copy(left.width() + paintlab::gui::kSideBySideGap, 0, right.width(), right.height()) ==
+            right);
+    QCOMPARE(dock->imageToSave().width(), shown.width());
+    dock->grab().save(QStringLiteral("screenshots/render-side-by-side.png"));
+    dock->setMode(paintlab::gui::CompareMode::Single);
+    QVERIFY(dock->shownPixels() == dock->image());
+    QVERIFY(dock->imageToSave() == dock->image());
+}
+
+// Another version picked in the Versions dock replaces the comparison: it is
+// rendered (a new result from the comparison's scheduler) and labelled. The
+// edited pearl (other flake concentration) is saved as version 3 first:
+// version 2's thicker clear coat alone looks the same as version 1.
+void WorkstationTest::switchingVersionsRendersTheOtherVersion() {
+    waitComparison();
+    QVERIFY(m_window->saveVersionAs(QStringLiteral("other flake concentration (GUI test)")));
+    paintlab::gui::RenderDock* dock = m_window->renderDock();
+    const QImage version1 = dock->comparisonImage();
+    QSignalSpy rendered(m_window->comparisonScheduler(), &paintlab::gui::RenderScheduler::finished);
+    m_window->versionsDock()->refresh();
+    QVERIFY(m_window->versionsDock()->compareInRender(3));
+    QVERIFY(dock->comparisonImage().isNull());  // not the old version's image meanwhile
+    waitComparison();
+    QCOMPARE(rendered.count(), 1);
+    QVERIFY2(dock->comparisonLabel().endsWith(QStringLiteral(", version 3")),
+             qPrintable(dock->comparisonLabel()));
+    QVERIFY(dock->comparisonImage() != version1);
+    auto db = paintlab::db::Database::open((m_dir.path() + "/lab.db").toStdString());
+    const paintlab::Recipe version3 = paintlab::db::loadRecipeVersion(db, kPearl.toStdString(), 3).recipe;
+    QVERIFY(dock->comparisonImage() ==
+            singleRender(version3, m_window->accuracyDock()->presetFor(false)).image);
+    // Pinning the edited recipe: both sides are then the same recipe.
+    m_window->renderDock()->findChild<QPushButton*>(QStringLiteral("pin_comparison"))->click();
+    QVERIFY(dock->comparisonLabel().contains(QStringLiteral("pinned")));
+    waitComparison();
+    QVERIFY(dock->comparisonImage() == dock->image());
+    m_window->clearComparison();
+    QVERIFY(!dock->hasComparison());
+    QVERIFY(dock->mode() == paintlab::gui::CompareMode::Single);
 }
 
 void WorkstationTest::cleanupTestCase() { m_window.reset(); }
