@@ -106,10 +106,7 @@ struct AbChart::Vtk {
 AbChart::AbChart(QWidget* parent) : PlotWidget(parent) {
     runOnRenderThread([this] {
         m_vtk = std::make_unique<Vtk>();
-        m_vtk->view->SetRenderWindow(renderWindow());
-        m_vtk->view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
-        m_vtk->view->GetScene()->AddItem(m_vtk->chart);
-        useReadableFont(m_vtk->chart);
+        showChart(m_vtk->view, m_vtk->chart);
         m_vtk->chart->SetTitle("CIELAB a*b* at the multi-angle geometries (D65/10 deg), flop path");
         m_vtk->chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("a*");
         m_vtk->chart->GetAxis(vtkAxis::LEFT)->SetTitle("b*");

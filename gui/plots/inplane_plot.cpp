@@ -86,10 +86,7 @@ void fillTable(vtkTable* t, const std::vector<InplaneCurve>& curves, std::size_t
 InplanePlot::InplanePlot(QWidget* parent) : PlotWidget(parent) {
     runOnRenderThread([this] {
         m_vtk = std::make_unique<Vtk>();
-        m_vtk->view->SetRenderWindow(renderWindow());
-        m_vtk->view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
-        m_vtk->view->GetScene()->AddItem(m_vtk->chart);
-        useReadableFont(m_vtk->chart);
+        showChart(m_vtk->view, m_vtk->chart);
         m_vtk->chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("view angle (deg, negative: light side)");
         m_vtk->chart->GetAxis(vtkAxis::LEFT)->SetTitle("pi f");
         m_vtk->chart->SetShowLegend(true);

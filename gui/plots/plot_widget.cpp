@@ -12,9 +12,12 @@
 
 #include <vtkAxis.h>
 #include <vtkChartXY.h>
+#include <vtkContextScene.h>
+#include <vtkContextView.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkNew.h>
 #include <vtkOpenGLState.h>
+#include <vtkRenderer.h>
 #include <vtkTextProperty.h>
 
 #include <filesystem>
@@ -211,6 +214,13 @@ void PlotWidget::useReadableFont(vtkChartXY* chart) {
     // letters read well (DejaVu's thin l and d strokes fade at these sizes).
     for (int axis = vtkAxis::LEFT; axis <= vtkAxis::TOP; ++axis)
         use(chart->GetAxis(axis)->GetLabelProperties());
+}
+
+void PlotWidget::showChart(vtkContextView* view, vtkChartXY* chart) const {
+    view->SetRenderWindow(renderWindow());
+    view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
+    view->GetScene()->AddItem(chart);
+    useReadableFont(chart);
 }
 
 bool PlotWidget::exportPng(const QString& path) {

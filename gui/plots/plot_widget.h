@@ -28,6 +28,7 @@
 
 class QOffscreenSurface;
 class vtkChartXY;
+class vtkContextView;
 class vtkGenericOpenGLRenderWindow;
 
 namespace paintlab::gui {
@@ -86,6 +87,10 @@ protected:
     // chart sizes ("D.1D" for 0.10); the built-in font stays if the file is
     // missing. Render thread only.
     static void useReadableFont(vtkChartXY* chart);
+    // A 2D chart drawn in this plot's window: `view` renders into it on a
+    // white background and shows `chart`, with readable axis numbers.
+    // Render thread only.
+    void showChart(vtkContextView* view, vtkChartXY* chart) const;
     static QString csvText(const QString& text);
 
 private:

@@ -44,10 +44,7 @@ constexpr std::array<std::array<unsigned char, 3>, 9> kPalette{{{0, 114, 178},
 SpectraPlot::SpectraPlot(QWidget* parent) : PlotWidget(parent) {
     runOnRenderThread([this] {
         m_vtk = std::make_unique<Vtk>();
-        m_vtk->view->SetRenderWindow(renderWindow());
-        m_vtk->view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
-        m_vtk->view->GetScene()->AddItem(m_vtk->chart);
-        useReadableFont(m_vtk->chart);
+        showChart(m_vtk->view, m_vtk->chart);
         m_vtk->chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("wavelength (nm)");
         m_vtk->chart->SetShowLegend(true);
     });

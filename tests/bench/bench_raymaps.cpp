@@ -11,6 +11,7 @@
 // the kernel's work depends on the number of paint pixels, J, M_L and K, not
 // on how many rays estimated the stored values.
 #include "temp_dir.h"
+#include "test_scenes.h"
 
 #include "paintlab/engine/layered_brdf.h"
 #include "paintlab/engine/plan.h"
@@ -41,17 +42,6 @@ const std::filesystem::path kDemo = std::filesystem::path(PAINTLAB_DEMO_DIR);
 
 Recipe pearlescent() { return loadRecipeFile(kDemo / "recipes" / "pearlescent-two-layer.json"); }
 
-RayMapSettings cheapSettings() {
-    RayMapSettings s;
-    s.aa_samples = 1;
-    s.light_rays = 4;  // raised to M_L per cell: 16 moment rays
-    s.bake_paths = 1;
-    s.sun_shadow_rays = 1;
-    s.max_depth = 2;
-    s.indirect_depth = 1;
-    return s;
-}
-
 // Maps (loaded) and their decoded input by key, built on first use and kept for the process.
 struct CachedMap {
     std::unique_ptr<RayMap> map;
@@ -64,7 +54,7 @@ const CachedMap& cachedMap(const std::string& key, const Scene& scene) {
     auto& slot = maps[key];
     if (!slot.map) {
         const auto path = dir / (key + ".prm");
-        buildRayMap(scene, cheapSettings(), path);
+        buildRayMap(scene, paintlab::test::cheapRayMapSettings(), path);
         slot.map = RayMap::open(path);
         slot.map->loadAll();
         slot.input = std::make_unique<RelightInput>(*slot.map);
@@ -116,7 +106,7 @@ void BM_RelightDecode(benchmark::State& state) {
     scene.camera.width = static_cast<int>(state.range(0));
     scene.camera.height = scene.camera.width * 9 / 16;
     const paintlab::test::TempDir dir;
-    buildRayMap(scene, cheapSettings(), dir / "map.prm");
+    buildRayMap(scene, paintlab::test::cheapRayMapSettings(), dir / "map.prm");
     const auto map = RayMap::open(dir / "map.prm");
     map->loadAll();
     for (auto _ : state) benchmark::DoNotOptimize(RelightInput(*map));
@@ -165,16 +155,8 @@ BENCHMARK(BM_SliderToImage)->Arg(480)->Arg(1920)->Unit(benchmark::kMillisecond)-
 // not follow the triangle count. Argument: s.
 void BM_RelightGeometry(benchmark::State& state) {
     const auto s = static_cast<int>(state.range(0));
-    const std::string text = R"({"schema_version": 1,
-      "camera": {"position": [0, 1, 4], "look_at": [0, 0.8, 0], "vertical_fov_deg": 30, "width": 960, "height": 540},
-      "lights": [{"type": "sun", "direction": [0.5, 0.8, 0.6], "irradiance": [2, 2, 2]}],
-      "materials": [{"name": "paint", "kind": "paint"}, {"name": "ground", "kind": "diffuse"}],
-      "objects": [{"name": "ball", "sphere": {"radius": 0.8, "subdivisions": )" +
-                             std::to_string(s) + R"(}, "material": "paint",
-                   "transform": {"translate": [0, 0.8, 0]}},
-                  {"name": "floor", "plane": {"size": 30}, "material": "ground"}]})";
     const RelightInput& input =
-        cachedInput("sphere" + std::to_string(s), parseSceneJson(text, "sphere.json"));
+        cachedInput("sphere" + std::to_string(s), paintlab::test::paintSphereOnFloor(960, 540, s));
     const LayeredBrdf brdf = computeLayeredBrdf(pearlescent(), presetSettings(Preset::Preview));
     const RelightTables tables(brdf, input.cells(), input.orders());
     state.SetLabel(std::to_string(20 << (2 * s)) + " sphere triangles");

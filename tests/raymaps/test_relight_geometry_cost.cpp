@@ -5,6 +5,7 @@
 // margin; the figures themselves are BM_RelightGeometry's (docs/PERFORMANCE.md).
 
 #include "temp_dir.h"
+#include "test_scenes.h"
 
 #include "paintlab/engine/layered_brdf.h"
 #include "paintlab/engine/recipe_json.h"
@@ -25,19 +26,6 @@
 namespace paintlab::raymaps {
 namespace {
 
-// A paint sphere of 20 x 4^s triangles on a floor under a sun, 640 x 360.
-Scene sphereScene(int subdivisions) {
-    return parseSceneJson(R"({"schema_version": 1,
-      "camera": {"position": [0, 1, 4], "look_at": [0, 0.8, 0], "vertical_fov_deg": 30, "width": 640, "height": 360},
-      "lights": [{"type": "sun", "direction": [0.5, 0.8, 0.6], "irradiance": [2, 2, 2]}],
-      "materials": [{"name": "paint", "kind": "paint"}, {"name": "ground", "kind": "diffuse"}],
-      "objects": [{"name": "ball", "sphere": {"radius": 0.8, "subdivisions": )" +
-                              std::to_string(subdivisions) + R"(}, "material": "paint",
-                   "transform": {"translate": [0, 0.8, 0]}},
-                  {"name": "floor", "plane": {"size": 30}, "material": "ground"}]})",
-                          "sphere.json");
-}
-
 // The least process CPU time (all threads) of `runs` relights, in ms. CPU
 // time, not wall time: on a shared machine (CI runs two tests at once) the
 // wall time of a two-thread kernel doubles whenever another process holds a
@@ -56,15 +44,10 @@ double leastRelightCpuMs(const RelightInput& input, const RelightTables& tables,
 
 TEST(RelightGeometryCost, SixteenTimesTheTrianglesRelightInTheSameTime) {
     const test::TempDir dir;
-    RayMapSettings s;  // the cheapest precompute: the relight's work does not depend on it
-    s.aa_samples = 1;
-    s.light_rays = 4;
-    s.bake_paths = 1;
-    s.sun_shadow_rays = 1;
-    s.max_depth = 2;
-    s.indirect_depth = 1;
-    buildRayMap(sphereScene(3), s, dir / "coarse.prm");  // 1,280 sphere triangles
-    buildRayMap(sphereScene(5), s, dir / "fine.prm");    // 20,480: 16x
+    // The cheapest precompute: the relight's work does not depend on it.
+    const RayMapSettings s = test::cheapRayMapSettings();
+    buildRayMap(test::paintSphereOnFloor(640, 360, 3), s, dir / "coarse.prm");  // 1,280 sphere triangles
+    buildRayMap(test::paintSphereOnFloor(640, 360, 5), s, dir / "fine.prm");    // 20,480: 16x
     const auto coarse_map = RayMap::open(dir / "coarse.prm");
     const auto fine_map = RayMap::open(dir / "fine.prm");
     const RelightInput coarse(*coarse_map);
