@@ -1,5 +1,7 @@
 #include "recipe_editor_dock.h"
 
+#include "depth_profile_edit.h"
+#include "depth_profile_section.h"
 #include "set_parameter_command.h"
 
 #include <QDoubleSpinBox>
@@ -97,6 +99,11 @@ void RecipeEditorDock::rebuild() {
         grid->addWidget(row.slider, line, 2);
         m_rows.push_back(row);
     }
+    // Below the rows of each pigment or flake: its depth-profile editor, opened on demand.
+    for (const auto& [where, grid] : groups)
+        if (where.second >= 0 && componentProfile(recipe, where.first, where.second) != nullptr)
+            grid->addWidget(new DepthProfileSection(m_document, where.first, where.second, m_form),
+                            grid->rowCount(), 0, 1, 3);
     m_layout->addStretch(1);
     // Connections after the rows exist: the vector no longer moves until the
     // next rebuild, which deletes these widgets (and their connections) first.
