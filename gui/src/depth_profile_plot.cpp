@@ -73,7 +73,7 @@ QRectF DepthProfilePlot::plotRect() const {
     const double bottom = 2.5 * fm.height() + 4.0;
     const double top = fm.height() + 6.0;
     const double right = 14.0;
-    return QRectF(left, top, std::max(10.0, width() - left - right), std::max(10.0, height() - top - bottom));
+    return {left, top, std::max(10.0, width() - left - right), std::max(10.0, height() - top - bottom)};
 }
 
 QPointF DepthProfilePlot::nodePosition(std::size_t node) const {
