@@ -34,6 +34,7 @@
 
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 
 using paintlab::DepthProfile;
 using paintlab::Recipe;
@@ -45,12 +46,15 @@ using paintlab::gui::RecipeDocument;
 namespace {
 
 // The basecoat (layer index 1, 10 µm) holds the pearl flakes (component 0,
-// 4 %, technological limit 30 %) and a pigment (component 1, 5 %).
+// 4 %, technological limit 30 %), a pigment (component 1, 5 %) and mirror
+// flakes (component 2, 2 %).
 constexpr int kLayer = 1;
 constexpr int kPearl = 0;
 
 Recipe pearlescent() {
-    return paintlab::test::smallPearlescent(paintlab::test::pigment(0.05, 0.5, 5.0, 0.3), 0.3);
+    Recipe recipe = paintlab::test::smallPearlescent(paintlab::test::pigment(0.05, 0.5, 5.0, 0.3), 0.3);
+    recipe.layers[kLayer].components.push_back(paintlab::test::mirrorFlake(0.02, 10.0, 0.8));  // component 2
+    return recipe;
 }
 
 const std::optional<DepthProfile>& pearlProfile(const RecipeDocument& document) {
@@ -109,11 +113,13 @@ private slots:
     void presetsHaveTheirClosedForms();
     void dragChangesTheProfileAsOneUndoStep();
     void dragOfAnInnerNodeStaysBetweenItsNeighbours();
+    void dragBackToTheStartLeavesNoUndoStep();
     void nodesAreAddedAndRemovedButNotTheEnds();
     void invalidProfilesAreRefusedWithTheField();
     void typedNodeValuesAreCheckedToo();
     void uniformResetRemovesTheProfile();
     void recipeEditorOpensTheEditorPerComponent();
+    void onlyPigmentsAndFlakesHaveAProfile();
 
 private:
     DepthProfilePlot* plot() const { return m_editor->plot(); }
@@ -242,6 +248,23 @@ void DepthProfileTest::dragOfAnInnerNodeStaysBetweenItsNeighbours() {
     QVERIFY(m_document->recipe() == before);
 }
 
+void DepthProfileTest::dragBackToTheStartLeavesNoUndoStep() {
+    QVERIFY(m_editor->apply(DepthProfile{{0.0, 1.0}, {0.0, 1.0}}));
+    const Recipe before = m_document->recipe();
+    QSignalSpy changed(m_document.get(), &RecipeDocument::recipeChanged);
+    // The top node (weight 0) up, then down past the axis: the weight is clipped back to 0 exactly.
+    const QPointF from = plot()->nodePosition(0);
+    sendMouse(plot(), QEvent::MouseButtonPress, from, Qt::LeftButton, Qt::LeftButton);
+    for (const double dy : {-20.0, -40.0, -20.0, 30.0})
+        sendMouse(plot(), QEvent::MouseMove, from + QPointF(0.0, dy), Qt::NoButton, Qt::LeftButton);
+    sendMouse(plot(), QEvent::MouseButtonRelease, from + QPointF(0.0, 30.0), Qt::LeftButton, Qt::NoButton);
+    QVERIFY(m_document->recipe() == before);
+    QCOMPARE(m_document->undoStack()->count(), 1);  // only the first apply
+    QCOMPARE(m_document->undoStack()->index(), 1);
+    QVERIFY(changed.count() >= 2);
+    QCOMPARE(changed.last().at(0).toBool(), false);  // the release still announces the final state
+}
+
 void DepthProfileTest::nodesAreAddedAndRemovedButNotTheEnds() {
     QUndoStack* undo = m_document->undoStack();
     // Double-click in the middle of the layer, at weight ~2.
@@ -303,6 +326,8 @@ void DepthProfileTest::invalidProfilesAreRefusedWithTheField() {
         {{{0.0, 0.5, 1.0}, {0.0, 0.0, 0.0}}, "all weights are zero"},
         {{{0.0, 0.5, 1.0}, {1.0, 1.0}}, "every node needs both"},
         {{{0.0, 1.0}, {1.0, std::nan("")}}, "depth_profile > weight (node 2)"},
+        {{{0.0, 1.0}, {1.0, 2000.0}}, "depth_profile > weight (node 2): 2000 is above the maximum 1000"},
+        {{{0.0}, {1.0}}, "needs at least two nodes"},
         // Valid in shape, but 4 % flakes x peak 200 = 80 % > their 30 % limit: the engine's check.
         {{{0.0, 0.01, 1.0}, {100.0, 0.0, 0.0}}, "depth_profile: the profile's peak volume fraction"},
     };
@@ -385,10 +410,10 @@ void DepthProfileTest::recipeEditorOpensTheEditorPerComponent() {
     dock.show();
     QVERIFY(QTest::qWaitForWindowExposed(&dock));
     // The parameter rows are still there, and one section per pigment or flake
-    // (the basecoat's pearl and pigment; the clear coat has no components).
+    // (the basecoat's pearl, pigment and mirror flakes; the clear coat has no components).
     QVERIFY(dock.sliderFor("volume_fraction") != nullptr);
     const auto sections = dock.findChildren<paintlab::gui::DepthProfileSection*>();
-    QCOMPARE(sections.size(), qsizetype{2});
+    QCOMPARE(sections.size(), qsizetype{3});
     auto* section = dock.findChild<paintlab::gui::DepthProfileSection*>("depth_profile_section_1_0");
     QVERIFY(section != nullptr);
     QVERIFY(section->editor() == nullptr);
@@ -402,6 +427,22 @@ void DepthProfileTest::recipeEditorOpensTheEditorPerComponent() {
     saveScreenshot(&dock, "depth_profile_dock");
     QTest::mouseClick(section->button(), Qt::LeftButton);
     QVERIFY(!section->editor()->isVisible());
+}
+
+void DepthProfileTest::onlyPigmentsAndFlakesHaveAProfile() {
+    Recipe recipe = m_document->recipe();
+    for (int c = 0; c < 3; ++c) QVERIFY(paintlab::gui::componentProfile(recipe, kLayer, c) != nullptr);
+    recipe.layers[kLayer].components.push_back(paintlab::test::rawMedium(0.5, 1.0, 0.0));
+    QVERIFY(paintlab::gui::componentProfile(recipe, kLayer, 3) == nullptr);
+    QVERIFY(paintlab::gui::componentProfile(recipe, kLayer, 4) == nullptr);
+    QVERIFY(paintlab::gui::componentProfile(recipe, 0, 0) == nullptr);  // the clear coat has none
+    QVERIFY_THROWS_EXCEPTION(std::out_of_range, paintlab::gui::withProfile(recipe, kLayer, 3, std::nullopt));
+    // The mirror flakes' editor works like the pearl's.
+    DepthProfileEditor mirror(m_document.get(), kLayer, 2);
+    QVERIFY(mirror.applyPreset(DepthProfilePreset::EnrichedTop));
+    QCOMPARE(*paintlab::gui::componentProfile(m_document->recipe(), kLayer, 2),
+             paintlab::gui::presetProfile(DepthProfilePreset::EnrichedTop));
+    QVERIFY(!pearlProfile(*m_document).has_value());
 }
 
 int main(int argc, char** argv) {
