@@ -26,7 +26,8 @@ DepthProfilePlot::DepthProfilePlot(QWidget* parent) : QWidget(parent) {
     setAutoFillBackground(true);
     setBackgroundRole(QPalette::Base);
     setFocusPolicy(Qt::StrongFocus);  // Delete removes the selected node
-    setMouseTracking(false);
+    setMouseTracking(true);           // the cursor shows when a node is within reach
+    setCursor(Qt::CrossCursor);
     m_profile = presetProfile(DepthProfilePreset::Uniform);
 }
 
@@ -125,10 +126,14 @@ void DepthProfilePlot::mousePressEvent(QMouseEvent* event) {
     selectNode(node);
     m_dragged = node;
     m_moved = false;
+    if (node >= 0) setCursor(Qt::ClosedHandCursor);
 }
 
 void DepthProfilePlot::mouseMoveEvent(QMouseEvent* event) {
-    if (m_dragged < 0 || !(event->buttons() & Qt::LeftButton)) return;
+    if (m_dragged < 0 || !(event->buttons() & Qt::LeftButton)) {
+        setCursor(nodeAt(event->position()) >= 0 ? Qt::OpenHandCursor : Qt::CrossCursor);
+        return;
+    }
     const QPointF v = valueAt(event->position());
     const DepthProfile moved = withNodeMoved(m_profile, static_cast<std::size_t>(m_dragged), v.x(),
                                              std::clamp(v.y(), 0.0, m_axis_max));
@@ -140,6 +145,7 @@ void DepthProfilePlot::mouseMoveEvent(QMouseEvent* event) {
 void DepthProfilePlot::mouseReleaseEvent(QMouseEvent* event) {
     if (event->button() != Qt::LeftButton || m_dragged < 0) return;
     const bool moved = m_moved;
+    setCursor(Qt::OpenHandCursor);  // still over the node just let go
     m_dragged = -1;
     m_moved = false;
     updateAxis();

@@ -30,4 +30,8 @@ DepthProfileSection::DepthProfileSection(RecipeDocument* document, int layer, in
     });
 }
 
+bool DepthProfileSection::isOpen() const { return m_button->isChecked(); }
+
+void DepthProfileSection::setOpen(bool open) { m_button->setChecked(open); }
+
 }  // namespace paintlab::gui

@@ -18,6 +18,10 @@ class DepthProfileSection : public QWidget {
 public:
     DepthProfileSection(RecipeDocument* document, int layer, int component, QWidget* parent = nullptr);
 
+    int layer() const { return m_layer; }
+    int component() const { return m_component; }
+    bool isOpen() const;
+    void setOpen(bool open);
     QToolButton* button() const { return m_button; }
     DepthProfileEditor* editor() const { return m_editor; }  // nullptr until first opened
 

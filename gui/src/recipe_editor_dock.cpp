@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 
 namespace paintlab::gui {
 
@@ -53,6 +54,10 @@ QSlider* RecipeEditorDock::sliderFor(std::string_view key) const {
 }
 
 void RecipeEditorDock::rebuild() {
+    // Open depth-profile editors stay open (adding a component keeps the others' places).
+    std::set<std::pair<int, int>> open_profiles;
+    for (const auto* section : m_form->findChildren<DepthProfileSection*>())
+        if (section->isOpen()) open_profiles.insert({section->layer(), section->component()});
     while (QLayoutItem* item = m_layout->takeAt(0)) {
         delete item->widget();
         delete item;
@@ -101,9 +106,11 @@ void RecipeEditorDock::rebuild() {
     }
     // Below the rows of each pigment or flake: its depth-profile editor, opened on demand.
     for (const auto& [where, grid] : groups)
-        if (where.second >= 0 && componentProfile(recipe, where.first, where.second) != nullptr)
-            grid->addWidget(new DepthProfileSection(m_document, where.first, where.second, m_form),
-                            grid->rowCount(), 0, 1, 3);
+        if (where.second >= 0 && componentProfile(recipe, where.first, where.second) != nullptr) {
+            auto* section = new DepthProfileSection(m_document, where.first, where.second, m_form);
+            section->setOpen(open_profiles.count(where) > 0);
+            grid->addWidget(section, grid->rowCount(), 0, 1, 3);
+        }
     m_layout->addStretch(1);
     // Connections after the rows exist: the vector no longer moves until the
     // next rebuild, which deletes these widgets (and their connections) first.

@@ -17,6 +17,7 @@
 #include "depth_profile_section.h"
 #include "recipe_document.h"
 #include "recipe_editor_dock.h"
+#include "replace_recipe_command.h"
 #include "test_recipes.h"
 
 #include "paintlab/engine/recipe_validation.h"
@@ -425,6 +426,17 @@ void DepthProfileTest::recipeEditorOpensTheEditorPerComponent() {
     // A profile edit does not rebuild the dock: the open editor stays.
     QVERIFY(section->editor()->isVisible());
     saveScreenshot(&dock, "depth_profile_dock");
+    // A component added to the layer rebuilds the rows; the open editor is open again.
+    Recipe added = m_document->recipe();
+    paintlab::Pigment second = paintlab::test::pigment(0.01, 0.1, 1.0, 0.0);
+    second.name = "second pigment";
+    added.layers[kLayer].components.push_back(second);
+    m_document->undoStack()->push(new paintlab::gui::ReplaceRecipeCommand(m_document.get(), added, "add"));
+    QCOMPARE(dock.findChildren<paintlab::gui::DepthProfileSection*>().size(), qsizetype{4});
+    section = dock.findChild<paintlab::gui::DepthProfileSection*>("depth_profile_section_1_0");
+    QVERIFY(section != nullptr && section->isOpen() && section->editor() != nullptr);
+    QVERIFY(!dock.findChild<paintlab::gui::DepthProfileSection*>("depth_profile_section_1_1")->isOpen());
+    QCOMPARE(section->editor()->plot()->profile(), paintlab::gui::presetProfile(DepthProfilePreset::Settled));
     QTest::mouseClick(section->button(), Qt::LeftButton);
     QVERIFY(!section->editor()->isVisible());
 }
