@@ -9,6 +9,7 @@
 #include <set>
 #include <stdexcept>
 #include <type_traits>
+#include <utility>
 #include <variant>
 
 namespace paintlab::gui {
@@ -153,12 +154,23 @@ Recipe withProfile(const Recipe& recipe, int layer, int component,
     return out;
 }
 
-std::string newRecipeError(const Recipe& current, const Recipe& candidate) {
-    std::set<std::string> already;
+std::string profileEditError(const Recipe& current, const Recipe& candidate, int layer) {
+    // The field names as recipe_validation.cpp writes them: "layer 2 'basecoat' > ...".
+    std::string layer_prefix;
+    if (layer >= 0 && layer < static_cast<int>(candidate.layers.size()))
+        layer_prefix = "layer " + std::to_string(layer + 1) + " '" +
+                       candidate.layers[static_cast<std::size_t>(layer)].name + "' > ";
+    auto aboutThisLayersProfiles = [&layer_prefix](const std::string& field) {
+        if (layer_prefix.empty() || field.rfind(layer_prefix, 0) != 0) return false;
+        return field.find("> depth_profile") != std::string::npos || field == layer_prefix + "components";
+    };
+    std::set<std::pair<std::string, std::string>> already;
     for (const RecipeProblem& p : checkRecipe(current))
-        if (p.severity == Severity::Error) already.insert(p.field);
+        if (p.severity == Severity::Error) already.insert({p.field, p.message});
     for (const RecipeProblem& p : checkRecipe(candidate))
-        if (p.severity == Severity::Error && already.count(p.field) == 0) return p.field + ": " + p.message;
+        if (p.severity == Severity::Error &&
+            (aboutThisLayersProfiles(p.field) || already.count({p.field, p.message}) == 0))
+            return p.field + ": " + p.message;
     return {};
 }
 

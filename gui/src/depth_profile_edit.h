@@ -60,10 +60,14 @@ const std::optional<DepthProfile>* componentProfile(const Recipe& recipe, int la
 Recipe withProfile(const Recipe& recipe, int layer, int component,
                    const std::optional<DepthProfile>& profile);
 
-// Why `candidate` may not replace `current`: the first error of the engine's
-// validation (checkRecipe) at a field where `current` has none, as
-// "field: message" (a profile's peak above the component's technological
-// limit, the layer's local total above 100 %); empty when there is none.
-std::string newRecipeError(const Recipe& current, const Recipe& candidate);
+// Why `candidate` (`current` with a profile in layer `layer` edited) may not
+// replace `current`, as "field: message" from the engine's validation
+// (checkRecipe); empty when it may. Refused: any error about a depth profile
+// or the local total volume fraction of that layer (a peak above a
+// component's technological limit, a local total above 100 %), even one
+// `current` already had (a concentration slider can leave the recipe so:
+// only an edit that mends it is taken), and any error elsewhere that
+// `current` does not have with the same message.
+std::string profileEditError(const Recipe& current, const Recipe& candidate, int layer);
 
 }  // namespace paintlab::gui

@@ -157,7 +157,7 @@ bool DepthProfileEditor::propose(const std::optional<DepthProfile>& profile, int
         if (drag != 0 && !interactive && m_drag_pushed) m_document->settle();
         return true;
     }
-    const std::string problem = newRecipeError(current, candidate);
+    const std::string problem = profileEditError(current, candidate, m_layer);
     if (!problem.empty()) {
         refuse(QString::fromStdString(problem));
         return false;

@@ -36,6 +36,7 @@
 #include <cmath>
 #include <memory>
 #include <stdexcept>
+#include <variant>
 
 using paintlab::DepthProfile;
 using paintlab::Recipe;
@@ -118,6 +119,7 @@ private slots:
     void nodesAreAddedAndRemovedButNotTheEnds();
     void invalidProfilesAreRefusedWithTheField();
     void typedNodeValuesAreCheckedToo();
+    void anInvalidRecipeTakesOnlyAMendingProfile();
     void uniformResetRemovesTheProfile();
     void recipeEditorOpensTheEditorPerComponent();
     void onlyPigmentsAndFlakesHaveAProfile();
@@ -386,6 +388,26 @@ void DepthProfileTest::typedNodeValuesAreCheckedToo() {
     QVERIFY(depth->isReadOnly() == false);
     plot()->selectNode(0);
     QVERIFY(depth->isReadOnly());  // the end nodes stay at 0 and 1
+}
+
+// A concentration slider can leave the recipe invalid (18 % pearl x settled
+// peak 2 = 36 % > 30 %): a profile edit that keeps it invalid is refused
+// even with the same peak, one that mends it is taken.
+void DepthProfileTest::anInvalidRecipeTakesOnlyAMendingProfile() {
+    Recipe invalid = pearlescent();
+    auto& pearl = std::get<paintlab::InterferenceFlake>(invalid.layers[kLayer].components[kPearl]);
+    pearl.volume_fraction = 0.18;
+    pearl.depth_profile = paintlab::gui::presetProfile(DepthProfilePreset::Settled);
+    m_document->load(invalid, "test", 0);
+    QVERIFY(hasErrors(m_document->recipe()));
+    QCOMPARE(plot()->profile(), paintlab::gui::presetProfile(DepthProfilePreset::Settled));
+    QVERIFY(!m_editor->applyPreset(DepthProfilePreset::EnrichedTop));  // peak 2 as well
+    QVERIFY2(m_editor->message().contains("depth_profile: the profile's peak volume fraction 0.36"),
+             qPrintable(m_editor->message()));
+    QVERIFY(m_document->recipe() == invalid);
+    QVERIFY(m_editor->applyPreset(DepthProfilePreset::LinearGradient));  // peak 1.5: 27 %
+    QVERIFY(!hasErrors(m_document->recipe()));
+    QCOMPARE(m_document->undoStack()->count(), 1);
 }
 
 void DepthProfileTest::uniformResetRemovesTheProfile() {
