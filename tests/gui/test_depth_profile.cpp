@@ -447,6 +447,14 @@ void DepthProfileTest::recipeEditorOpensTheEditorPerComponent() {
     QCOMPARE(*pearlProfile(*m_document), paintlab::gui::presetProfile(DepthProfilePreset::Settled));
     // A profile edit does not rebuild the dock: the open editor stays.
     QVERIFY(section->editor()->isVisible());
+    // Laid out (posted layout requests) with the chart at its full height, above its controls.
+    QTest::qWait(50);
+    DepthProfilePlot* chart = section->editor()->plot();
+    QCOMPARE_GE(chart->height(), 200);
+    auto* presets = section->editor()->findChild<QWidget*>("depth_profile_presets");
+    QVERIFY(presets != nullptr);
+    QCOMPARE_GE(presets->mapTo(section->editor(), QPoint(0, 0)).y(),
+                chart->mapTo(section->editor(), QPoint(0, chart->height())).y());
     saveScreenshot(&dock, "depth_profile_dock");
     // A component added to the layer rebuilds the rows; the open editor is open again.
     Recipe added = m_document->recipe();
