@@ -21,8 +21,11 @@ std::string layerField(const Recipe& recipe, int layer) {
     return field;
 }
 
+// "interference flake 'pearl'", for undo texts.
 std::string componentLabel(const Component& component) {
-    return std::string(componentKind(component)) + " '" + componentName(component) + "'";
+    std::string kind(componentKind(component));
+    std::replace(kind.begin(), kind.end(), '_', ' ');
+    return kind + " '" + componentName(component) + "'";
 }
 
 void checkLayerIndex(const Recipe& recipe, int layer) {

@@ -98,8 +98,16 @@ RecipeStructurePanel::RecipeStructurePanel(RecipeDocument* document, QWidget* pa
     });
     connect(m_layers, &QListWidget::itemChanged, this, [this](QListWidgetItem* item) {
         if (m_filling) return;
-        selectLayer(m_layers->row(item));
-        renameLayer(item->text());
+        // After the item's editor has finished committing: the rename refills the list.
+        const int row = m_layers->row(item);
+        const QString name = item->text();
+        QMetaObject::invokeMethod(
+            this,
+            [this, row, name]() {
+                selectLayer(row);
+                renameLayer(name);
+            },
+            Qt::QueuedConnection);
     });
     connect(m_components, &QTableWidget::currentCellChanged, this, [this](int row) {
         if (!m_filling) selectComponent(row);

@@ -26,6 +26,7 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QGroupBox>
+#include <QLineEdit>
 #include <QListWidget>
 #include <QSignalSpy>
 #include <QTableWidget>
@@ -175,7 +176,7 @@ void RecipeStructureTest::editsChangeTheRecipeAsExpected() {
     QCOMPARE(removed.text, std::string("Remove pigment 'pigment' from 'basecoat'"));
     StructureEdit down = withComponentMoved(r, kBase, 0, 2);
     QCOMPARE(componentNames(down.recipe, kBase), (std::vector<std::string>{"pigment", "mirror", "pearl"}));
-    QCOMPARE(down.text, std::string("Move interference_flake 'pearl' down in 'basecoat'"));
+    QCOMPARE(down.text, std::string("Move interference flake 'pearl' down in 'basecoat'"));
 
     QCOMPARE(withLayerRenamed(r, 1, "  base  ").recipe.layers[1].name, std::string("base"));
 
@@ -282,10 +283,18 @@ void RecipeStructureTest::layersMoveUpAndDownWithTheSelection() {
 
 void RecipeStructureTest::renameByEditingTheListItem() {
     const Recipe before = m_document->recipe();
-    QListWidgetItem* item = panel()->layerList()->item(kBase);
+    QListWidget* list = panel()->layerList();
+    QListWidgetItem* item = list->item(kBase);
     QVERIFY(item->flags() & Qt::ItemIsEditable);
-    item->setText(QStringLiteral("blue basecoat"));  // what the item's editor commits
-    QCOMPARE(m_document->recipe().layers[kBase].name, std::string("blue basecoat"));
+    // As a technician does: the Rename button opens the item's editor, type, Enter.
+    panel()->selectLayer(kBase);
+    button("structure_rename_layer")->click();
+    auto* editor = list->viewport()->findChild<QLineEdit*>();
+    QVERIFY(editor != nullptr);
+    editor->selectAll();
+    QTest::keyClicks(editor, QStringLiteral("blue basecoat"));
+    QTest::keyClick(editor, Qt::Key_Return);
+    QTRY_COMPARE(m_document->recipe().layers[kBase].name, std::string("blue basecoat"));
     QCOMPARE(m_document->undoStack()->count(), 1);
     QCOMPARE(m_document->undoStack()->undoText(),
              QStringLiteral("Rename layer 'basecoat' to 'blue basecoat'"));
@@ -312,6 +321,7 @@ void RecipeStructureTest::emptyOrTakenNamesAreRefused() {
     QCOMPARE(m_document->undoStack()->count(), 0);
     // Through the list: the refused text is replaced by the name again.
     panel()->layerList()->item(kBase)->setText(QStringLiteral("layer"));
+    QTRY_VERIFY(panel()->message().contains("already called"));
     QVERIFY2(panel()->message().contains("layer 2 'basecoat' > name: layer 1 is already called 'layer'"),
              qPrintable(panel()->message()));
     QVERIFY(m_document->recipe() == before);
@@ -352,7 +362,7 @@ void RecipeStructureTest::componentsAreRemovedAndMoved() {
     button("structure_remove_component")->click();
     QCOMPARE(componentNames(m_document->recipe(), kBase), (std::vector<std::string>{"pearl", "pigment"}));
     QCOMPARE(m_document->undoStack()->undoText(),
-             QStringLiteral("Remove mirror_flake 'mirror' from 'basecoat'"));
+             QStringLiteral("Remove mirror flake 'mirror' from 'basecoat'"));
     QCOMPARE(table->rowCount(), 2);
     QCOMPARE(panel()->selectedComponent(), 1);                        // the last one left
     QVERIFY(m_dock->sliderFor("orientation_spread_deg") != nullptr);  // the pearl's still
