@@ -177,10 +177,12 @@ IngredientDock::IngredientDock(RecipeDocument* document, QWidget* parent)
     connect(m_export, &QPushButton::clicked, this, &IngredientDock::browseExport);
     connect(&m_worker, &DatabaseWorker::busyChanged, this, &IngredientDock::updateButtons);
     connect(document, &RecipeDocument::recipeChanged, this, &IngredientDock::fillLayers);
-    // "Add to layer" adds to the layer selected in the recipe editor's layer list.
+    // One selected layer, shared with the recipe editor's layer list: "Add to
+    // layer" adds to the layer selected there, and a layer chosen here is selected there.
     connect(document, &RecipeDocument::selectedLayerChanged, this, [this](int layer) {
         if (layer >= 0 && layer < m_layer->count()) m_layer->setCurrentIndex(layer);
     });
+    connect(m_layer, &QComboBox::activated, m_document, &RecipeDocument::setSelectedLayer);
     fillLayers();
     updateButtons();
 }

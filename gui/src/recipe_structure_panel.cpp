@@ -123,6 +123,10 @@ RecipeStructurePanel::RecipeStructurePanel(RecipeDocument* document, QWidget* pa
     connect(m_component_up, &QToolButton::clicked, this, [this]() { moveComponent(-1); });
     connect(m_component_down, &QToolButton::clicked, this, [this]() { moveComponent(+1); });
     connect(document, &RecipeDocument::recipeChanged, this, &RecipeStructurePanel::refresh);
+    // The layer chosen in the Ingredients dock.
+    connect(document, &RecipeDocument::selectedLayerChanged, this, [this](int layer) {
+        if (layer != m_layer) selectLayer(layer);
+    });
     connect(document, &RecipeDocument::recipeLoaded, this, [this]() {
         m_layer = 0;
         m_component = -1;

@@ -412,6 +412,17 @@ void RecipeStructureTest::theIngredientsDockAddsToTheSelectedLayer() {
     QCOMPARE(layer->currentText(), QStringLiteral("2. clear coat"));
     panel()->selectLayer(0);
     QCOMPARE(layer->currentIndex(), 0);
+    // And the other way: a layer chosen there is selected here, and stays
+    // chosen through the next recipe change (an addition, an edit).
+    layer->setCurrentIndex(2);
+    emit layer->activated(2);
+    QCOMPARE(panel()->selectedLayer(), 2);
+    QCOMPARE(panel()->layerList()->currentRow(), 2);
+    QVERIFY(panel()->componentTable()->rowCount() == 3);  // the basecoat's
+    QVERIFY(panel()->moveLayer(-1));
+    QCOMPARE(panel()->selectedLayer(), 1);
+    QCOMPARE(layer->currentIndex(), 1);
+    QCOMPARE(layer->currentText(), QStringLiteral("2. basecoat"));
 }
 
 void RecipeStructureTest::aStructureEditReachesTheRenderScheduler() {
