@@ -10,6 +10,7 @@
 // recipeChanged, as the main window wires it) and renders.
 // No database, scene or VTK widget is needed.
 
+#include "depth_profile_section.h"
 #include "ingredient_dock.h"
 #include "recipe_document.h"
 #include "recipe_editor_dock.h"
@@ -91,6 +92,7 @@ private slots:
     void emptyOrTakenNamesAreRefused();
     void componentsAreRemovedAndMoved();
     void anErrorTheRecipeAlreadyHadDoesNotBlockAMove();
+    void openDepthProfileEditorsFollowTheirComponent();
     void theIngredientsDockAddsToTheSelectedLayer();
     void aStructureEditReachesTheRenderScheduler();
 
@@ -396,6 +398,30 @@ void RecipeStructureTest::anErrorTheRecipeAlreadyHadDoesNotBlockAMove() {
     // A new error is still refused: the only layer, an empty name.
     QVERIFY(!panel()->renameLayer(QString()));
     QCOMPARE(m_document->undoStack()->count(), 3);
+}
+
+void RecipeStructureTest::openDepthProfileEditorsFollowTheirComponent() {
+    auto section = [this](int layer, int component) {
+        return m_dock->findChild<paintlab::gui::DepthProfileSection*>(
+            QStringLiteral("depth_profile_section_%1_%2").arg(layer).arg(component));
+    };
+    QVERIFY(section(kBase, 0) != nullptr);
+    section(kBase, 0)->setOpen(true);  // the pearl's
+    // The pigment moves above the pearl, then the basecoat above the top layer:
+    // the pearl's editor is open wherever the pearl is, and no other.
+    panel()->selectLayer(kBase);
+    panel()->selectComponent(1);
+    QVERIFY(panel()->moveComponent(-1));
+    QVERIFY(section(kBase, 1) != nullptr && section(kBase, 1)->isOpen());
+    QVERIFY(!section(kBase, 0)->isOpen());
+    QVERIFY(panel()->moveLayer(-1));
+    QVERIFY(section(0, 1) != nullptr && section(0, 1)->isOpen());
+    QVERIFY(!section(0, 0)->isOpen());
+    QVERIFY(!section(0, 2)->isOpen());
+    m_document->undoStack()->undo();
+    m_document->undoStack()->undo();
+    QVERIFY(section(kBase, 0)->isOpen());
+    QVERIFY(!section(kBase, 1)->isOpen());
 }
 
 void RecipeStructureTest::theIngredientsDockAddsToTheSelectedLayer() {
