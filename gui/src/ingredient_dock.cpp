@@ -177,6 +177,12 @@ IngredientDock::IngredientDock(RecipeDocument* document, QWidget* parent)
     connect(m_export, &QPushButton::clicked, this, &IngredientDock::browseExport);
     connect(&m_worker, &DatabaseWorker::busyChanged, this, &IngredientDock::updateButtons);
     connect(document, &RecipeDocument::recipeChanged, this, &IngredientDock::fillLayers);
+    // One selected layer, shared with the recipe editor's layer list: "Add to
+    // layer" adds to the layer selected there, and a layer chosen here is selected there.
+    connect(document, &RecipeDocument::selectedLayerChanged, this, [this](int layer) {
+        if (layer >= 0 && layer < m_layer->count()) m_layer->setCurrentIndex(layer);
+    });
+    connect(m_layer, &QComboBox::activated, m_document, &RecipeDocument::setSelectedLayer);
     fillLayers();
     updateButtons();
 }
@@ -435,7 +441,12 @@ void IngredientDock::fillLayers() {
         for (std::size_t l = 0; l < recipe.layers.size(); ++l)
             m_layer->addItem(tr("%1. %2").arg(l + 1).arg(qs(recipe.layers[l].name)), static_cast<int>(l));
     }
-    if (keep >= 0 && keep < m_layer->count()) m_layer->setCurrentIndex(keep);
+    const int selected = m_document->selectedLayer();
+    if (selected >= 0 && selected < m_layer->count()) {
+        m_layer->setCurrentIndex(selected);
+    } else if (keep >= 0 && keep < m_layer->count()) {
+        m_layer->setCurrentIndex(keep);
+    }
     updateButtons();
 }
 

@@ -27,4 +27,10 @@ void RecipeDocument::markSaved(const QString& origin, int version) {
 
 void RecipeDocument::settle() { emit recipeChanged(false); }
 
+void RecipeDocument::setSelectedLayer(int layer) {
+    if (layer == m_selected_layer) return;
+    m_selected_layer = layer;
+    emit selectedLayerChanged(layer);
+}
+
 }  // namespace paintlab::gui

@@ -33,18 +33,24 @@ public:
     void markSaved(const QString& origin, int version);
     // An interactive edit (a slider drag) ended: announces the recipe again as final.
     void settle();
+    // The layer chosen in the recipe editor's layer list (0 = top; -1: none),
+    // which the Ingredients dock adds to. Not part of the recipe: no undo step.
+    int selectedLayer() const { return m_selected_layer; }
+    void setSelectedLayer(int layer);
 
 signals:
     // interactive: the edit comes from a slider being dragged (the renderer
     // may use the preview preset and refine when it settles).
     void recipeChanged(bool interactive);
     void recipeLoaded();
+    void selectedLayerChanged(int layer);
 
 private:
     Recipe m_recipe;
     bool m_has_recipe = false;
     QString m_origin;
     int m_version = 0;
+    int m_selected_layer = -1;
     QUndoStack m_undo;
 };
 

@@ -1,8 +1,12 @@
 #include "recipe_editor_dock.h"
 
+#include "depth_profile_edit.h"
+#include "depth_profile_section.h"
+#include "recipe_structure_panel.h"
 #include "set_parameter_command.h"
 
 #include <QDoubleSpinBox>
+#include <QEvent>
 #include <QGridLayout>
 #include <QGroupBox>
 #include <QLabel>
@@ -11,8 +15,10 @@
 #include <QSlider>
 #include <QVBoxLayout>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 namespace paintlab::gui {
 
@@ -21,13 +27,25 @@ RecipeEditorDock::RecipeEditorDock(RecipeDocument* document, QWidget* parent)
     setObjectName("recipe_editor");
     auto* scroll = new QScrollArea(this);
     scroll->setWidgetResizable(true);
-    m_form = new QWidget(scroll);
+    // The layer list and component table above the parameter rows, which rebuild below it.
+    auto* content = new QWidget(scroll);
+    auto* content_layout = new QVBoxLayout(content);
+    m_structure = new RecipeStructurePanel(document, content);
+    // As wide as the view, not as the rows (their titles can be wider than
+    // the dock): its buttons and columns stay in sight. See eventFilter.
+    content_layout->addWidget(m_structure, 0, Qt::AlignLeft);
+    m_content_margins = content_layout->contentsMargins().left() + content_layout->contentsMargins().right();
+    scroll->viewport()->installEventFilter(this);
+    m_form = new QWidget(content);
     m_layout = new QVBoxLayout(m_form);
-    scroll->setWidget(m_form);
+    m_layout->setContentsMargins(0, 0, 0, 0);
+    content_layout->addWidget(m_form, 1);
+    scroll->setWidget(content);
     setWidget(scroll);
     connect(document, &RecipeDocument::recipeLoaded, this, &RecipeEditorDock::rebuild);
     connect(document, &RecipeDocument::recipeChanged, this, [this]() {
-        // An edit that added or removed a component (or its undo) changes the rows.
+        // An edit that added, removed, moved or renamed a layer or component (or
+        // its undo) changes the rows or their titles.
         if (structureChanged()) {
             rebuild();
         } else {
@@ -36,7 +54,26 @@ RecipeEditorDock::RecipeEditorDock(RecipeDocument* document, QWidget* parent)
     });
 }
 
+RecipeEditorDock::Shape RecipeEditorDock::shapeOf(const Recipe& recipe) {
+    Shape shape;
+    for (const Layer& layer : recipe.layers) {
+        std::vector<std::string> components;
+        for (const Component& c : layer.components)
+            components.push_back(std::string(componentKind(c)) + " " + componentName(c));
+        shape.emplace_back(layer.name, std::move(components));
+    }
+    return shape;
+}
+
+bool RecipeEditorDock::eventFilter(QObject* watched, QEvent* event) {
+    if (event->type() == QEvent::Resize)
+        if (auto* viewport = qobject_cast<QWidget*>(watched))
+            m_structure->setFixedWidth(std::max(viewport->width() - m_content_margins, 0));
+    return QDockWidget::eventFilter(watched, event);
+}
+
 bool RecipeEditorDock::structureChanged() const {
+    if (shapeOf(m_document->recipe()) != m_shape) return true;
     const std::vector<ParameterRef> refs = editableParameters(m_document->recipe());
     if (refs.size() != m_rows.size()) return true;
     for (std::size_t i = 0; i < refs.size(); ++i)
@@ -51,12 +88,23 @@ QSlider* RecipeEditorDock::sliderFor(std::string_view key) const {
 }
 
 void RecipeEditorDock::rebuild() {
+    // Open depth-profile editors stay open, found by layer and component name
+    // in the recipe shown until now (a component added, removed or moved, a
+    // layer moved, keeps the others open).
+    std::set<std::pair<std::string, std::string>> open_profiles;
+    for (const auto* section : m_form->findChildren<DepthProfileSection*>()) {
+        const auto layer = static_cast<std::size_t>(section->layer());
+        const auto component = static_cast<std::size_t>(section->component());
+        if (section->isOpen() && layer < m_shape.size() && component < m_shape[layer].second.size())
+            open_profiles.insert({m_shape[layer].first, m_shape[layer].second[component]});
+    }
     while (QLayoutItem* item = m_layout->takeAt(0)) {
         delete item->widget();
         delete item;
     }
     m_rows.clear();
     const Recipe& recipe = m_document->recipe();
+    m_shape = shapeOf(recipe);
     // One group per layer / component, in recipe order.
     std::map<std::pair<int, int>, QGridLayout*> groups;
     for (const ParameterRef& ref : editableParameters(recipe)) {
@@ -97,6 +145,15 @@ void RecipeEditorDock::rebuild() {
         grid->addWidget(row.slider, line, 2);
         m_rows.push_back(row);
     }
+    // Below the rows of each pigment or flake: its depth-profile editor, opened on demand.
+    for (const auto& [where, grid] : groups)
+        if (where.second >= 0 && componentProfile(recipe, where.first, where.second) != nullptr) {
+            auto* section = new DepthProfileSection(m_document, where.first, where.second, m_form);
+            const auto& [layer_name, components] = m_shape[static_cast<std::size_t>(where.first)];
+            section->setOpen(
+                open_profiles.count({layer_name, components[static_cast<std::size_t>(where.second)]}) > 0);
+            grid->addWidget(section, grid->rowCount(), 0, 1, 3);
+        }
     m_layout->addStretch(1);
     // Connections after the rows exist: the vector no longer moves until the
     // next rebuild, which deletes these widgets (and their connections) first.

@@ -4,13 +4,16 @@
 // layer and component. Every change is an undoable command; dragging a slider
 // marks its edits interactive (the render dock then uses the preview preset)
 // and releasing it ends the drag with a final, non-interactive edit.
+// Above the rows: the layer list and component table (recipe_structure_panel.h).
 
 #include "recipe_document.h"
 #include "recipe_parameters.h"
 
 #include <QDockWidget>
 
+#include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 class QDoubleSpinBox;
@@ -19,6 +22,8 @@ class QVBoxLayout;
 
 namespace paintlab::gui {
 
+class RecipeStructurePanel;
+
 class RecipeEditorDock : public QDockWidget {
     Q_OBJECT
 public:
@@ -26,6 +31,11 @@ public:
 
     // The slider of the first parameter with this declaration key (for tests), or nullptr.
     QSlider* sliderFor(std::string_view key) const;
+    RecipeStructurePanel* structurePanel() const { return m_structure; }
+
+protected:
+    // Keeps the structure panel as wide as the scroll area's view.
+    bool eventFilter(QObject* watched, QEvent* event) override;
 
 private:
     struct Row {
@@ -34,6 +44,10 @@ private:
         QDoubleSpinBox* spin = nullptr;
         QSlider* slider = nullptr;
     };
+    // The layers' names and their components' "kind name", in recipe order:
+    // what the rows' group titles show.
+    using Shape = std::vector<std::pair<std::string, std::vector<std::string>>>;
+    static Shape shapeOf(const Recipe& recipe);
     void rebuild();
     bool structureChanged() const;
     void refreshValues();
@@ -41,6 +55,9 @@ private:
     static constexpr int kSliderSteps = 1000;
 
     RecipeDocument* m_document;
+    RecipeStructurePanel* m_structure = nullptr;
+    Shape m_shape;  // of the recipe the rows were built for
+    int m_content_margins = 0;
     QWidget* m_form = nullptr;
     QVBoxLayout* m_layout = nullptr;
     std::vector<Row> m_rows;

@@ -230,6 +230,19 @@ void WorkstationTest::screenshotsMatchBaselines() {
     auto check = [&](QWidget& widget, const QString& name) {
         const auto result = paintlab::test::compareWithBaseline(widget, name, kThreshold);
         qInfo("%s", qPrintable(result.message));
+        if (!result.ok) {
+            // What the widget showed, for a failure seen only once in a while
+            // (the screenshot itself is overwritten by the next run).
+            for (const QLabel* label : widget.findChildren<QLabel*>())
+                if (label->isVisible())
+                    qInfo("  label '%s': %s", qPrintable(label->objectName()), qPrintable(label->text()));
+            for (const QTableWidget* table : widget.findChildren<QTableWidget*>())
+                for (int row = 0; row < table->rowCount(); ++row)
+                    for (int col = 0; col < table->columnCount(); ++col)
+                        if (table->item(row, col) != nullptr)
+                            qInfo("  table '%s' (%d, %d): %s", qPrintable(table->objectName()), row, col,
+                                  qPrintable(table->item(row, col)->text()));
+        }
         QVERIFY2(result.ok, qPrintable(result.message));
     };
     check(*m_window, QStringLiteral("main-window"));

@@ -1,0 +1,177 @@
+#include "depth_profile_edit.h"
+
+#include "paintlab/engine/parameters.h"
+#include "paintlab/engine/recipe_validation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
+#include <variant>
+
+namespace paintlab::gui {
+
+namespace {
+
+std::string number(double value) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.6g", value);
+    return buffer;
+}
+
+std::string nodeField(const char* field, std::size_t i) {
+    return std::string("depth_profile > ") + field + " (node " + std::to_string(i + 1) + ")";
+}
+
+template <class RecipeT> auto* profileSlot(RecipeT& recipe, int layer, int component) {
+    using Slot = std::conditional_t<std::is_const_v<RecipeT>, const std::optional<DepthProfile>,
+                                    std::optional<DepthProfile>>;
+    Slot* slot = nullptr;
+    if (layer < 0 || layer >= static_cast<int>(recipe.layers.size())) return slot;
+    auto& components = recipe.layers[static_cast<std::size_t>(layer)].components;
+    if (component < 0 || component >= static_cast<int>(components.size())) return slot;
+    std::visit(
+        [&slot](auto& c) {
+            if constexpr (requires { c.depth_profile; }) slot = &c.depth_profile;
+        },
+        components[static_cast<std::size_t>(component)]);
+    return slot;
+}
+
+}  // namespace
+
+DepthProfile presetProfile(DepthProfilePreset preset) {
+    switch (preset) {
+    case DepthProfilePreset::Uniform:
+        return {{0.0, 1.0}, {1.0, 1.0}};
+    case DepthProfilePreset::EnrichedTop:
+        // Flakes or pigment floated to the surface (a leafing aluminium, a
+        // surfactant-driven pigment): three times the concentration of the rest.
+        return {{0.0, 0.2, 0.3, 1.0}, {3.0, 3.0, 1.0, 1.0}};
+    case DepthProfilePreset::Settled:
+        // Heavy particles sunk towards the substrate while the film was wet.
+        return {{0.0, 0.7, 0.8, 1.0}, {1.0, 1.0, 3.0, 3.0}};
+    case DepthProfilePreset::LinearGradient:
+        return {{0.0, 1.0}, {0.5, 1.5}};
+    }
+    return {{0.0, 1.0}, {1.0, 1.0}};
+}
+
+DepthProfile shownProfile(const std::optional<DepthProfile>& stored) {
+    return stored ? *stored : presetProfile(DepthProfilePreset::Uniform);
+}
+
+std::string depthProfileProblem(const DepthProfile& profile) {
+    const std::vector<double>& z = profile.depth;
+    const std::vector<double>& w = profile.weight;
+    if (z.size() != w.size())
+        return "depth_profile: " + std::to_string(z.size()) + " depths but " + std::to_string(w.size()) +
+               " weights; every node needs both";
+    if (z.size() < 2) return "depth_profile > depth: needs at least two nodes, at depth 0 and depth 1";
+    for (std::size_t i = 0; i < z.size(); ++i)
+        if (!std::isfinite(z[i])) return nodeField("depth", i) + ": not a finite number";
+    if (z.front() != 0.0)
+        return nodeField("depth", 0) + ": " + number(z.front()) +
+               "; the first node must be at 0 (top of the layer)";
+    if (z.back() != 1.0)
+        return nodeField("depth", z.size() - 1) + ": " + number(z.back()) +
+               "; the last node must be at 1 (bottom of the layer)";
+    for (std::size_t i = 1; i < z.size(); ++i)
+        if (!(z[i] > z[i - 1]))
+            return nodeField("depth", i) + ": " + number(z[i]) + " is not below node " + std::to_string(i) +
+                   " (" + number(z[i - 1]) + "); depth must increase strictly from 0 to 1";
+    const ParameterDecl& decl = params::kProfileWeight;
+    for (std::size_t i = 0; i < w.size(); ++i) {
+        if (!std::isfinite(w[i])) return nodeField("weight", i) + ": not a finite number";
+        if (w[i] < decl.min)
+            return nodeField("weight", i) + ": " + number(w[i]) + " is below 0; weights are >= 0";
+        if (w[i] > decl.max)
+            return nodeField("weight", i) + ": " + number(w[i]) + " is above the maximum " + number(decl.max);
+    }
+    if (std::all_of(w.begin(), w.end(), [](double v) { return v == 0.0; }))
+        return "depth_profile > weight: all weights are zero; at least one node needs a positive weight";
+    return {};
+}
+
+DepthProfile withNodeMoved(const DepthProfile& profile, std::size_t node, double depth, double weight) {
+    DepthProfile out = profile;
+    if (node >= out.depth.size() || node >= out.weight.size()) return out;
+    const bool end = node == 0 || node + 1 == out.depth.size();
+    if (!end) {
+        const double lo = out.depth[node - 1] + kMinNodeSpacing;
+        const double hi = out.depth[node + 1] - kMinNodeSpacing;
+        // Neighbours closer than two spacings (typed in, or from a file): keep the node where it was.
+        if (lo <= hi) out.depth[node] = std::clamp(depth, lo, hi);
+    }
+    out.weight[node] = std::clamp(weight, params::kProfileWeight.min, params::kProfileWeight.max);
+    return out;
+}
+
+std::optional<DepthProfile> withNodeInserted(const DepthProfile& profile, double depth, double weight,
+                                             std::size_t* inserted_at) {
+    if (!(depth > 0.0 && depth < 1.0) || profile.depth.size() != profile.weight.size()) return std::nullopt;
+    const auto at = std::lower_bound(profile.depth.begin(), profile.depth.end(), depth);
+    const auto index = static_cast<std::size_t>(at - profile.depth.begin());
+    if (index < profile.depth.size() && profile.depth[index] - depth < kMinNodeSpacing) return std::nullopt;
+    if (index > 0 && depth - profile.depth[index - 1] < kMinNodeSpacing) return std::nullopt;
+    DepthProfile out = profile;
+    const auto offset = static_cast<std::ptrdiff_t>(index);
+    out.depth.insert(out.depth.begin() + offset, depth);
+    out.weight.insert(out.weight.begin() + offset,
+                      std::clamp(weight, params::kProfileWeight.min, params::kProfileWeight.max));
+    if (inserted_at != nullptr) *inserted_at = index;
+    return out;
+}
+
+std::optional<DepthProfile> withNodeRemoved(const DepthProfile& profile, std::size_t node) {
+    if (node == 0 || node + 1 >= profile.depth.size() || node >= profile.weight.size()) return std::nullopt;
+    DepthProfile out = profile;
+    const auto offset = static_cast<std::ptrdiff_t>(node);
+    out.depth.erase(out.depth.begin() + offset);
+    out.weight.erase(out.weight.begin() + offset);
+    return out;
+}
+
+std::optional<DepthProfile>* componentProfile(Recipe& recipe, int layer, int component) {
+    return profileSlot(recipe, layer, component);
+}
+
+const std::optional<DepthProfile>* componentProfile(const Recipe& recipe, int layer, int component) {
+    return profileSlot(recipe, layer, component);
+}
+
+Recipe withProfile(const Recipe& recipe, int layer, int component,
+                   const std::optional<DepthProfile>& profile) {
+    Recipe out = recipe;
+    std::optional<DepthProfile>* slot = componentProfile(out, layer, component);
+    if (slot == nullptr)
+        throw std::out_of_range("layer " + std::to_string(layer + 1) + ", component " +
+                                std::to_string(component + 1) + ": no component with a depth profile");
+    *slot = profile;
+    return out;
+}
+
+std::string profileEditError(const Recipe& current, const Recipe& candidate, int layer) {
+    // The field names as recipe_validation.cpp writes them: "layer 2 'basecoat' > ...".
+    std::string layer_prefix;
+    if (layer >= 0 && layer < static_cast<int>(candidate.layers.size()))
+        layer_prefix = "layer " + std::to_string(layer + 1) + " '" +
+                       candidate.layers[static_cast<std::size_t>(layer)].name + "' > ";
+    auto aboutThisLayersProfiles = [&layer_prefix](const std::string& field) {
+        if (layer_prefix.empty() || field.rfind(layer_prefix, 0) != 0) return false;
+        return field.find("> depth_profile") != std::string::npos || field == layer_prefix + "components";
+    };
+    std::set<std::pair<std::string, std::string>> already;
+    for (const RecipeProblem& p : checkRecipe(current))
+        if (p.severity == Severity::Error) already.insert({p.field, p.message});
+    for (const RecipeProblem& p : checkRecipe(candidate))
+        if (p.severity == Severity::Error &&
+            (aboutThisLayersProfiles(p.field) || already.count({p.field, p.message}) == 0))
+            return p.field + ": " + p.message;
+    return {};
+}
+
+}  // namespace paintlab::gui
