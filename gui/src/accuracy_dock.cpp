@@ -133,8 +133,9 @@ void AccuracyDock::showPlan(const RenderResult& result) {
         double accepted = a.accepted_error_de;
         // Glints are drawn into the relit image: with no scene open there is
         // none, so what the plan would draw is skipped and its error accepted.
-        if (a.effect == "sparkle" && plan.sparkle && !has_image) {
-            runs = tr("on in the plan; not drawn (no image)");
+        if (a.effect == "sparkle" && plan.sparkle && (!has_image || result.sparkle_deferred)) {
+            runs = has_image ? tr("on in the plan; left out of the preview (drawn when released)")
+                             : tr("on in the plan; not drawn (no image)");
             for (const PlanDecision& d : plan.decisions)
                 if (d.effect == "sparkle") accepted = d.skip_error_de;
         }

@@ -108,7 +108,8 @@ void RenderScheduler::start(Job job) {
                 t0 = std::chrono::steady_clock::now();
                 raymaps::RgbImage image = raymaps::relight(map->input(), tables);
                 r.relight_ms = millisecondsSince(t0);
-                if (r.plan && r.plan->sparkle && alive(1.0)) {
+                r.sparkle_deferred = r.plan && r.plan->sparkle && job.preset == Preset::Preview;
+                if (r.plan && r.plan->sparkle && !r.sparkle_deferred && alive(1.0)) {
                     t0 = std::chrono::steady_clock::now();
                     raymaps::addRecipeSparkle(*map->map(), job.recipe, image);
                     r.sparkle = true;

@@ -44,6 +44,11 @@ struct RenderResult {
     std::optional<EffectPlan> plan;  // set when the plan was followed
     QString plan_scene;              // what the plan was made for (the ray map's file, or the BRDF alone)
     bool sparkle = false;            // the sparkle pass ran on the image
+    // The plan draws glints but this is a preview: left out, since the
+    // sparkle pass costs 5-40x the relight (0.1-0.4 s on the demo scene)
+    // and a slider drag needs an image per edit; the standard result after
+    // the release draws them.
+    bool sparkle_deferred = false;
     double plan_ms = 0.0;
     double brdf_ms = 0.0;
     double tables_ms = 0.0;

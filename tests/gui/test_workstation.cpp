@@ -21,7 +21,10 @@
 #include "screenshot_baseline.h"
 #include "versions_dock.h"
 
+#include "paintlab/engine/recipe_json.h"
 #include "paintlab/raymaps/planned_relight.h"
+#include "paintlab/raymaps/raymap.h"
+#include "paintlab/raymaps/scene.h"
 
 #include "paintlab/database/database.h"
 #include "paintlab/database/recipes.h"
@@ -117,6 +120,7 @@ private slots:
     void draggingNeverFreezesTheGuiThread();
     void accuracyDockListsThePlanWithReasons();
     void turningThePlanOffChangesWhatIsComputed();
+    void previewsLeaveTheGlintsForTheRelease();
     void splitViewHalvesEqualTheSingleRenders();
     void sideBySideShowsBoth();
     void switchingVersionsRendersTheOtherVersion();
@@ -585,6 +589,51 @@ void WorkstationTest::switchingVersionsRendersTheOtherVersion() {
     m_window->clearComparison();
     QVERIFY(!dock->hasComparison());
     QVERIFY(dock->mode() == paintlab::gui::CompareMode::Single);
+}
+
+// A close-up where the plan keeps the glints (a panel 10 cm away, ~50 µm
+// pixels, one sun, as tests/raymaps/test_sparkle_pass.cpp): the silver
+// metallic's preview leaves the sparkle pass for the standard render after
+// the release (the pass costs 5-40x the relight), which draws it.
+void WorkstationTest::previewsLeaveTheGlintsForTheRelease() {
+    const QString scene_file = m_dir.path() + "/scenes/panel.json";
+    std::ofstream(scene_file.toStdString()) << R"({"schema_version": 1,
+      "camera": {"position": [0, 0.06, 0.08], "look_at": [0, 0, 0], "vertical_fov_deg": 0.917, "width": 32, "height": 32},
+      "environment": {"intensity": 0.2},
+      "lights": [{"type": "sun", "direction": [0.1, 0.6, -0.8], "irradiance": [3, 3, 3]}],
+      "materials": [{"name": "paint", "kind": "paint"}],
+      "objects": [{"name": "panel", "plane": {"size": 1}, "material": "paint"}]})";
+    paintlab::raymaps::RayMapSettings settings;
+    settings.aa_samples = 1;
+    settings.light_rays = 16;
+    settings.bake_paths = 1;
+    const std::filesystem::path map_file = (m_dir.path() + "/panel.prm").toStdString();
+    paintlab::raymaps::buildRayMap(paintlab::raymaps::loadSceneFile(scene_file.toStdString()), settings,
+                                   map_file);
+    paintlab::gui::RenderScheduler scheduler;
+    scheduler.setRayMap(
+        std::shared_ptr<const paintlab::raymaps::RayMap>(paintlab::raymaps::RayMap::open(map_file)));
+    scheduler.setFollowPlan(true);
+    const paintlab::Recipe silver = paintlab::loadRecipeFile(std::filesystem::path(PAINTLAB_DEMO_DIR) /
+                                                             "recipes" / "silver-metallic.json");
+    const auto render = [&](paintlab::Preset preset) {
+        QSignalSpy rendered(&scheduler, &paintlab::gui::RenderScheduler::finished);
+        scheduler.request(silver, preset);
+        if (!rendered.wait(kWaitMs)) return paintlab::gui::RenderResult{};
+        return rendered.takeFirst().at(0).value<paintlab::gui::RenderResult>();
+    };
+    const paintlab::gui::RenderResult preview = render(paintlab::Preset::Preview);
+    QVERIFY(preview.plan.has_value() && preview.plan->sparkle);
+    QVERIFY(!preview.sparkle && preview.sparkle_deferred);
+    const paintlab::gui::RenderResult standard = render(paintlab::Preset::Standard);
+    QVERIFY(standard.plan.has_value() && standard.plan->sparkle);
+    QVERIFY(standard.sparkle && !standard.sparkle_deferred);
+    qInfo("close-up, silver metallic: preview %.1f ms without the sparkle pass; standard %.1f ms with it "
+          "(sparkle %.1f ms)",
+          preview.plan_ms + preview.brdf_ms + preview.tables_ms + preview.relight_ms,
+          standard.plan_ms + standard.brdf_ms + standard.tables_ms + standard.relight_ms +
+              standard.sparkle_ms,
+          standard.sparkle_ms);
 }
 
 void WorkstationTest::cleanupTestCase() { m_window.reset(); }
