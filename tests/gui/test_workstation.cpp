@@ -232,9 +232,15 @@ void WorkstationTest::screenshotsMatchBaselines() {
     QTest::qWait(200);  // let the last repaint of the plots land
     constexpr double kThreshold = 0.98;
     auto check = [&](QWidget& widget, const QString& name) {
-        const auto result = paintlab::test::compareWithBaseline(widget, name, kThreshold);
+        auto result = paintlab::test::compareWithBaseline(widget, name, kThreshold);
         qInfo("%s", qPrintable(result.message));
         if (!result.ok) {
+            // Seen twice in ~35 runs, both under a heavy compile beside the
+            // test, for the Accuracy dock only (0.952, not reproduced since):
+            // a second look after the pending layout and paint events, with
+            // what the widget showed printed, tells a transient state from a
+            // real difference.
+            qInfo("  %s below the threshold; what it shows:", qPrintable(name));
             // What the widget showed, for a failure seen only once in a while
             // (the screenshot itself is overwritten by the next run).
             for (const QLabel* label : widget.findChildren<QLabel*>())
@@ -246,6 +252,11 @@ void WorkstationTest::screenshotsMatchBaselines() {
                         if (table->item(row, col) != nullptr)
                             qInfo("  table '%s' (%d, %d): %s", qPrintable(table->objectName()), row, col,
                                   qPrintable(table->item(row, col)->text()));
+            QFile::remove("screenshots/" + name + "-first-look.png");
+            QFile::copy("screenshots/" + name + ".png", "screenshots/" + name + "-first-look.png");
+            QTest::qWait(500);
+            result = paintlab::test::compareWithBaseline(widget, name, kThreshold);
+            qInfo("  second look: %s", qPrintable(result.message));
         }
         QVERIFY2(result.ok, qPrintable(result.message));
     };
