@@ -33,6 +33,7 @@
 #include <QFile>
 #include <QLabel>
 #include <QMessageBox>
+#include <QProgressBar>
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QSpinBox>
@@ -165,6 +166,7 @@ private slots:
     void mainWindowPlotsDockFollowsTheRecipe();
     void fullModelOverlayIsLabelledAndNearTheFastModel();
     void fullModelCancelStopsWithinASecond();
+    void fullModelNewestRequestWins();
     void fullModelErrorNamesTheField();
     void cleanupTestCase();
 
@@ -656,6 +658,10 @@ void PlotsTest::fullModelCancelStopsWithinASecond() {
     QVERIFY(progress != nullptr && progress->isVisible());
     QTest::qWait(2000);  // well into the paths (past the grid and the flake tiles)
     QVERIFY(dock->fullModelRunning());
+    // The grid's fast model alone is 2 % of the progress.
+    auto* bar = dock->findChild<QProgressBar*>(QStringLiteral("plots_full_model_progress"));
+    QVERIFY(bar != nullptr);
+    QVERIFY2(bar->value() >= 1, qPrintable(QString::number(bar->value())));
     QElapsedTimer timer;
     timer.start();
     clickButton(*dock, "plots_full_model_cancel");
@@ -668,6 +674,25 @@ void PlotsTest::fullModelCancelStopsWithinASecond() {
     QVERIFY(!progress->isVisible());
     QTest::qWait(200);
     QVERIFY(!dock->inplanePlot()->hasComparison() && !dock->abChart()->hasComparison());
+}
+
+void PlotsTest::fullModelNewestRequestWins() {
+    // A long run, then a short one: the first is cancelled and delivers
+    // nothing (no cancelled() for it either), the second is the overlay.
+    auto dock = silverDock(silverRecipe());
+    QSignalSpy ended(dock.get(), &PlotsDock::fullModelEnded);
+    dock->fullModelSeconds()->setValue(600);
+    dock->compareWithFullModel();
+    QTest::qWait(300);
+    dock->fullModelSeconds()->setValue(1);
+    dock->compareWithFullModel();
+    QTRY_VERIFY_WITH_TIMEOUT(ended.count() == 1 && !dock->fullModelRunning(), kWaitMs);
+    QCOMPARE(ended.at(0).at(0).toBool(), true);
+    QTRY_VERIFY_WITH_TIMEOUT(dock->inplanePlot()->hasComparison() && !dock->computing(), kWaitMs);
+    QVERIFY2(!dock->status()->text().contains(QStringLiteral("recipe as at")),
+             qPrintable(dock->status()->text()));
+    QTest::qWait(200);
+    QCOMPARE(ended.count(), 1);
 }
 
 void PlotsTest::fullModelErrorNamesTheField() {
