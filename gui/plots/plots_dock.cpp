@@ -345,6 +345,7 @@ void PlotsDock::fullModelFinished(const FullModelJob::Result& result) {
         tr("full model (Monte Carlo, %1 paths, %2 s)").arg(result.paths).arg(result.seconds, 0, 'f', 1);
     if (m_recipe && m_full_recipe && !(*m_recipe == *m_full_recipe))
         label += tr(" of the recipe as at %1").arg(m_full_started);
+    m_full_label = label;
     m_status->setText(label);
     setComparisonKeepingFullModel(result.brdf, label);
     emit fullModelEnded(true);

@@ -77,6 +77,8 @@ public:
     bool fullModelRunning() const { return m_full_job.busy(); }
     QSpinBox* fullModelSeconds() const { return m_full_seconds; }
     QLabel* status() const { return m_status; }
+    // The label of the last full-model result (also shown in the status until the next plot update).
+    const QString& fullModelLabel() const { return m_full_label; }
 
     const std::shared_ptr<const LayeredBrdf>& brdf() const { return m_brdf; }
     // GUI-thread time of the last update (VTK only), and the worker's time for its data.
@@ -133,6 +135,7 @@ private:
     std::unique_ptr<Recipe> m_recipe;       // the last one handed to setRecipe
     std::unique_ptr<Recipe> m_full_recipe;  // the one the running full model was started with
     QString m_full_started;                 // HH:mm:ss of that start
+    QString m_full_label;
     std::shared_ptr<const LayeredBrdf> m_brdf;
     std::shared_ptr<const LayeredBrdf> m_comparison;
     std::vector<std::pair<QWidget*, PlotWidget*>> m_pages;  // tab page -> its plot

@@ -599,8 +599,8 @@ void PlotsTest::fullModelOverlayIsLabelledAndNearTheFastModel() {
                                  dock->abChart()->hasComparison(),
                              kWaitMs);
     qInfo("full model, 1 s budget: overlay after %.1f s (%s)", static_cast<double>(timer.elapsed()) * 1e-3,
-          qPrintable(dock->status()->text()));
-    const QString label = dock->status()->text();
+          qPrintable(dock->fullModelLabel()));
+    const QString label = dock->fullModelLabel();
     QVERIFY2(label.startsWith(QStringLiteral("full model (Monte Carlo, ")) && label.contains(" paths, ") &&
                  label.contains(QStringLiteral(" of the recipe as at ")),
              qPrintable(label));
@@ -689,8 +689,9 @@ void PlotsTest::fullModelNewestRequestWins() {
     QTRY_VERIFY_WITH_TIMEOUT(ended.count() == 1 && !dock->fullModelRunning(), kWaitMs);
     QCOMPARE(ended.at(0).at(0).toBool(), true);
     QTRY_VERIFY_WITH_TIMEOUT(dock->inplanePlot()->hasComparison() && !dock->computing(), kWaitMs);
-    QVERIFY2(!dock->status()->text().contains(QStringLiteral("recipe as at")),
-             qPrintable(dock->status()->text()));
+    QVERIFY2(dock->fullModelLabel().startsWith(QStringLiteral("full model (Monte Carlo, ")) &&
+                 !dock->fullModelLabel().contains(QStringLiteral("recipe as at")),
+             qPrintable(dock->fullModelLabel()));
     QTest::qWait(200);
     QCOMPARE(ended.count(), 1);
 }
