@@ -17,8 +17,10 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QMessageBox>
+#include <QProgressBar>
 #include <QPushButton>
 #include <QSignalBlocker>
+#include <QSpinBox>
 #include <QTabWidget>
 #include <QTime>
 #include <QVBoxLayout>
@@ -80,7 +82,27 @@ PlotsDock::PlotsDock(QWidget* parent) : QDockWidget(tr("Plots"), parent) {
     m_log->setToolTip(tr("Logarithmic in-plane axis and lobe radius"));
     m_status = new QLabel(body);
     m_status->setObjectName("plots_status");
-    for (QWidget* w : std::initializer_list<QWidget*>{png, csv, pin, unpin, m_log}) bar->addWidget(w);
+    m_full = new QPushButton(tr("Compare with full model"), body);
+    m_full->setObjectName("plots_full_model");
+    m_full->setToolTip(tr("Run the Monte Carlo full model (explicit flakes, preview grid) for the recipe "
+                          "on a worker and overlay it as the comparison"));
+    m_full_seconds = new QSpinBox(body);
+    m_full_seconds->setObjectName("plots_full_model_seconds");
+    m_full_seconds->setRange(1, 600);
+    m_full_seconds->setValue(20);
+    m_full_seconds->setSuffix(QStringLiteral(" s"));
+    m_full_seconds->setToolTip(tr("Time budget of the full model"));
+    m_full_progress = new QProgressBar(body);
+    m_full_progress->setObjectName("plots_full_model_progress");
+    m_full_progress->setRange(0, 100);
+    m_full_progress->setMaximumWidth(120);
+    m_full_progress->hide();
+    m_full_cancel = new QPushButton(tr("Cancel"), body);
+    m_full_cancel->setObjectName("plots_full_model_cancel");
+    m_full_cancel->hide();
+    for (QWidget* w : std::initializer_list<QWidget*>{png, csv, pin, unpin, m_log, m_full, m_full_seconds,
+                                                      m_full_progress, m_full_cancel})
+        bar->addWidget(w);
     bar->addStretch(1);
     bar->addWidget(m_status);
     layout->addLayout(bar);
@@ -169,6 +191,21 @@ PlotsDock::PlotsDock(QWidget* parent) : QDockWidget(tr("Plots"), parent) {
     });
     connect(m_ingredient_spectra, &SpectraPlot::quantitiesChanged, this, &PlotsDock::fillQuantities);
     connect(pin, &QPushButton::clicked, this, &PlotsDock::pinCurrentAsComparison);
+    connect(m_full, &QPushButton::clicked, this, &PlotsDock::compareWithFullModel);
+    connect(m_full_cancel, &QPushButton::clicked, this, &PlotsDock::cancelFullModel);
+    connect(&m_full_job, &FullModelJob::progress, m_full_progress, &QProgressBar::setValue);
+    connect(&m_full_job, &FullModelJob::finished, this, &PlotsDock::fullModelFinished);
+    connect(&m_full_job, &FullModelJob::cancelled, this, [this]() {
+        showFullModelIdle();
+        m_status->setText(tr("full model cancelled"));
+        emit fullModelEnded(false);
+    });
+    connect(&m_full_job, &FullModelJob::failed, this, [this](const QString& message) {
+        showFullModelIdle();
+        m_status->setText(tr("full model failed"));
+        showError(tr("The full model cannot run: %1").arg(message));
+        emit fullModelEnded(false);
+    });
     connect(unpin, &QPushButton::clicked, this, &PlotsDock::clearComparison);
     connect(png, &QPushButton::clicked, this, [this]() {
         const QString path =
@@ -226,6 +263,7 @@ void PlotsDock::requestUpdate() {
 }
 
 void PlotsDock::setRecipe(const Recipe& recipe) {
+    m_recipe = std::make_unique<Recipe>(recipe);
     std::vector<NamedSpectrum> spectra = recipeSpectra(recipe);
     if (spectra == m_ingredient_spectra->spectra()) return;
     m_ingredient_spectra->setSpectra(
@@ -242,6 +280,11 @@ void PlotsDock::fillQuantities() {
 }
 
 void PlotsDock::setComparison(std::shared_ptr<const LayeredBrdf> brdf, const QString& label) {
+    cancelFullModel();  // the newest comparison wins
+    setComparisonKeepingFullModel(std::move(brdf), label);
+}
+
+void PlotsDock::setComparisonKeepingFullModel(std::shared_ptr<const LayeredBrdf> brdf, const QString& label) {
     if (!brdf) {
         clearComparison();
         return;
@@ -266,10 +309,46 @@ void PlotsDock::pinCurrentAsComparison() {
 }
 
 void PlotsDock::clearComparison() {
+    cancelFullModel();
     ++m_comparison_generation;
     m_comparison.reset();
     m_inplane->clearComparison();
     m_ab->clearComparison();
+}
+
+void PlotsDock::compareWithFullModel() {
+    if (!m_recipe) {
+        m_status->setText(tr("full model: no recipe"));
+        return;
+    }
+    m_full_recipe = std::make_unique<Recipe>(*m_recipe);
+    m_full_started = QTime::currentTime().toString(QStringLiteral("HH:mm:ss"));
+    m_full_job.start(*m_full_recipe, m_full_seconds->value());
+    m_full_progress->setValue(0);
+    m_full_progress->show();
+    m_full_cancel->show();
+    m_status->setText(tr("full model running (%1 s budget)").arg(m_full_seconds->value()));
+}
+
+void PlotsDock::cancelFullModel() {
+    if (m_full_job.busy()) m_full_job.cancel();
+}
+
+void PlotsDock::showFullModelIdle() {
+    m_full_progress->hide();
+    m_full_cancel->hide();
+}
+
+void PlotsDock::fullModelFinished(const FullModelJob::Result& result) {
+    showFullModelIdle();
+    QString label =
+        tr("full model (Monte Carlo, %1 paths, %2 s)").arg(result.paths).arg(result.seconds, 0, 'f', 1);
+    if (m_recipe && m_full_recipe && !(*m_recipe == *m_full_recipe))
+        label += tr(" of the recipe as at %1").arg(m_full_started);
+    m_full_label = label;
+    m_status->setText(label);
+    setComparisonKeepingFullModel(result.brdf, label);
+    emit fullModelEnded(true);
 }
 
 bool PlotsDock::exportCurrentPng(const QString& path) {

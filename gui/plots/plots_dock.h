@@ -10,7 +10,16 @@
 // The plot data (lobe grid, in-plane curves, multi-angle colours and spectra)
 // is computed on a worker thread (latest_job.h, newest request first); the
 // GUI thread only hands it to VTK (gui/README.md, "Plots", for the times).
+//
+// "Compare with full model" runs the Monte Carlo full model (explicit flakes,
+// on the preview preset's grid, a time budget from the spin box beside it) on
+// its own worker (full_model_job.h) and overlays the result as the
+// comparison. The run keeps the recipe it started with: an edit meanwhile
+// does not stop it, and the label then says the result is of the recipe as
+// it was at the start. Any newer comparison (pin, another run, clear)
+// cancels a running one.
 
+#include "full_model_job.h"
 #include "latest_job.h"
 
 #include <QDockWidget>
@@ -23,6 +32,9 @@ class QCheckBox;
 class QComboBox;
 class QDoubleSpinBox;
 class QLabel;
+class QProgressBar;
+class QPushButton;
+class QSpinBox;
 class QTabWidget;
 
 namespace paintlab {
@@ -58,6 +70,15 @@ public:
     // The current BRDF becomes the comparison ("pinned").
     void pinCurrentAsComparison();
     void clearComparison();
+    // The full model for the last recipe handed to setRecipe (nothing without
+    // one), with the spin box's budget; replaces a running one.
+    void compareWithFullModel();
+    void cancelFullModel();
+    bool fullModelRunning() const { return m_full_job.busy(); }
+    QSpinBox* fullModelSeconds() const { return m_full_seconds; }
+    QLabel* status() const { return m_status; }
+    // The label of the last full-model result (also shown in the status until the next plot update).
+    const QString& fullModelLabel() const { return m_full_label; }
 
     const std::shared_ptr<const LayeredBrdf>& brdf() const { return m_brdf; }
     // GUI-thread time of the last update (VTK only), and the worker's time for its data.
@@ -85,11 +106,16 @@ public:
 signals:
     // The plots show the data of the newest BRDF handed in (after setBrdf or an incidence change).
     void updated();
+    // A full-model run ended: its overlay is on its way (ok) or it failed or was cancelled.
+    void fullModelEnded(bool ok);
 
 private:
     void requestUpdate();
     void showError(const QString& message);
     void fillQuantities();
+    void setComparisonKeepingFullModel(std::shared_ptr<const LayeredBrdf> brdf, const QString& label);
+    void fullModelFinished(const FullModelJob::Result& result);
+    void showFullModelIdle();
 
     QTabWidget* m_tabs = nullptr;
     InplanePlot* m_inplane = nullptr;
@@ -102,6 +128,14 @@ private:
     QComboBox* m_quantity = nullptr;
     QCheckBox* m_log = nullptr;
     QLabel* m_status = nullptr;
+    QPushButton* m_full = nullptr;
+    QPushButton* m_full_cancel = nullptr;
+    QSpinBox* m_full_seconds = nullptr;
+    QProgressBar* m_full_progress = nullptr;
+    std::unique_ptr<Recipe> m_recipe;       // the last one handed to setRecipe
+    std::unique_ptr<Recipe> m_full_recipe;  // the one the running full model was started with
+    QString m_full_started;                 // HH:mm:ss of that start
+    QString m_full_label;
     std::shared_ptr<const LayeredBrdf> m_brdf;
     std::shared_ptr<const LayeredBrdf> m_comparison;
     std::vector<std::pair<QWidget*, PlotWidget*>> m_pages;  // tab page -> its plot
@@ -111,6 +145,7 @@ private:
     // Members, not children: destroyed (waiting for their work) before the plots are.
     LatestJob m_current_job;
     LatestJob m_comparison_job;
+    FullModelJob m_full_job;
 };
 
 }  // namespace paintlab::gui
