@@ -290,6 +290,7 @@ void PlotsDock::setComparisonKeepingFullModel(std::shared_ptr<const LayeredBrdf>
         return;
     }
     m_comparison = std::move(brdf);
+    m_comparison_label = label;
     const quint64 generation = ++m_comparison_generation;
     m_comparison_job.run([this, brdf = m_comparison, label, generation]() {
         auto curves =
@@ -312,6 +313,7 @@ void PlotsDock::clearComparison() {
     cancelFullModel();
     ++m_comparison_generation;
     m_comparison.reset();
+    m_comparison_label.clear();
     m_inplane->clearComparison();
     m_ab->clearComparison();
 }

@@ -70,6 +70,8 @@ public:
     // The current BRDF becomes the comparison ("pinned").
     void pinCurrentAsComparison();
     void clearComparison();
+    // The label of the comparison overlaid (or being computed); empty without one.
+    const QString& comparisonLabel() const { return m_comparison_label; }
     // The full model for the last recipe handed to setRecipe (nothing without
     // one), with the spin box's budget; replaces a running one.
     void compareWithFullModel();
@@ -141,6 +143,7 @@ private:
     std::vector<std::pair<QWidget*, PlotWidget*>> m_pages;  // tab page -> its plot
     double m_update_ms = 0.0;
     double m_compute_ms = 0.0;
+    QString m_comparison_label;
     quint64 m_comparison_generation = 0;  // a comparison result of an older one is dropped
     // Members, not children: destroyed (waiting for their work) before the plots are.
     LatestJob m_current_job;

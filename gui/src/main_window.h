@@ -99,6 +99,8 @@ private:
     void addRecentFile(const QString& path);
     // The Plots dock and its wiring (main_window_plots.cpp).
     void addPlotsDock();
+    // Ends the Plots dock's comparison if the render dock's comparison put it there.
+    void clearPlotsComparisonFromRender();
     // The render dock's comparison and its wiring (main_window_compare.cpp).
     void connectComparison();
     // Renders the comparison again if it was rendered with other settings
@@ -110,6 +112,9 @@ private:
     RenderScheduler m_scheduler;
     RenderScheduler m_compare_scheduler;
     std::optional<Recipe> m_comparison;
+    // The label of the comparison the render dock put into the Plots dock
+    // (empty: the plots' comparison, if any, is the user's own pin or the full model).
+    QString m_plots_comparison_label;
     // What the comparison was last requested with: preset, plan, exposure, map.
     struct ComparisonKey {
         Preset preset = Preset::Standard;

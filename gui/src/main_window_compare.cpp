@@ -54,6 +54,7 @@ void MainWindow::clearComparison() {
     m_comparison_key.reset();
     // A request of nothing is not possible: a newer generation cancels what runs.
     m_render->clearComparison();
+    clearPlotsComparisonFromRender();
 }
 
 void MainWindow::requestComparison(bool always) {

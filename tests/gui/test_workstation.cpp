@@ -16,6 +16,7 @@
 #include "comparison_view.h"
 #include "inplane_plot.h"
 #include "main_window.h"
+#include "plots_dock.h"
 #include "recipe_editor_dock.h"
 #include "render_dock.h"
 #include "screenshot_baseline.h"
@@ -592,6 +593,10 @@ void WorkstationTest::switchingVersionsRendersTheOtherVersion() {
     const paintlab::Recipe version3 = paintlab::db::loadRecipeVersion(db, kPearl.toStdString(), 3).recipe;
     QVERIFY(dock->comparisonImage() ==
             singleRender(version3, m_window->accuracyDock()->presetFor(false)).image);
+    // The plots overlay the compared version too, under the render dock's label.
+    paintlab::gui::PlotsDock* plots = m_window->plotsDock();
+    QTRY_VERIFY_WITH_TIMEOUT(!plots->computing() && plots->inplanePlot()->hasComparison(), kWaitMs);
+    QCOMPARE(plots->comparisonLabel(), dock->comparisonLabel());
     // Pinning the edited recipe: both sides are then the same recipe.
     m_window->renderDock()->findChild<QPushButton*>(QStringLiteral("pin_comparison"))->click();
     QVERIFY(dock->comparisonLabel().contains(QStringLiteral("pinned")));
@@ -600,6 +605,7 @@ void WorkstationTest::switchingVersionsRendersTheOtherVersion() {
     m_window->clearComparison();
     QVERIFY(!dock->hasComparison());
     QVERIFY(dock->mode() == paintlab::gui::CompareMode::Single);
+    QVERIFY(!plots->inplanePlot()->hasComparison() && plots->comparisonLabel().isEmpty());
 }
 
 // A close-up where the plan keeps the glints (a panel 10 cm away, ~50 µm
