@@ -12,6 +12,7 @@
 #include "paintlab/engine/ciede2000.h"
 #include "paintlab/engine/colour.h"
 #include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/montecarlo/mc_table.h"
 #include "paintlab/engine/plan.h"
 #include "paintlab/engine/recipe_json.h"
 #include "paintlab/engine/sparkle.h"
@@ -27,7 +28,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <memory>
@@ -283,5 +287,67 @@ TEST_F(PlanHonesty, FewerDepthSlicesChangeTheRelitImageLessThanClaimed) {
     }
 }
 
+// The full model, which the plan skips for the pearlescent demo (inside the
+// fast model's validity by fastModelValidity: expected difference 2.3 %,
+// accepted dE00 0.894). "Computing it anyway": the Monte Carlo model with
+// explicit flakes tabulated on the fast model's preview grid (mc_table.h),
+// relit on the demo map against the fast model on the same grid, so that
+// only the model differs. Two tables of independent seeds give the Monte
+// Carlo noise of one table's image, ~ dE(a, b) / sqrt(2); the claim is
+// checked only where that noise is below it, and the model's difference may
+// exceed the claim by at most that noise.
+//
+// A report run, not part of CI (~25 s, and it FAILS today: the claim is
+// too optimistic, docs/VALIDATION.md "Effect planner"): set
+// PAINTLAB_FULL_MODEL_SECONDS to the budget per table, e.g.
+//   PAINTLAB_FULL_MODEL_SECONDS=10 test_raymaps_plan --gtest_filter='*FullModel*'
+TEST_F(PlanHonesty, SkippedFullModelChangesTheRelitImageLessThanClaimed) {
+    const char* budget = std::getenv("PAINTLAB_FULL_MODEL_SECONDS");  // NOLINT(concurrency-mt-unsafe)
+    if (budget == nullptr)
+        GTEST_SKIP() << "report run (PAINTLAB_FULL_MODEL_SECONDS): the full model's claim is known to fail, "
+                        "docs/VALIDATION.md";
+    const double seconds = std::clamp(std::atof(budget), 1.0, 3600.0);  // NOLINT(cert-err34-c)
+    use(0);
+    const Recipe r = demoRecipe("pearlescent-two-layer.json");
+    const EffectPlan p = plan(r, summariseRayMap(*s_map), Preset::Standard);
+    const PlanDecision& d = decision(p, "full_model");
+    ASSERT_FALSE(d.simulate) << d.reason;
+    const double claimed = d.accepted_error_de;
+    const FastModelSettings grid = presetSettings(Preset::Preview);
+    mc::McSettings s;
+    s.explicit_flakes = true;
+    s.histogram_cone_deg = 5.0;
+    s.max_paths = 1000000000;  // the time budget decides
+    s.max_seconds = seconds;
+    s.chunk_paths = 128;  // every (band, node) runs at least a round: small rounds keep the budget
+    s.chunks_per_round = 8;
+    const auto relitTable = [&](std::uint64_t seed) {
+        s.seed = seed;
+        const mc::McTable t = mc::tabulateMonteCarlo(r, grid, s);
+        std::printf("  full-model table, seed %llu: %lld paths in %.1f s\n",
+                    static_cast<unsigned long long>(seed), static_cast<long long>(t.total_paths), t.seconds);
+        return relight(*s_input, RelightTables(t.brdf, s_map->header().cells, s_map->header().orders));
+    };
+    const RgbImage full_a = relitTable(1);
+    const RgbImage full_b = relitTable(2);
+    const Relit fast = relit(r, grid);
+    const double white = whiteOf(fast.image);
+    const double measured = percentile99DeltaE(fast.image, full_a, white);
+    const double noise = percentile99DeltaE(full_a, full_b, white) / std::sqrt(2.0);
+    // The luminance ratio per paint pixel, for the report.
+    std::vector<double> ratio;
+    for (std::size_t i = 0; i < s_input->paintPixels(); ++i) {
+        const double y_fast = luminanceOf(fast.image, s_input->pixel(i));
+        if (y_fast > 0.0) ratio.push_back(luminanceOf(full_a, s_input->pixel(i)) / y_fast - 1.0);
+    }
+    std::sort(ratio.begin(), ratio.end());
+    std::printf("full model skipped, pearlescent, demo car (sun + sky): claimed dE00 %.3g, measured %.3g "
+                "(99th percentile), Monte Carlo noise of one table %.3g; Y full / fast - 1 per pixel: 10th "
+                "percentile %+.3f, median %+.3f, 90th %+.3f\n",
+                claimed, measured, noise, ratio[ratio.size() / 10], ratio[ratio.size() / 2],
+                ratio[ratio.size() * 9 / 10]);
+    ASSERT_LT(noise, claimed) << "the full model's tables are too noisy to check the claim";
+    EXPECT_LE(measured, claimed + noise);
+}
 }  // namespace
 }  // namespace paintlab::raymaps
