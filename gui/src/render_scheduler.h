@@ -45,7 +45,7 @@ struct RenderResult {
     QString plan_scene;              // what the plan was made for (the ray map's file, or the BRDF alone)
     bool sparkle = false;            // the sparkle pass ran on the image
     // The plan draws glints but this is a preview: left out, since the
-    // sparkle pass costs 5-40x the relight (0.1-0.4 s on the demo scene)
+    // sparkle pass cost 12-40x the relight on the demo scene (185-422 ms)
     // and a slider drag needs an image per edit; the standard result after
     // the release draws them.
     bool sparkle_deferred = false;

@@ -18,6 +18,7 @@
 #include "recipe_document.h"
 #include "recipe_editor_dock.h"
 #include "replace_recipe_command.h"
+#include "save_screenshot.h"
 #include "test_recipes.h"
 
 #include "paintlab/engine/recipe_validation.h"
@@ -96,13 +97,7 @@ void rightClick(QWidget* widget, QPointF at) {
     sendMouse(widget, QEvent::MouseButtonRelease, at, Qt::RightButton, Qt::NoButton);
 }
 
-void saveScreenshot(QWidget* widget, const QString& name) {
-    QString dir = qEnvironmentVariable("PAINTLAB_SCREENSHOT_DIR");
-    if (dir.isEmpty()) dir = QStringLiteral(PAINTLAB_SCREENSHOT_DIR);
-    QDir().mkpath(dir);
-    const QString file = dir + "/" + name + ".png";
-    QVERIFY2(widget->grab().save(file), qPrintable(file));
-}
+using paintlab::test::saveScreenshot;
 
 }  // namespace
 

@@ -15,6 +15,7 @@
 #include "production_dialog.h"
 #include "recipe_diff.h"
 #include "recipe_editor_dock.h"
+#include "save_screenshot.h"
 #include "spectrum_chart.h"
 #include "versions_dock.h"
 
@@ -63,14 +64,7 @@ std::string readText(const QString& path) {
     return out.str();
 }
 
-// The screenshots go next to the test log; the comparison with baselines is a separate step.
-void saveScreenshot(QWidget* widget, const QString& name) {
-    QString dir = qEnvironmentVariable("PAINTLAB_SCREENSHOT_DIR");
-    if (dir.isEmpty()) dir = QStringLiteral(PAINTLAB_SCREENSHOT_DIR);
-    QDir().mkpath(dir);
-    const QString file = dir + "/" + name + ".png";
-    QVERIFY2(widget->grab().save(file), qPrintable(file));
-}
+using paintlab::test::saveScreenshot;
 
 }  // namespace
 

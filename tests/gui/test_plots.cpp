@@ -226,7 +226,11 @@ void PlotsTest::eachPlotDrawsThePearlescentPaint() {
         {m_paint_spectra.get(), "plots_paint_spectra"},
         {m_ingredient_spectra.get(), "plots_ingredient_spectra"},
         {m_ab.get(), "plots_ab"}};
+    qInfo("plots drawn on %s", PlotRenderThread::instance().threaded()
+                                   ? "the plot render thread"
+                                   : "the GUI thread (no threaded OpenGL)");
     for (const auto& [plot, name] : plots) {
+        QVERIFY2(plot->failure().isEmpty(), qPrintable(plot->failure()));
         const QImage image = plot->renderImage();
         QVERIFY2(!image.isNull(), name);
         QVERIFY(image.save(screenshotDir() + "/" + name + ".png"));

@@ -611,7 +611,7 @@ void WorkstationTest::switchingVersionsRendersTheOtherVersion() {
 // A close-up where the plan keeps the glints (a panel 10 cm away, ~50 µm
 // pixels, one sun, as tests/raymaps/test_sparkle_pass.cpp): the silver
 // metallic's preview leaves the sparkle pass for the standard render after
-// the release (the pass costs 5-40x the relight), which draws it.
+// the release (the pass cost 12-40x the relight on the demo scene), which draws it.
 void WorkstationTest::previewsLeaveTheGlintsForTheRelease() {
     const QString scene_file = m_dir.path() + "/scenes/panel.json";
     std::ofstream(scene_file.toStdString()) << R"({"schema_version": 1,

@@ -54,7 +54,8 @@ struct Comparison {
     }
 };
 
-int qualifiedSpp() {
+// The report run's samples per pixel (PAINTLAB_REFERENCE_SPP); 0 in CI.
+int reportRunSpp() {
     const char* text =
         std::getenv("PAINTLAB_REFERENCE_SPP");  // NOLINT(concurrency-mt-unsafe): read before any thread
     if (text == nullptr) return 0;
@@ -68,7 +69,7 @@ int qualifiedSpp() {
 // takes maps of 64 camera samples instead of 16):
 //   PAINTLAB_REFERENCE_SPP=16384 test_raymaps_reference --gtest_filter='RelightVsReference.*'
 int referenceSpp(int ci_spp) {
-    const int asked = qualifiedSpp();
+    const int asked = reportRunSpp();
     return asked > 0 ? asked : ci_spp;
 }
 
@@ -80,7 +81,7 @@ Comparison relightAndReference(const test::TempDir& dir, const Scene& scene,
     // A report run (referenceSpp above) also takes 4x the camera samples, so
     // that the maps' own noise, not only the reference's, falls below what
     // the 2 % goal needs resolved.
-    s.aa_samples = qualifiedSpp() > 0 ? 64 : 16;
+    s.aa_samples = reportRunSpp() > 0 ? 64 : 16;
     s.light_rays = 64;
     s.bake_paths = 1;
     s.sun_shadow_rays = 4;
