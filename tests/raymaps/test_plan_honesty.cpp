@@ -12,6 +12,7 @@
 #include "paintlab/engine/ciede2000.h"
 #include "paintlab/engine/colour.h"
 #include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/model_validity.h"
 #include "paintlab/engine/montecarlo/mc_table.h"
 #include "paintlab/engine/plan.h"
 #include "paintlab/engine/recipe_json.h"
@@ -59,6 +60,23 @@ struct Relit {
 // The maps: 0 the demo scene (sun and sky), 1 the same under the sky alone.
 constexpr int kMaps = 2;
 const char* const kMapNames[kMaps] = {"demo car, sun + sky", "demo car, sky only"};
+
+// The full model, "computed anyway": the Monte Carlo model with explicit
+// flakes tabulated on the fast model's preview grid (mc_table.h), relit on
+// the demo map against the fast model on the same grid, so that only the
+// model differs. Two tables of independent seeds give the Monte Carlo noise
+// of one table's image, ~ dE(a, b) / sqrt(2).
+//
+// The budget per table is the test's (CI); PAINTLAB_FULL_MODEL_SECONDS sets
+// another for the figures in docs/VALIDATION.md's honesty table. The noise
+// falls as 1 / sqrt(budget): measured dE00 1.37 at 4 s for the clear pearl,
+// 0.66 for the pearlescent.
+struct FullModelImages {
+    double measured_de = 0.0;              // 99th percentile dE00, explicit flakes against the continuum
+    double noise_de = 0.0;                 // of that difference, from the seeds
+    double tabulation_de = 0.0;            // the continuum Monte Carlo's table against the fast model
+    double median_luminance_change = 0.0;  // Y explicit / continuum - 1 over the paint pixels
+};
 
 class PlanHonesty : public ::testing::Test {
 protected:
@@ -143,6 +161,68 @@ protected:
     }
 
     static Recipe demoRecipe(const char* name) { return loadRecipeFile(kDemo / "recipes" / name); }
+
+    // The full model's relit image (the Monte Carlo with explicit flakes,
+    // tabulated on the preview grid, mean of two seeds) against the same
+    // Monte Carlo with the flakes as a continuum (the control: what the fast
+    // model solves, through the same tabulation, so the table's cell
+    // averages and the grid's interpolation cancel), and the control against
+    // the fast model (that tabulation bias, for the record).
+    static FullModelImages fullModelAgainstFast(const Recipe& r, const char* what, double default_seconds) {
+        const RelightInput& input = *s_input;
+        const RayMap& map = *s_map;
+        const char* budget = std::getenv("PAINTLAB_FULL_MODEL_SECONDS");  // NOLINT(concurrency-mt-unsafe)
+        const double seconds = budget != nullptr ? std::clamp(std::atof(budget), 1.0, 3600.0)
+                                                 : default_seconds;  // NOLINT(cert-err34-c)
+        const FastModelSettings grid = presetSettings(Preset::Preview);
+        mc::McSettings s;
+        s.histogram_cone_deg = 5.0;
+        s.max_paths = 1000000000;  // the time budget decides
+        s.max_seconds = seconds;
+        s.chunk_paths = 128;  // every (band, node) runs at least a round: small rounds keep the budget
+        s.chunks_per_round = 8;
+        struct MeanImage {
+            RgbImage image;   // of two independent tables
+            double noise_de;  // of that mean: half the two tables' difference (each has half its variance)
+        };
+        const RgbImage fast = relit(r, grid).image;
+        const double white = whiteOf(fast);
+        const auto relitMean = [&](bool explicit_flakes, const char* model) {
+            s.explicit_flakes = explicit_flakes;
+            RgbImage one[2];
+            for (int k = 0; k < 2; ++k) {
+                s.seed = static_cast<std::uint64_t>(k + 1);
+                const mc::McTable t = mc::tabulateMonteCarlo(r, grid, s);
+                std::printf("  %s: %s table, seed %d: %lld paths in %.1f s\n", what, model, k + 1,
+                            static_cast<long long>(t.total_paths), t.seconds);
+                one[k] = relight(input, RelightTables(t.brdf, map.header().cells, map.header().orders));
+            }
+            MeanImage m{one[0], 0.5 * percentile99DeltaE(one[0], one[1], white)};
+            for (std::size_t i = 0; i < m.image.rgb.size(); ++i)
+                m.image.rgb[i] = 0.5F * (one[0].rgb[i] + one[1].rgb[i]);
+            return m;
+        };
+        const MeanImage full = relitMean(true, "explicit flakes");
+        const MeanImage control = relitMean(false, "continuum");
+        FullModelImages out;
+        out.measured_de = percentile99DeltaE(control.image, full.image, white);
+        out.noise_de = std::hypot(full.noise_de, control.noise_de);
+        out.tabulation_de = percentile99DeltaE(fast, control.image, white);
+        std::vector<double> ratio;
+        for (std::size_t i = 0; i < input.paintPixels(); ++i) {
+            const double y_control = luminanceOf(control.image, input.pixel(i));
+            if (y_control > 0.0) ratio.push_back(luminanceOf(full.image, input.pixel(i)) / y_control - 1.0);
+        }
+        std::sort(ratio.begin(), ratio.end());
+        out.median_luminance_change = ratio.empty() ? 0.0 : ratio[ratio.size() / 2];
+        std::printf(
+            "  %s: explicit flakes against the continuum, dE00 %.3g (99th percentile), Monte Carlo noise "
+            "%.3g; the continuum against the fast model %.3g; Y explicit / continuum - 1 per pixel: 10th "
+            "percentile %+.3f, median %+.3f, 90th %+.3f\n",
+            what, out.measured_de, out.noise_de, out.tabulation_de, ratio[ratio.size() / 10],
+            out.median_luminance_change, ratio[ratio.size() * 9 / 10]);
+        return out;
+    }
 
     static test::TempDir* s_dir;
     static RayMap* s_maps[kMaps];
@@ -287,67 +367,53 @@ TEST_F(PlanHonesty, FewerDepthSlicesChangeTheRelitImageLessThanClaimed) {
     }
 }
 
-// The full model, which the plan skips for the pearlescent demo (inside the
-// fast model's validity by fastModelValidity: expected difference 2.3 %,
-// accepted dE00 0.894). "Computing it anyway": the Monte Carlo model with
-// explicit flakes tabulated on the fast model's preview grid (mc_table.h),
-// relit on the demo map against the fast model on the same grid, so that
-// only the model differs. Two tables of independent seeds give the Monte
-// Carlo noise of one table's image, ~ dE(a, b) / sqrt(2); the claim is
-// checked only where that noise is below it, and the model's difference may
-// exceed the claim by at most that noise.
-//
-// A report run, not part of CI (~25 s, and it FAILS today: the claim is
-// too optimistic, docs/VALIDATION.md "Effect planner"): set
-// PAINTLAB_FULL_MODEL_SECONDS to the budget per table, e.g.
-//   PAINTLAB_FULL_MODEL_SECONDS=10 test_raymaps_plan --gtest_filter='*FullModel*'
+// Skipped: the demo pearl without its carbon black (clear basecoat), where
+// the flakes' hiding is the only difference (fastModelValidity: a few %).
+// The claim is checked only where the noise is below it, and the model's
+// difference may exceed the claim by at most that noise. 20 s per table
+// brings the noise (dE00 ~0.6) under the claim (~0.86).
 TEST_F(PlanHonesty, SkippedFullModelChangesTheRelitImageLessThanClaimed) {
-    const char* budget = std::getenv("PAINTLAB_FULL_MODEL_SECONDS");  // NOLINT(concurrency-mt-unsafe)
-    if (budget == nullptr)
-        GTEST_SKIP() << "report run (PAINTLAB_FULL_MODEL_SECONDS): the full model's claim is known to fail, "
-                        "docs/VALIDATION.md";
-    const double seconds = std::clamp(std::atof(budget), 1.0, 3600.0);  // NOLINT(cert-err34-c)
+    use(0);
+    Recipe r = demoRecipe("pearlescent-two-layer.json");
+    auto& base = r.layers[1].components;
+    base.erase(std::remove_if(base.begin(), base.end(),
+                              [](const Component& c) { return std::holds_alternative<Pigment>(c); }),
+               base.end());
+    const EffectPlan p = plan(r, summariseRayMap(*s_map), Preset::Standard);
+    const PlanDecision& d = decision(p, "full_model");
+    ASSERT_FALSE(d.simulate) << d.reason;
+    const FullModelImages m = fullModelAgainstFast(r, "clear pearl (skipped)", 20.0);
+    std::printf("full model skipped, clear pearl, demo car (sun + sky): claimed dE00 %.3g, measured %.3g, "
+                "noise %.3g\n",
+                d.accepted_error_de, m.measured_de, m.noise_de);
+    ASSERT_LT(m.noise_de, d.accepted_error_de) << "the full model's tables are too noisy to check the claim";
+    EXPECT_LE(m.measured_de, d.accepted_error_de + m.noise_de);
+}
+
+// Advised: the pearlescent demo itself (1 % carbon black in the basecoat),
+// which the plan sends to the full model because its tilted flakes cannot
+// reach the absorbing film's top (the full model darker by ~15 %,
+// fastModelValidity). Computing it must matter at the plan's own tolerance,
+// and the darkening must be the one predicted: the median paint pixel's
+// luminance change within 6 points of the expected signal-weighted
+// difference (the rule's residual on the report's absorbing-film series is
+// up to ~5 points, plus the image's mix of geometries).
+TEST_F(PlanHonesty, AdvisedFullModelChangesTheRelitImageAsPredicted) {
     use(0);
     const Recipe r = demoRecipe("pearlescent-two-layer.json");
     const EffectPlan p = plan(r, summariseRayMap(*s_map), Preset::Standard);
     const PlanDecision& d = decision(p, "full_model");
-    ASSERT_FALSE(d.simulate) << d.reason;
-    const double claimed = d.accepted_error_de;
-    const FastModelSettings grid = presetSettings(Preset::Preview);
-    mc::McSettings s;
-    s.explicit_flakes = true;
-    s.histogram_cone_deg = 5.0;
-    s.max_paths = 1000000000;  // the time budget decides
-    s.max_seconds = seconds;
-    s.chunk_paths = 128;  // every (band, node) runs at least a round: small rounds keep the budget
-    s.chunks_per_round = 8;
-    const auto relitTable = [&](std::uint64_t seed) {
-        s.seed = seed;
-        const mc::McTable t = mc::tabulateMonteCarlo(r, grid, s);
-        std::printf("  full-model table, seed %llu: %lld paths in %.1f s\n",
-                    static_cast<unsigned long long>(seed), static_cast<long long>(t.total_paths), t.seconds);
-        return relight(*s_input, RelightTables(t.brdf, s_map->header().cells, s_map->header().orders));
-    };
-    const RgbImage full_a = relitTable(1);
-    const RgbImage full_b = relitTable(2);
-    const Relit fast = relit(r, grid);
-    const double white = whiteOf(fast.image);
-    const double measured = percentile99DeltaE(fast.image, full_a, white);
-    const double noise = percentile99DeltaE(full_a, full_b, white) / std::sqrt(2.0);
-    // The luminance ratio per paint pixel, for the report.
-    std::vector<double> ratio;
-    for (std::size_t i = 0; i < s_input->paintPixels(); ++i) {
-        const double y_fast = luminanceOf(fast.image, s_input->pixel(i));
-        if (y_fast > 0.0) ratio.push_back(luminanceOf(full_a, s_input->pixel(i)) / y_fast - 1.0);
-    }
-    std::sort(ratio.begin(), ratio.end());
-    std::printf("full model skipped, pearlescent, demo car (sun + sky): claimed dE00 %.3g, measured %.3g "
-                "(99th percentile), Monte Carlo noise of one table %.3g; Y full / fast - 1 per pixel: 10th "
-                "percentile %+.3f, median %+.3f, 90th %+.3f\n",
-                claimed, measured, noise, ratio[ratio.size() / 10], ratio[ratio.size() / 2],
-                ratio[ratio.size() * 9 / 10]);
-    ASSERT_LT(noise, claimed) << "the full model's tables are too noisy to check the claim";
-    EXPECT_LE(measured, claimed + noise);
+    ASSERT_TRUE(d.simulate) << d.reason;
+    const FastModelValidity v = fastModelValidity(r);
+    const FullModelImages m = fullModelAgainstFast(r, "pearlescent (advised)", 4.0);
+    std::printf(
+        "full model advised, pearlescent, demo car (sun + sky): expected %+.1f %% (largest %+.1f %% at "
+        "45as%.0f), measured median luminance change %+.1f %%, dE00 %.3g, noise %.3g, plan tolerance "
+        "dE00 %.3g\n",
+        100.0 * v.expected_rel_difference, 100.0 * v.largest_rel_difference, v.largest_at_aspecular_deg,
+        100.0 * m.median_luminance_change, m.measured_de, m.noise_de, p.tolerance_de);
+    EXPECT_GT(m.measured_de - m.noise_de, p.tolerance_de) << "the advice was not needed";
+    EXPECT_NEAR(m.median_luminance_change, v.expected_rel_difference, 0.06);
 }
 }  // namespace
 }  // namespace paintlab::raymaps

@@ -116,7 +116,25 @@ def flake_component(kind, diameter_um, volume_fraction, spread_deg):
     }
 
 
-def recipe(kind, diameter_um, volume_fraction, spread_deg):
+def absorber(absorption_per_um):
+    """A grey, non-scattering absorber at 1 % by volume giving the film the
+    absorption coefficient absorption_per_um (1 % carbon black in the demo
+    pearlescent gives 0.12-0.22 /um over 400-700 nm)."""
+    return {
+        "kind": "pigment",
+        "name": "grey absorber",
+        "source": "a spectrally flat absorber standing for carbon black",
+        "volume_fraction": 0.01,
+        "sigma_a_per_um": absorption_per_um / 0.01,
+        "sigma_s_per_um": 0.0,
+        "hg_g": 0.0,
+    }
+
+
+def recipe(kind, diameter_um, volume_fraction, spread_deg, absorption_per_um=0.0):
+    components = [flake_component(kind, diameter_um, volume_fraction, spread_deg)]
+    if absorption_per_um > 0.0:
+        components.append(absorber(absorption_per_um))
     return {
         "schema_version": 1,
         "name": f"{kind} d{diameter_um:g} c{volume_fraction:g} s{spread_deg:g}",
@@ -127,7 +145,7 @@ def recipe(kind, diameter_um, volume_fraction, spread_deg):
                 "name": "flake layer",
                 "thickness_um": FILM_UM,
                 "binder": {"name": "binder", "refractive_index": BINDER_INDEX, "absorption_per_um": 0.0},
-                "components": [flake_component(kind, diameter_um, volume_fraction, spread_deg)],
+                "components": components,
             }
         ],
         "substrate": {"kind": "black"},
@@ -207,15 +225,30 @@ LIMIT_VOLUME_FRACTIONS = [0.04, 0.12]
 LIMIT_SPREAD_DEG = 20.0
 
 
+# Flakes in an absorbing film (the demo pearlescent's basecoat holds 1 %
+# carbon black): absorption weights the reflections near the top of the film,
+# where the full model's tilted flakes cannot reach (a flake's centre keeps
+# r sin(tilt) from each face), so the full model is the darker
+# (engine/src/model_validity.cpp, "surface depletion").
+ABSORBING_KINDS = {"interference": 0.04, "mirror": 0.01}  # kind: volume fraction
+ABSORBING_DIAMETERS_UM = [5.0, 20.0, 50.0]
+ABSORPTIONS_PER_UM = [0.05, 0.15, 0.5]
+ABSORBING_SPREAD_DEG = 10.0
+
+
 def grid():
     for kind in TYPES:
         for spread in SPREADS_DEG:
             for vf in VOLUME_FRACTIONS:
                 for d in DIAMETERS_UM:
-                    yield "grid", kind, d, vf, spread
+                    yield "grid", kind, d, vf, spread, 0.0
     for vf in LIMIT_VOLUME_FRACTIONS:
         for d in LIMIT_DIAMETERS_UM:
-            yield "limit", "mirror", d, vf, LIMIT_SPREAD_DEG
+            yield "limit", "mirror", d, vf, LIMIT_SPREAD_DEG, 0.0
+    for kind, vf in ABSORBING_KINDS.items():
+        for a in ABSORPTIONS_PER_UM:
+            for d in ABSORBING_DIAMETERS_UM:
+                yield "absorbing", kind, d, vf, ABSORBING_SPREAD_DEG, a
 
 
 def main():
@@ -236,25 +269,26 @@ def main():
     (work / "runs").mkdir(parents=True, exist_ok=True)
     points = list(grid())
     if args.quick:
-        points = [("grid", "mirror", 5.0, 0.04, 20.0), ("grid", "mirror", 50.0, 0.30, 5.0)]
+        points = [("grid", "mirror", 5.0, 0.04, 20.0, 0.0), ("absorbing", "interference", 20.0, 0.04, 10.0, 0.15)]
 
     table = []
     t0 = time.monotonic()
-    for n, (series, kind, d, vf, spread) in enumerate(points):
-        tag = f"{kind}_d{d:g}_c{vf:g}_s{spread:g}"
+    for n, (series, kind, d, vf, spread, absorption) in enumerate(points):
+        a_tag = f"_a{absorption:g}" if absorption > 0.0 else ""
+        tag = f"{kind}_d{d:g}_c{vf:g}_s{spread:g}{a_tag}"
         rp = work / "recipes" / f"{tag}.json"
-        rp.write_text(json.dumps(recipe(kind, d, vf, spread), indent=1))
+        rp.write_text(json.dumps(recipe(kind, d, vf, spread, absorption), indent=1))
         samples = samples_for(kind, vf, args.samples)
         suffix = f"_n{samples}_{args.preset}"
-        ctag = f"{kind}_c{vf:g}_s{spread:g}_continuum"
+        ctag = f"{kind}_c{vf:g}_s{spread:g}{a_tag}_continuum"
         if args.cached_only and not all(
                 (work / "runs" / f"{t}{suffix}.json").exists() for t in (tag, ctag)):
             continue
         full = run_compare(args.cli, rp, work / "runs" / f"{tag}{suffix}.json", samples, args.preset, True)
         # The control does not depend on the diameter: run it once, at the smallest.
-        crp = work / "recipes" / f"{kind}_d{DIAMETERS_UM[0]:g}_c{vf:g}_s{spread:g}.json"
+        crp = work / "recipes" / f"{kind}_d{DIAMETERS_UM[0]:g}_c{vf:g}_s{spread:g}{a_tag}.json"
         if not crp.exists():
-            crp.write_text(json.dumps(recipe(kind, DIAMETERS_UM[0], vf, spread), indent=1))
+            crp.write_text(json.dumps(recipe(kind, DIAMETERS_UM[0], vf, spread, absorption), indent=1))
         control = run_compare(args.cli, crp, work / "runs" / f"{ctag}{suffix}.json", samples, args.preset, False)
         geo = summarise(full)
         cgeo = summarise(control)
@@ -266,6 +300,7 @@ def main():
             "diameter_um": d,
             "volume_fraction": vf,
             "spread_deg": spread,
+            "absorption_per_um": absorption,
             "coverage": round(coverage(kind, vf), 4),
             "diameter_over_free_path": round(d * vf / TYPES[kind]["thickness_um"], 4),
             "diameter_over_film": d / FILM_UM,

@@ -18,7 +18,7 @@ TYPE_TITLES = {
     "dielectric": "transparent dielectric (n 2.0, 0.25 µm)",
 }
 COLOURS = {0.01: "tab:blue", 0.04: "tab:green", 0.12: "tab:orange", 0.3: "tab:red"}
-MARKERS = {5.0: "o", 20.0: "^"}
+MARKERS = {5.0: "o", 20.0: "^", 10.0: "D"}  # 10°: the absorbing-film series
 
 
 def plot(table, path):
@@ -50,7 +50,8 @@ def plot(table, path):
             if line == 0:
                 for vf, colour in COLOURS.items():
                     ds = [0.3 * 1.1**i for i in range(60) if 0.3 * 1.1**i <= 60]
-                    ax.plot([d * vf / t_um for d in ds], [100 * predict(constants, kind, d, vf) for d in ds],
+                    ax.plot([d * vf / t_um for d in ds],
+                            [100 * predict(constants, kind, d, vf, 5.0) for d in ds],
                             color=colour, lw=0.9, alpha=0.7)
                 ax.set_title(TYPE_TITLES[kind], fontsize=10)
             else:
@@ -65,10 +66,12 @@ def plot(table, path):
     handles = [plt.Line2D([], [], marker="s", color=c, linestyle="none", label=f"c = {vf:g}")
                for vf, c in COLOURS.items()]
     handles += [plt.Line2D([], [], marker=m, color="0.3", linestyle="none", label=f"spread {s:g}°")
-                for s, m in MARKERS.items()]
+                for s, m in MARKERS.items() if s != 10.0]
+    handles += [plt.Line2D([], [], marker="D", color="0.3", linestyle="none",
+                           label="spread 10°, absorbing film (0.05-0.5 /µm)")]
     handles += [plt.Line2D([], [], marker="^", color="0.3", mfc="none", linestyle="none",
                            label="d < 5 µm (limit series)"),
-                plt.Line2D([], [], color="0.3", lw=0.9, label="validity rule (fit)")]
+                plt.Line2D([], [], color="0.3", lw=0.9, label="validity rule (fit), clear film, 5°")]
     fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8, frameon=False)
     fig.suptitle(
         "Full model (explicit flakes) vs fast model (continuum): 20 µm film over black, 45° incidence, "

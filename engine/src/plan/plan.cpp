@@ -358,7 +358,11 @@ PlanDecision fullModelDecision(const Recipe& recipe, EffectPlan& p) {
     p.full_model = !v.within;
     d.simulate = p.full_model;
     d.setting = p.full_model ? "Monte Carlo full model (explicit flakes)" : "fast model only";
-    d.skip_error_de = deltaEForRelativeChange(v.expected_rel_difference);
+    // The image's worst pixels see the worst of the geometries, not their mean.
+    const double worst = std::abs(v.largest_rel_difference) > std::abs(v.expected_rel_difference)
+                             ? v.largest_rel_difference
+                             : v.expected_rel_difference;
+    d.skip_error_de = deltaEForRelativeChange(worst);
     d.accepted_error_de = p.full_model ? 0.0 : d.skip_error_de;
     d.reason = v.reason + format(" (the preset allows %.0f %%)", 100.0 * tolerance);
     return d;

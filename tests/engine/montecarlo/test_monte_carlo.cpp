@@ -296,6 +296,21 @@ TEST(MonteCarloStopping, RelativeErrorTimeBudgetAndCancel) {
     const auto by_time = mc::runMonteCarlo(r, wavelengths, req, s);
     EXPECT_LT(by_time.seconds, 5.0);
     for (const auto& inc : by_time.bands[0]) EXPECT_GT(inc.paths, 0);
+    // A budget shorter than one round of chunks: the rounds are sized to the
+    // time left at the pace of a pilot round, so the job stops long before
+    // one fixed round (16 chunks of 2e6 paths, ~10 s per incidence here)
+    // would have ended. The path count is the firm check; the time bound only
+    // catches a regression to fixed rounds (10x the budget for a loaded CI).
+    auto slow = s;
+    slow.max_paths = 100000000;
+    slow.chunk_paths = 2000000;
+    slow.max_seconds = 0.4;
+    const auto sized = mc::runMonteCarlo(r, wavelengths, req, slow);
+    EXPECT_LT(sized.seconds, 4.0);
+    for (const auto& inc : sized.bands[0]) {
+        EXPECT_GT(inc.paths, 0);
+        EXPECT_LT(inc.paths, 16 * 2000000);
+    }
     // Cancel: the progress callback's false stops the run with an Error.
     s.max_seconds = 0.0;
     s.max_paths = 1000000;
