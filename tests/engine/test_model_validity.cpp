@@ -247,7 +247,7 @@ TEST(ModelValidity, InsideAndOutside) {
                base.end());
     const FastModelValidity cp = fastModelValidity(clear_pearl);
     EXPECT_TRUE(cp.within) << cp.reason;
-    EXPECT_NEAR(cp.expected_rel_difference, 0.035, 0.03) << cp.reason;
+    EXPECT_NEAR(cp.expected_rel_difference, 0.035, 0.03) << cp.reason;  // measured +3 to +4 %
 
     // A looser tolerance moves the boundary, not the estimate.
     const FastModelValidity loose = fastModelValidity(silver, 1.0);
