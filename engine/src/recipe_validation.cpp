@@ -2,6 +2,7 @@
 
 #include "paintlab/engine/error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -89,22 +90,27 @@ private:
 void checkDepthProfile(const DepthProfile& profile, const std::string& path, double volume_fraction,
                        double max_volume_fraction, std::vector<RecipeProblem>& problems) {
     const std::string where = path + " > depth_profile";
-    auto error = [&](std::string message) {
-        problems.push_back({Severity::Error, where, std::move(message)});
-    };
-    if (profile.depth.size() < 2) return error("needs at least two samples (depth 0 and depth 1)");
-    if (profile.depth.front() != 0.0 || profile.depth.back() != 1.0)
-        return error("depth must start at 0 (top of the layer) and end at 1 (bottom)");
-    for (std::size_t i = 1; i < profile.depth.size(); ++i)
-        if (!(profile.depth[i] > profile.depth[i - 1]))
-            return error("depth must increase strictly (sample " + std::to_string(i + 1) + ")");
+    if (RecipeProblem node = depthProfileNodeProblem(profile); !node.message.empty()) {
+        node.field = node.field.empty() ? where : where + " > " + node.field;
+        problems.push_back(std::move(node));
+        return;
+    }
+    // The nodes are in range: the weights' typical-range warnings, and the peak.
     FieldChecker checker(problems, where);
     for (double w : profile.weight) checker.scalar(params::kProfileWeight, w);
-    if (!(profile.meanWeight() > 0.0)) return error("weights are all zero");
     const double peak = volume_fraction * profile.peakRelativeConcentration();
     if (peak > max_volume_fraction)
-        error("the profile's peak volume fraction " + formatNumber(peak) + " is above the maximum " +
-              formatNumber(max_volume_fraction));
+        problems.push_back({Severity::Error, where,
+                            "the profile's peak volume fraction " + formatNumber(peak) +
+                                " is above the maximum " + formatNumber(max_volume_fraction)});
+}
+
+// A component's profile if it has a well-formed one: a malformed profile's
+// problem is reported already and must not throw from the profile's maths.
+const DepthProfile* wellFormedProfile(const Component& c) {
+    const auto* p = componentDepthProfile(c);
+    if (p == nullptr || !p->has_value() || !depthProfileNodeProblem(**p).message.empty()) return nullptr;
+    return &**p;
 }
 
 // Local total volume fraction at every depth where some profile has a sample
@@ -112,16 +118,13 @@ void checkDepthProfile(const DepthProfile& profile, const std::string& path, dou
 double peakTotalVolumeFraction(const Layer& layer) {
     std::set<double> depths{0.0, 1.0};
     for (const auto& c : layer.components)
-        if (const auto* p = componentDepthProfile(c); p != nullptr && p->has_value())
-            depths.insert((*p)->depth.begin(), (*p)->depth.end());
+        if (const DepthProfile* p = wellFormedProfile(c)) depths.insert(p->depth.begin(), p->depth.end());
     double peak = 0.0;
     for (double z : depths) {
         double total = 0.0;
         for (const auto& c : layer.components) {
-            const auto* p = componentDepthProfile(c);
-            const double mean = p != nullptr && p->has_value() ? (*p)->meanWeight() : 1.0;
-            const double shape =
-                p != nullptr && p->has_value() && mean > 0.0 ? (*p)->weightAt(z) / mean : 1.0;
+            const DepthProfile* p = wellFormedProfile(c);
+            const double shape = p != nullptr ? p->weightAt(z) / p->meanWeight() : 1.0;
             total += componentVolumeFraction(c) * shape;
         }
         peak = std::max(peak, total);
@@ -204,6 +207,51 @@ std::vector<RecipeProblem> checkRecipe(const Recipe& recipe) {
 void validateRecipe(const Recipe& recipe, const std::string& source) {
     for (const auto& problem : checkRecipe(recipe))
         if (problem.severity == Severity::Error) throw InputError(source, problem.field, problem.message);
+}
+
+namespace {
+
+std::string nodeField(const char* field, std::size_t i) {
+    return std::string(field) + " (node " + std::to_string(i + 1) + ")";
+}
+
+}  // namespace
+
+RecipeProblem depthProfileNodeProblem(const DepthProfile& profile) {
+    const std::vector<double>& z = profile.depth;
+    const std::vector<double>& w = profile.weight;
+    const auto problem = [](std::string field, std::string message) {
+        return RecipeProblem{Severity::Error, std::move(field), std::move(message)};
+    };
+    if (z.size() != w.size())
+        return problem("", std::to_string(z.size()) + " depths but " + std::to_string(w.size()) +
+                               " weights; every node needs both");
+    if (z.size() < 2) return problem("depth", "needs at least two nodes, at depth 0 and depth 1");
+    for (std::size_t i = 0; i < z.size(); ++i)
+        if (!std::isfinite(z[i])) return problem(nodeField("depth", i), "not a finite number");
+    if (z.front() != 0.0)
+        return problem(nodeField("depth", 0),
+                       formatNumber(z.front()) + "; the first node must be at 0 (top of the layer)");
+    if (z.back() != 1.0)
+        return problem(nodeField("depth", z.size() - 1),
+                       formatNumber(z.back()) + "; the last node must be at 1 (bottom of the layer)");
+    for (std::size_t i = 1; i < z.size(); ++i)
+        if (!(z[i] > z[i - 1]))
+            return problem(nodeField("depth", i), formatNumber(z[i]) + " is not below node " +
+                                                      std::to_string(i) + " (" + formatNumber(z[i - 1]) +
+                                                      "); depth must increase strictly from 0 to 1");
+    const ParameterDecl& decl = params::kProfileWeight;
+    for (std::size_t i = 0; i < w.size(); ++i) {
+        if (!std::isfinite(w[i])) return problem(nodeField("weight", i), "not a finite number");
+        if (w[i] < decl.min)
+            return problem(nodeField("weight", i), formatNumber(w[i]) + " is below 0; weights are >= 0");
+        if (w[i] > decl.max)
+            return problem(nodeField("weight", i),
+                           formatNumber(w[i]) + " is above the maximum " + formatNumber(decl.max));
+    }
+    if (std::all_of(w.begin(), w.end(), [](double v) { return v == 0.0; }))
+        return problem("weight", "all weights are zero; at least one node needs a positive weight");
+    return problem("", "");
 }
 
 }  // namespace paintlab

@@ -16,16 +16,6 @@ namespace paintlab::gui {
 
 namespace {
 
-std::string number(double value) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.6g", value);
-    return buffer;
-}
-
-std::string nodeField(const char* field, std::size_t i) {
-    return std::string("depth_profile > ") + field + " (node " + std::to_string(i + 1) + ")";
-}
-
 template <class RecipeT> auto* profileSlot(RecipeT& recipe, int layer, int component) {
     using Slot = std::conditional_t<std::is_const_v<RecipeT>, const std::optional<DepthProfile>,
                                     std::optional<DepthProfile>>;
@@ -65,35 +55,9 @@ DepthProfile shownProfile(const std::optional<DepthProfile>& stored) {
 }
 
 std::string depthProfileProblem(const DepthProfile& profile) {
-    const std::vector<double>& z = profile.depth;
-    const std::vector<double>& w = profile.weight;
-    if (z.size() != w.size())
-        return "depth_profile: " + std::to_string(z.size()) + " depths but " + std::to_string(w.size()) +
-               " weights; every node needs both";
-    if (z.size() < 2) return "depth_profile > depth: needs at least two nodes, at depth 0 and depth 1";
-    for (std::size_t i = 0; i < z.size(); ++i)
-        if (!std::isfinite(z[i])) return nodeField("depth", i) + ": not a finite number";
-    if (z.front() != 0.0)
-        return nodeField("depth", 0) + ": " + number(z.front()) +
-               "; the first node must be at 0 (top of the layer)";
-    if (z.back() != 1.0)
-        return nodeField("depth", z.size() - 1) + ": " + number(z.back()) +
-               "; the last node must be at 1 (bottom of the layer)";
-    for (std::size_t i = 1; i < z.size(); ++i)
-        if (!(z[i] > z[i - 1]))
-            return nodeField("depth", i) + ": " + number(z[i]) + " is not below node " + std::to_string(i) +
-                   " (" + number(z[i - 1]) + "); depth must increase strictly from 0 to 1";
-    const ParameterDecl& decl = params::kProfileWeight;
-    for (std::size_t i = 0; i < w.size(); ++i) {
-        if (!std::isfinite(w[i])) return nodeField("weight", i) + ": not a finite number";
-        if (w[i] < decl.min)
-            return nodeField("weight", i) + ": " + number(w[i]) + " is below 0; weights are >= 0";
-        if (w[i] > decl.max)
-            return nodeField("weight", i) + ": " + number(w[i]) + " is above the maximum " + number(decl.max);
-    }
-    if (std::all_of(w.begin(), w.end(), [](double v) { return v == 0.0; }))
-        return "depth_profile > weight: all weights are zero; at least one node needs a positive weight";
-    return {};
+    const RecipeProblem p = depthProfileNodeProblem(profile);
+    if (p.message.empty()) return {};
+    return "depth_profile" + (p.field.empty() ? std::string() : " > " + p.field) + ": " + p.message;
 }
 
 DepthProfile withNodeMoved(const DepthProfile& profile, std::size_t node, double depth, double weight) {

@@ -30,10 +30,10 @@ inline constexpr double kMinNodeSpacing = 1e-3;
 // What the editor shows: the stored profile, or the uniform one when there is none.
 DepthProfile shownProfile(const std::optional<DepthProfile>& stored);
 
-// The first problem of a profile, naming the field ("depth_profile > weight
-// (node 2): -0.5 is below 0"); empty when it is well-formed: as many weights
-// as depths, at least two nodes, depth strictly increasing from 0 to 1,
-// weights finite, >= 0 and within the declared maximum, not all zero.
+// The first problem of a profile's nodes (the engine's
+// depthProfileNodeProblem, so an edit and a file get the same words), naming
+// the field ("depth_profile > weight (node 2): -0.5 is below 0"); empty when
+// it is well-formed.
 std::string depthProfileProblem(const DepthProfile& profile);
 
 // Node `node` moved to (depth, weight): an end node keeps its depth, an inner

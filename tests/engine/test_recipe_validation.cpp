@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -134,6 +136,41 @@ TEST(RecipeValidation, DepthProfileShapeKeepsTheMean) {
     Recipe r = minimal();
     std::get<Pigment>(r.layers[0].components[0]).depth_profile = DepthProfile{{0.0, 0.5}, {1.0, 1.0}};
     EXPECT_THROW(validateRecipe(r, "test"), InputError);  // does not reach depth 1
+}
+
+TEST(RecipeValidation, DepthProfileNodesAreNamed) {
+    // Each malformed profile names the node and says what is wrong with it,
+    // in a file (checkRecipe's field path) as in the workstation's editor.
+    struct Case {
+        DepthProfile profile;
+        std::string field;    // relative to the profile
+        std::string message;  // a part of it
+    };
+    const std::vector<Case> cases = {
+        {{{0.0, 0.5, 1.0}, {1.0, 1.0}}, "", "3 depths but 2 weights"},
+        {{{0.0}, {1.0}}, "depth", "at least two nodes"},
+        {{{0.0, std::nan(""), 1.0}, {1.0, 1.0, 1.0}}, "depth (node 2)", "not a finite number"},
+        {{{0.1, 1.0}, {1.0, 1.0}}, "depth (node 1)", "0.1; the first node must be at 0"},
+        {{{0.0, 0.9}, {1.0, 1.0}}, "depth (node 2)", "0.9; the last node must be at 1"},
+        {{{0.0, 0.6, 0.4, 1.0}, {1.0, 1.0, 1.0, 1.0}}, "depth (node 3)", "0.4 is not below node 2 (0.6)"},
+        {{{0.0, 0.5, 1.0}, {1.0, -0.5, 1.0}}, "weight (node 2)", "-0.5 is below 0"},
+        {{{0.0, 1.0}, {1.0, 2000.0}}, "weight (node 2)", "2000 is above the maximum 1000"},
+        {{{0.0, 1.0}, {0.0, 0.0}}, "weight", "all weights are zero"},
+    };
+    for (const Case& c : cases) {
+        const RecipeProblem p = depthProfileNodeProblem(c.profile);
+        EXPECT_EQ(p.severity, Severity::Error);
+        EXPECT_EQ(p.field, c.field) << c.message;
+        EXPECT_NE(p.message.find(c.message), std::string::npos) << p.message;
+        Recipe r = minimal();
+        std::get<Pigment>(r.layers[0].components[0]).depth_profile = c.profile;
+        const auto problems = checkRecipe(r);
+        ASSERT_FALSE(problems.empty()) << c.message;
+        const std::string where = c.field.empty() ? "depth_profile" : "depth_profile > " + c.field;
+        EXPECT_TRUE(problems.front().field.ends_with(where)) << problems.front().field;
+        EXPECT_EQ(problems.front().message, p.message);
+    }
+    EXPECT_TRUE(depthProfileNodeProblem(DepthProfile{{0.0, 0.3, 1.0}, {1.0, 0.0, 2.0}}).message.empty());
 }
 
 TEST(RecipeValidation, LocalTotalVolumeFractionWithProfiles) {

@@ -26,4 +26,13 @@ std::vector<RecipeProblem> checkRecipe(const Recipe& recipe);
 // Throws InputError(source, field, message) for the first error; warnings pass.
 void validateRecipe(const Recipe& recipe, const std::string& source);
 
+// The first problem of a depth profile's nodes, its field relative to the
+// profile ("depth (node 3)", "weight (node 2)", or "" for the profile as a
+// whole) and an empty message when the nodes are well-formed: as many
+// weights as depths, at least two nodes, depth strictly increasing from 0
+// to 1, weights finite, >= 0 and within the declared maximum, not all zero.
+// checkRecipe reports it under "... > depth_profile"; the workstation's
+// profile editor shows the same words while a node is dragged or typed.
+RecipeProblem depthProfileNodeProblem(const DepthProfile& profile);
+
 }  // namespace paintlab
