@@ -57,6 +57,8 @@
 #include "paintlab/engine/recipe_validation.h"
 #include "paintlab/engine/thin_film.h"
 
+#include "montecarlo/flake_polygon.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -87,9 +89,6 @@ constexpr double kIncidenceDeg = 45.0;
 constexpr double kMinNm = 400.0;
 constexpr double kStepNm = 10.0;
 constexpr int kWavelengths = 31;
-// The tile's flakes are regular 16-gons of the disk's area (flake_tile.cpp):
-// their circumradius over the disk's radius, sqrt(2 pi / (16 sin(2 pi / 16))).
-constexpr double kCircumradiusFactor = 1.0130;
 // A geometry where the flakes send less than this share of their brightest
 // signal is a ratio of two small numbers (as in the report, VISIBLE_FRACTION).
 constexpr double kVisibleFraction = 0.03;
@@ -99,7 +98,8 @@ struct FlakeTerm {
     double transmittance = 0.0;  // of one flake, straight on (0 for metal)
     double x = 0.0;              // diameter over min(film thickness, extinction free path)
     double coverage = 0.0;       // flake area per unit film area
-    double radius_um = 0.0;      // of the full model's polygon
+    double diameter_um = 0.0;
+    double radius_um = 0.0;  // circumradius of the full model's polygon (flake_polygon.h)
     double spread_deg = 0.0;
     std::string what;  // layer and component, for the reason
 };
@@ -153,7 +153,8 @@ FlakeTerm flakeTerm(const Layer& layer, double volume_fraction, double thickness
     // Extinction area per volume (1/µm): the inverse free path between flakes.
     // hypot: a smooth min(H, ell), which fits the report better than min().
     term.x = diameter_um * std::hypot(1.0 / H, extinction * volume_fraction / thickness_um);
-    term.radius_um = 0.5 * diameter_um * kCircumradiusFactor;
+    term.diameter_um = diameter_um;
+    term.radius_um = 0.5 * diameter_um * mc::flakeCircumradiusFactor();
     term.spread_deg = spread_deg;
     return term;
 }
@@ -225,6 +226,7 @@ struct LayerExpectation {
     double weighted = 0.0;
     double largest = 0.0;
     double largest_at_deg = 0.0;
+    double x = 0.0;  // the flakes' x, weighted by their optical thickness
 };
 
 // Expected difference of one layer's flakes at the six geometries.
@@ -237,7 +239,9 @@ LayerExpectation layerExpectation(const Layer& layer, const std::vector<FlakeTer
         x_weighted += term.tau * term.x;
         T_weighted += term.tau * term.transmittance;
     }
-    const double h = hidingDifference(tau, T_weighted / tau, x_weighted / tau);
+    LayerExpectation e;
+    e.x = x_weighted / tau;
+    const double h = hidingDifference(tau, T_weighted / tau, e.x);
     const double sigma = mediumExtinctionPerUm(layer);
     struct AtGeometry {
         double aspecular_deg;
@@ -259,7 +263,6 @@ LayerExpectation layerExpectation(const Layer& layer, const std::vector<FlakeTer
         const double F = weight > 0.0 ? depleted / weight : 1.0;
         at.push_back({g.aspecular_deg, weight, (1.0 + h) * F - 1.0});
     }
-    LayerExpectation e;
     double peak = 0.0;
     double total = 0.0;
     for (const auto& a : at) {
@@ -327,19 +330,13 @@ FastModelValidity fastModelValidity(const Recipe& recipe, double tolerance) {
             result.largest_rel_difference = e.largest;
             result.largest_at_aspecular_deg = e.largest_at_deg;
             const FlakeTerm* dominant = &terms.front();
-            double x_weighted = 0.0;
-            double tau = 0.0;
-            for (const auto& term : terms) {
-                tau += term.tau;
-                x_weighted += term.tau * term.x;
+            for (const auto& term : terms)
                 if (term.tau * term.x > dominant->tau * dominant->x) dominant = &term;
-            }
             char text[256];
             std::snprintf(text, sizeof text,
                           ": coverage %.3g flake layers, diameter over film and free path %.3g, diameter / "
                           "film %.3g; at 45as%.0f %+.1f %%",
-                          dominant->coverage, x_weighted / tau,
-                          2.0 * dominant->radius_um / kCircumradiusFactor / layer.thickness_um,
+                          dominant->coverage, e.x, dominant->diameter_um / layer.thickness_um,
                           e.largest_at_deg, 100.0 * e.largest);
             worst = dominant->what;
             worst.append(text);

@@ -214,8 +214,12 @@ protected:
             const double y_control = luminanceOf(control.image, input.pixel(i));
             if (y_control > 0.0) ratio.push_back(luminanceOf(full.image, input.pixel(i)) / y_control - 1.0);
         }
+        if (ratio.empty()) {
+            ADD_FAILURE() << what << ": no lit paint pixels";
+            return out;
+        }
         std::sort(ratio.begin(), ratio.end());
-        out.median_luminance_change = ratio.empty() ? 0.0 : ratio[ratio.size() / 2];
+        out.median_luminance_change = ratio[ratio.size() / 2];
         std::printf(
             "  %s: explicit flakes against the continuum, dE00 %.3g (99th percentile), Monte Carlo noise "
             "%.3g; the continuum against the fast model %.3g; Y explicit / continuum - 1 per pixel: 10th "

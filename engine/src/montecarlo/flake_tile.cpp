@@ -1,5 +1,7 @@
 #include "flake_tile.h"
 
+#include "flake_polygon.h"
+
 #include "mc_random.h"
 
 #include "paintlab/engine/error.h"
@@ -17,7 +19,8 @@ namespace paintlab::mc {
 
 namespace {
 
-constexpr int kSides = 16;  // a flake is a regular 16-gon with the disk's area
+constexpr int kSides =
+    kFlakePolygonSides;  // a flake is a regular polygon with the disk's area (flake_polygon.h)
 
 void onEmbreeError(void* user, RTCError /*code*/, const char* message) {
     auto* text = static_cast<std::string*>(user);
@@ -196,9 +199,7 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
     }
     m_side_um = per_area > 0.0 ? std::max(2.0 * d_max, std::sqrt(target_flakes / per_area)) : 1.0;
     const double L = m_side_um;
-    // Circumradius of the 16-gon with the disk's area.
-    const double circumradius_factor =
-        std::sqrt(2.0 * std::numbers::pi / (kSides * std::sin(2.0 * std::numbers::pi / kSides)));
+    const double circumradius_factor = flakeCircumradiusFactor();
     LateralGrid grid(L, std::max(0.5 * d_max * circumradius_factor, 1e-6));
 
     // No "threads=N" in the configuration: with it Embree's TBB tasking installs a
