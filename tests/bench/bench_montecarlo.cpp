@@ -155,6 +155,9 @@ BENCHMARK(BM_McPearlescentOnePercent)
 //   10 / 11 histogram only, 8 tiles, class Other only: its chains of delta
 //     events from the beam / its delta events after a smooth vertex
 //   12 / 13 as 10 / 11 with split branches off
+//   14 / 15 as 11, only the paths whose first direction change was a delta /
+//     a smooth vertex (the reverse walks' part, McSettings::reverse_walks)
+//   16 the default without reverse walks (the estimator before 2026-12-02, third session)
 // The figures quoted in docs/PERFORMANCE.md: see there (each row names its
 // arguments). Prints f, its standard error and the relative error per band
 // and geometry (stdout) and reports the worst relative error, the time 1 %
@@ -168,14 +171,15 @@ void BM_McExplicitBudget(benchmark::State& state) {
     s.max_paths = state.range(1) * 1000;
     s.explicit_flakes = true;
     s.histogram_cone_deg = 5.0;
-    s.connections = config >= 5 && config <= 9;
+    s.connections = (config >= 5 && config <= 9) || config == 16;
     s.batches = config == 1 || config == 6 ? 1 : 8;
     if (config >= 2 && config <= 4) s.histogram_classes = 1U << static_cast<unsigned>(config - 1);
-    if (config >= 10) {
+    if (config >= 10 && config <= 15) {
         s.histogram_classes = 8;
-        s.histogram_other = config % 2 == 0 ? 1U : 2U;
-        s.split_branches = config <= 11;
+        s.histogram_other = config == 14 ? 2U : (config == 15 ? 4U : (config % 2 == 0 ? 1U : 6U));
+        s.split_branches = config <= 11 || config >= 14;
     }
+    if (config == 16) s.reverse_walks = false;
     if (config == 7) estimatorOf20261201(s);
     if (config == 8) s.split_branches = false;
     if (config == 9) s.adaptive_fractions = false;
@@ -227,7 +231,8 @@ BENCHMARK(BM_McExplicitBudget)
     ->Args({3, 800, 1})
     ->ArgsProduct({{5, 7, 8, 9}, {150}, {8}})
     ->ArgsProduct({{5, 7}, {1500}, {8}})
-    ->ArgsProduct({{10, 11, 12, 13}, {1000}, {1}})
+    ->ArgsProduct({{10, 11, 12, 13, 14, 15}, {1000}, {1}})
+    ->ArgsProduct({{5, 16}, {1500}, {8}})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);

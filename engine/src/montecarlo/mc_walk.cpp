@@ -71,7 +71,15 @@ struct Walker {
     std::int64_t rays = 0;
     std::int64_t nee_rays = 0;
     std::int64_t nee_attempts = 0;
-    bool delta_chain = true;     // no smooth vertex yet (WalkSettings::histogram_other)
+    bool delta_chain = true;    // no smooth vertex yet (WalkSettings::histogram_other)
+    bool first_smooth = false;  // the first direction change was a smooth vertex
+    // Reverse walk (traceReversePath): it enters from the exit cone, and scores
+    // next-event estimates towards reverse_target (upward in the top slice, the
+    // beam reversed) from its smooth vertices once its first direction change
+    // was a delta; a first change at a smooth vertex ends it.
+    bool reverse = false;
+    Vec3 reverse_target{0.0, 0.0, 1.0};
+    double reverse_score = 0.0;
     int splits = 0;              // splits above this branch
     double escaped_extra = 0.0;  // what split-off branches carried out through the top
 
@@ -91,6 +99,7 @@ struct Walker {
         branch.rays = 0;
         branch.nee_rays = 0;
         branch.nee_attempts = 0;
+        branch.reverse_score = 0.0;
         const double escaped = branch.roulette() ? branch.run() : 0.0;
         escaped_extra += escaped + branch.escaped_extra;
         transmitted += branch.transmitted;
@@ -98,6 +107,14 @@ struct Walker {
         rays += branch.rays;
         nee_rays += branch.nee_rays;
         nee_attempts += branch.nee_attempts;
+        reverse_score += branch.reverse_score;
+    }
+
+    // A smooth direction change (pigment, Lambertian substrate, continuum flake).
+    void smoothChange() {
+        if (path_class == kClassBeam) first_smooth = true;
+        path_class = kClassSmooth;
+        delta_chain = false;
     }
 
     void move(double t) {
@@ -109,7 +126,8 @@ struct Walker {
     // histogram bins that contain the exit direction.
     void escape() {
         if ((settings.histogram_classes & path_class) != 0U &&
-            (path_class != kClassOther || (settings.histogram_other & (delta_chain ? 1U : 2U)) != 0U))
+            (path_class != kClassOther ||
+             (settings.histogram_other & (delta_chain ? 1U : (first_smooth ? 4U : 2U))) != 0U))
             for (std::size_t k = 0; k < bins.size(); ++k)
                 if (dot(v, bins[k].wo) >= bins[k].cos_cone)
                     brdf_out[k] += weight / bins[k].projected_solid_angle;
@@ -268,14 +286,41 @@ struct Walker {
         if (u < R) {
             v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
             // A continuum flake's normal is drawn from a density (a smooth vertex), unless D is the delta.
-            path_class = f.orientation.isDelta() ? kClassOther : kClassSmooth;
-            if (!f.orientation.isDelta()) delta_chain = false;
+            if (f.orientation.isDelta())
+                path_class = kClassOther;
+            else
+                smoothChange();
             return true;
         }
         return u < R + T;  // transmitted light goes straight on
     }
 
+    // Reverse walk: the next-event estimate towards reverse_target (f at that
+    // one direction, as the point estimator: no cone), `emitted(u)` as in coneNextEvent.
+    template <class Emitted> void reverseNextEvent(const Slice& s, const Emitted& emitted) {
+        Vec3 u;
+        if (!refractPlanar(reverse_target, stack.slices.front().n, s.n, u) || !(u.z > 0.0)) return;
+        const double value = emitted(u);
+        if (!(value > 0.0)) return;
+        ++nee_attempts;
+        const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
+        reverse_score +=
+            value * straightToAmbient(stack, explicit_flakes, j, depth, x, y, u, &nee_rays) * scale;
+    }
+
     bool collide(const Slice& s, double sigma, double flake_rate) {
+        // Reverse walk: a smooth first change belongs to the forward connections (the
+        // path reversed ends at a smooth vertex); tiled layers have no continuum flakes,
+        // so every collision here scatters off a pigment.
+        if (reverse) {
+            if (path_class == kClassBeam) return false;
+            if (s.sigma_s_per_um > 0.0) {
+                const double q = std::min(1.0, s.sigma_s_per_um / sigma);
+                if (connection_rng->uniform() < q)
+                    reverseNextEvent(
+                        s, [&](const Vec3& u) { return weight * s.kernel(v, u) / (sigma * q * u.z); });
+            }
+        }
         scoreCollision(s, sigma);
         // Connections: the kernel of a tiled layer's slice is the pigments' alone
         // (sigma_s HG), so the next event is drawn with probability q =
@@ -299,8 +344,7 @@ struct Walker {
                 if ((pick -= lobe.weight) < 0.0) break;
             }
             v = around(v, sampleHgCos(g, rng.uniform()), 2.0 * kPi * rng.uniform());
-            path_class = kClassSmooth;
-            delta_chain = false;
+            smoothChange();
         } else {
             u -= s.sigma_s_per_um;
             std::size_t k = 0;
@@ -330,6 +374,11 @@ struct Walker {
         case SubstrateKind::Black:
             return false;
         case SubstrateKind::Lambertian: {
+            if (reverse) {
+                if (path_class == kClassBeam) return false;
+                const double emitted = weight * stack.lambert_albedo / kPi;
+                reverseNextEvent(s, [emitted](const Vec3& /*u*/) { return emitted; });
+            }
             for (std::size_t k = 0; k < chains.size(); ++k)
                 brdf_out[k] += weight * stack.lambert_albedo / kPi * chains[k].lambert;
             if (connection_rng != nullptr) {
@@ -337,8 +386,7 @@ struct Walker {
                 coneNextEvent(s, [emitted](const Vec3& /*u*/) { return emitted; });
             }
             weight *= stack.lambert_albedo;
-            path_class = kClassSmooth;
-            delta_chain = false;
+            smoothChange();
             const double u1 = rng.uniform();
             const double phi = 2.0 * kPi * rng.uniform();
             const double r = std::sqrt(u1);
@@ -462,6 +510,35 @@ PathOutcome tracePath(const PathContext& context, Vec3 v, double weight, double 
         scoreGlints(context.stack, context.explicit_flakes, context.glints, context.bins,
                     context.settings.connection_weight, *connection_rng, f_out);
     return {escaped, walker.transmitted, walker.events, walker.rays, walker.nee_rays, walker.nee_attempts};
+}
+
+ReverseOutcome traceReversePath(const PathContext& context, Vec3 v, double weight, double x, double y,
+                                const Vec3& target, PathRng& rng, PathRng& connection_rng) {
+    WalkSettings settings = context.settings;
+    settings.histogram_classes = 0;
+    Walker walker{context.stack,
+                  {},
+                  {},
+                  context.explicit_flakes,
+                  nullptr,
+                  rng,
+                  &connection_rng,
+                  settings,
+                  {},
+                  v,
+                  weight,
+                  x,
+                  y,
+                  0,
+                  0.0,
+                  0.0,
+                  kClassBeam,
+                  {},
+                  {}};
+    walker.reverse = true;
+    walker.reverse_target = target;
+    walker.run();
+    return {walker.reverse_score, walker.events + walker.rays, walker.nee_rays + walker.nee_attempts};
 }
 
 }  // namespace paintlab::mc

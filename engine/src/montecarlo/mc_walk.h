@@ -18,8 +18,10 @@ struct WalkSettings {
     // Histogram estimator: the path classes (mc_connection.h) whose escapes it scores.
     unsigned histogram_classes = kAllClasses;
     // Of class Other, which part: 1 chains of delta events from the beam (no
-    // pigment, substrate or continuum-flake vertex), 2 after such a vertex.
-    unsigned histogram_other = 3;
+    // pigment, substrate or continuum-flake vertex), 2 after such a vertex when
+    // the first direction change was a delta, 4 when it was such a vertex (the
+    // reverse walks' part, traceReversePath).
+    unsigned histogram_other = 7;
     // Score classes Smooth and BeamFlake by connections (explicit flakes only; the
     // caller then leaves them out of histogram_classes).
     bool connections = false;
@@ -88,5 +90,26 @@ struct PathOutcome {
 // without them. Never throws.
 PathOutcome tracePath(const PathContext& context, Vec3 v, double weight, double x, double y, PathRng& rng,
                       std::span<double> f_out, PathRng* connection_rng = nullptr);
+
+// Reverse walks (McSettings::reverse_walks): by reciprocity, f(wi, w) = f(w, wi),
+// so the cone average of f(wi, .) over cone C is (Omega / Omega_proj) times the
+// mean over w uniform in C of w_z f(w, wi). A reverse walk enters from w
+// (refracted propagation direction v, weight 1 - F(w)) and estimates f(w, wi)
+// by next-event estimation towards the beam's reversed direction `target`
+// (upward, in the top slice) through the real tiles, from its smooth vertices,
+// but only those after a first direction change that was a delta (a flake's
+// mirror reflection, an internal reflection): reversed, these are exactly the
+// forward paths of class Other whose first direction change was a smooth
+// vertex, e.g. beam -> pigment -> flake -> cone, which the histogram finds
+// about once in 10^5 paths at the flop (docs/PERFORMANCE.md), and which the
+// forward histogram then leaves out (histogram_other bit 4). Returns the sum
+// of those estimates (f(w, wi), 1/sr) and the work done. Never throws.
+struct ReverseOutcome {
+    double f = 0.0;
+    std::int64_t walk_steps = 0;  // free paths + tile intersections of the walk
+    std::int64_t nee_steps = 0;   // tile intersections + attempts of its connections
+};
+ReverseOutcome traceReversePath(const PathContext& context, Vec3 v, double weight, double x, double y,
+                                const Vec3& target, PathRng& rng, PathRng& connection_rng);
 
 }  // namespace paintlab::mc

@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -35,7 +36,15 @@ struct ConeStats {
     double glint_s1 = 0.0;
     double glint_s2 = 0.0;
     double glint_rays = 0.0;
+    double reverse_samples = 0.0;
+    double reverse_s1 = 0.0;
+    double reverse_s2 = 0.0;
+    double reverse_cost = 0.0;  // microseconds on the reference machine (the cost model below)
     void add(const ConeStats& o) {
+        reverse_samples += o.reverse_samples;
+        reverse_s1 += o.reverse_s1;
+        reverse_s2 += o.reverse_s2;
+        reverse_cost += o.reverse_cost;
         nee_paths += o.nee_paths;
         nee_s1 += o.nee_s1;
         nee_s2 += o.nee_s2;
@@ -87,6 +96,10 @@ constexpr std::size_t kFirstExit = 2;
 constexpr std::int64_t kPilotChunkPaths = 16;
 constexpr std::uint64_t kConnectionStream = 0x636f6e6e656374ULL;  // "connect"
 constexpr std::uint64_t kGlintStream = 0x676c696e74ULL;           // "glint"
+constexpr std::uint64_t kReverseStream = 0x72657665727365ULL;     // "reverse"
+// Reverse walks per path and cone: at most (so that sample j of a chunk has a unique stream).
+constexpr double kMaxReverseRate = 4.0;
+constexpr double kMinReverseRate = 1.0 / 256.0;
 // Bounds of the adaptive fractions: next-event share of paths, glint samples per path.
 constexpr double kMinFraction = 1.0 / 64.0;
 constexpr double kMaxGlintRate = 4.0;
@@ -100,6 +113,58 @@ constexpr double kCostPerWalkStep = 0.4;
 constexpr double kCostPerNeeStep = 1.3;
 constexpr double kCostPerGlint = 1.0;
 constexpr double kCostPerGlintRay = 0.5;
+
+// One rate of a cone's variance model (JobRunner::adapt): its variance
+// coefficient (the variance it adds per path is variance / x at rate x), the
+// cost per unit of rate, and its bounds.
+struct RateTerm {
+    double variance = 0.0;
+    double cost = 1.0;
+    double lo = 0.0;
+    double hi = 1.0;
+};
+
+// The cheapest rates (least sum x_t cost_t) with sum variance_t / x_t <= budget:
+// x_t proportional to sqrt(variance_t / cost_t) (Lagrange), those beyond a bound
+// held at it and the rest solved again for what is left; every rate at its top
+// when the budget cannot be met; at its bottom a term without variance.
+std::array<double, 3> cheapestRates(const std::array<RateTerm, 3>& terms, double budget) {
+    std::array<double, 3> x{};
+    std::array<bool, 3> held{};
+    for (std::size_t t = 0; t < 3; ++t) {
+        held[t] = !(terms[t].variance > 0.0);
+        x[t] = held[t] ? terms[t].lo : terms[t].hi;
+    }
+    if (!(budget > 0.0)) return x;
+    for (int pass = 0; pass < 4; ++pass) {
+        double left = budget;
+        double sum = 0.0;
+        for (std::size_t t = 0; t < 3; ++t) {
+            if (held[t])
+                left -= terms[t].variance / x[t];
+            else
+                sum += std::sqrt(terms[t].variance * terms[t].cost);
+        }
+        if (!(sum > 0.0)) break;
+        if (!(left > 0.0)) {
+            for (std::size_t t = 0; t < 3; ++t)
+                if (!held[t]) x[t] = terms[t].hi;
+            break;
+        }
+        bool changed = false;
+        for (std::size_t t = 0; t < 3; ++t) {
+            if (held[t]) continue;
+            x[t] = std::sqrt(terms[t].variance / terms[t].cost) * sum / left;
+            if (x[t] > terms[t].hi || x[t] < terms[t].lo) {
+                x[t] = std::clamp(x[t], terms[t].lo, terms[t].hi);
+                held[t] = true;
+                changed = true;
+            }
+        }
+        if (!changed) break;
+    }
+    return x;
+}
 
 class JobRunner {
 public:
@@ -153,11 +218,15 @@ public:
         m_adaptive = m_azimuths && settings.adaptive_fractions;
         m_nee_fraction.assign(m_exits, m_connection_fraction);
         m_glint_rate.assign(m_exits, m_connection_fraction);
+        m_reverse = m_azimuths && settings.reverse_walks && (settings.connection_parts & 4U) != 0U;
+        m_nee_on = (settings.connection_parts & 1U) != 0U;
+        m_glints_on = (settings.connection_parts & 2U) != 0U;
+        m_reverse_rate.assign(m_exits, std::clamp(settings.reverse_rate, kMinReverseRate, kMaxReverseRate));
         m_diagnostics = m_adaptive ? m_exits : 0;
         m_walk.max_events = settings.max_events;
         m_walk.roulette_weight = settings.roulette_weight;
         m_walk.histogram_classes = m_histogram_classes;
-        m_walk.histogram_other = settings.histogram_other;
+        m_walk.histogram_other = settings.histogram_other & (m_reverse ? ~4U : ~0U);
         m_walk.connections = m_connections;
         m_walk.connection_weight = 1.0 / m_connection_fraction;
         m_walk.split_branches = settings.explicit_flakes && settings.split_branches;
@@ -225,7 +294,7 @@ public:
     std::vector<double> chunkGlints(std::size_t batch, std::int64_t first_path, std::int64_t paths,
                                     std::vector<ConeStats>& cones) const {
         std::vector<double> added(static_cast<std::size_t>(paths) * m_exits, 0.0);
-        if (!m_azimuths || paths <= 0) return added;
+        if (!m_azimuths || !m_glints_on || paths <= 0) return added;
         const std::span<const LayerFlakes> tiles = m_band.explicit_flakes[batch];
         const std::vector<AzimuthGlintSet>& sets = m_azimuth_glints[batch];
         PathRng rng(m_settings.seed ^ kGlintStream, m_band_key, m_incidence_key,
@@ -270,6 +339,70 @@ public:
         return added;
     }
 
+    // The reverse walks of one chunk (reverse_walks; mc_walk.h, traceReversePath):
+    // per exit k, S_k = floor(rate_k paths + xi) walks, each from a direction
+    // uniform in the cone of a view (walk j of the chunk at view first_path + j)
+    // and a point uniform on the tile, its estimate (Omega / Omega_proj) w_z
+    // f(w, wi) added to path j paths / S_k with weight 1 / rate_k (unbiased as
+    // the glints). Adds to `added` [local path][exit] and fills the cone statistics.
+    void chunkReverse(std::size_t batch, std::int64_t first_path, std::int64_t paths,
+                      std::vector<double>& added, std::vector<ConeStats>& cones) const {
+        if (!m_reverse || paths <= 0) return;
+        const std::span<const LayerFlakes> tiles = m_band.explicit_flakes[batch];
+        const std::vector<View>& views = m_views[std::min(batch, m_views.size() - 1)];
+        const PaintStack& stack = m_band.stack;
+        const double n1 = stack.slices.front().n;
+        WalkSettings walk = m_walk;
+        walk.connections = false;
+        const PathContext context{stack, {}, {}, tiles, walk, nullptr, {}, {}, {}};
+        for (std::size_t k = 0; k < m_exits; ++k) {
+            const std::uint64_t stream = m_settings.seed ^ kReverseStream ^ (0x9e3779b97f4a7c15ULL * (k + 1));
+            PathRng count_rng(stream, m_band_key, m_incidence_key, static_cast<std::uint64_t>(first_path));
+            const double rate = m_reverse_rate[k];
+            const auto count = static_cast<std::int64_t>(
+                std::floor(rate * static_cast<double>(paths) + count_rng.uniform()));
+            double s1 = 0.0;
+            double s2 = 0.0;
+            double cost = 0.0;
+            for (std::int64_t j = 0; j < count; ++j) {
+                // Sample j of the chunk: index 4 first_path + j < 4 (first_path + paths), unique per job.
+                const auto index = static_cast<std::uint64_t>(4 * first_path + j);
+                PathRng rng(stream, m_band_key, m_incidence_key, index);
+                PathRng connection_rng(stream ^ kConnectionStream, m_band_key, m_incidence_key, index);
+                const View& view = views[static_cast<std::size_t>(first_path + j) % m_view_count];
+                const HistogramBin& bin = view.bins[k];
+                const double u1 = rng.uniform();
+                const Vec3 w = sampleInCone(bin, u1, rng.uniform());
+                const double x = rng.uniform() * m_tile_side_um;
+                const double y = rng.uniform() * m_tile_side_um;
+                double value = 0.0;
+                if (w.z > 0.0) {
+                    const double entry = 1.0 - fresnelDielectric(w.z, n1 / stack.ambient_n);
+                    Vec3 v;
+                    if (entry > 0.0 && refractPlanar({-w.x, -w.y, -w.z}, stack.ambient_n, n1, v)) {
+                        const ReverseOutcome out =
+                            traceReversePath(context, v, entry, x, y,
+                                             {-view.v_in.x, -view.v_in.y, -view.v_in.z}, rng, connection_rng);
+                        value = out.f * w.z * bin.solid_angle / bin.projected_solid_angle;
+                        cost += kCostPerPath + kCostPerWalkStep * static_cast<double>(out.walk_steps) +
+                                kCostPerNeeStep * static_cast<double>(out.nee_steps);
+                    }
+                }
+                const auto path = static_cast<std::size_t>(
+                    std::min<std::int64_t>(paths - 1, (2 * j + 1) * paths / (2 * count)));
+                added[path * m_exits + k] += value / rate;
+                s1 += value;
+                s2 += value * value;
+            }
+            if (!cones.empty()) {
+                cones[k].reverse_samples += static_cast<double>(count);
+                cones[k].reverse_s1 += s1;
+                cones[k].reverse_s2 += s2;
+                cones[k].reverse_cost += cost;
+            }
+        }
+    }
+
     Sums runChunk(std::size_t batch, std::int64_t first_path, std::int64_t paths) const {
         // Sums of deviations from the first path's sample (exact for constant samples), then mean and M2.
         std::vector<double> shift(entries(), 0.0);
@@ -281,7 +414,8 @@ public:
         const std::span<const LayerFlakes> explicit_flakes =
             m_band.explicit_flakes.empty() ? std::span<const LayerFlakes>{} : m_band.explicit_flakes[batch];
         const std::vector<View>& views = m_views[std::min(batch, m_views.size() - 1)];
-        const std::vector<double> glints = chunkGlints(batch, first_path, paths, sums.cones);
+        std::vector<double> glints = chunkGlints(batch, first_path, paths, sums.cones);
+        chunkReverse(batch, first_path, paths, glints, sums.cones);
         std::vector<double> nee(m_azimuths ? m_exits : 0);
         std::vector<double> nee_weights(m_azimuths ? m_exits : 0);
         for (std::int64_t p = first_path; p < first_path + paths; ++p) {
@@ -300,7 +434,7 @@ public:
                 if (m_azimuths) {
                     const double u = connection_rng.uniform();
                     for (std::size_t k = 0; k < m_exits; ++k) {
-                        nee_weights[k] = u < m_nee_fraction[k] ? 1.0 / m_nee_fraction[k] : 0.0;
+                        nee_weights[k] = m_nee_on && u < m_nee_fraction[k] ? 1.0 / m_nee_fraction[k] : 0.0;
                         connect = connect || nee_weights[k] > 0.0;
                     }
                     std::fill(nee.begin(), nee.end(), 0.0);
@@ -353,19 +487,18 @@ public:
     // Adaptive fractions (McSettings::adaptive_fractions), from every path so
     // far (`total`: the batches' sums merged in order, so deterministic). Per
     // exit cone k the variance of f per path is modelled as
-    //   V_k(q, g) = A + B / q + C / g,   A = Var(histogram part) - E[X]^2,
+    //   V_k(q, g, r) = A + B / q + C / g + D / r,   A = Var(histogram part) - E[X]^2,
     // B = E[X^2] (X the raw next-event score of a path that runs it, q the share
     // of paths that do), C = Var(raw glint sample) (g samples per path; the
-    // stratification only lowers it), and the cost per path (microseconds on
-    // the reference machine, from counted work: free paths, tile
-    // intersections, connections; docs/PERFORMANCE.md) as
-    //   c_walk + sum_k (q_k c_nee + g_k c_glint,k).
+    // stratification only lowers it), D = Var(raw reverse-walk sample) (r walks
+    // per path), and the cost per path (microseconds on the reference machine,
+    // from counted work: free paths, tile intersections, connections;
+    // docs/PERFORMANCE.md) as c_walk + sum_k (q_k c_nee + g_k c_glint,k + r_k c_rev,k).
     // The stop rule waits for the worst cone, so the fractions minimise
     // max_k V_k / f_k^2 x cost: for a common level rho of V_k / f_k^2 each cone
-    // takes the cheapest (q, g) that reaches it (q, g proportional to
-    // sqrt(B / c_nee), sqrt(C / c_glint), clamped to [1/64, 1] and [1/64, 4]),
-    // and rho is scanned over a geometric grid. Only the next paths'
-    // fractions change, so each path's estimate stays unbiased.
+    // takes the cheapest (q, g, r) that reaches it (cheapestRates), and rho is
+    // scanned over a geometric grid. Only the next paths' fractions change, so
+    // each path's estimate stays unbiased.
     void adapt(const Sums& total) {
         if (!m_adaptive || total.paths < 1024 || total.cones.size() != m_exits) return;
         const auto n = static_cast<double>(total.paths);
@@ -374,68 +507,65 @@ public:
         for (const auto& c : total.cones) nee_paths += c.nee_paths;
         const double c_nee =
             nee_paths > 0.0 ? std::max(0.05, kCostPerNeeStep * total.nee_cost / nee_paths) : 0.5;
-        std::vector<double> a(m_exits), b(m_exits), c(m_exits), c_glint(m_exits, kCostPerGlint), f2(m_exits);
+        // Per cone: the three rates' variance coefficients, costs and bounds (next-event, glint, reverse).
+        std::vector<std::array<RateTerm, 3>> terms(m_exits);
+        std::vector<double> a(m_exits), f2(m_exits);
         for (std::size_t k = 0; k < m_exits; ++k) {
             const ConeStats& cs = total.cones[k];
             const std::size_t h = estimateEntries() + k;
             const double v_hist = total.paths > 1 ? total.m2[h] / (n - 1.0) : 0.0;
             const double mean_x = cs.nee_paths > 0.0 ? cs.nee_s1 / cs.nee_paths : 0.0;
-            b[k] = cs.nee_paths > 0.0 ? cs.nee_s2 / cs.nee_paths : 0.0;
+            RateTerm nee{cs.nee_paths > 0.0 ? cs.nee_s2 / cs.nee_paths : 0.0, c_nee, kMinFraction, 1.0};
+            RateTerm glint{0.0, kCostPerGlint, kMinGlintRate, kMaxGlintRate};
             if (cs.glint_samples > 1.0) {
                 const double mean_g = cs.glint_s1 / cs.glint_samples;
-                c[k] = std::max(0.0, cs.glint_s2 / cs.glint_samples - mean_g * mean_g);
-                c_glint[k] = kCostPerGlint + kCostPerGlintRay * cs.glint_rays / cs.glint_samples;
+                glint.variance = std::max(0.0, cs.glint_s2 / cs.glint_samples - mean_g * mean_g);
+                glint.cost = kCostPerGlint + kCostPerGlintRay * cs.glint_rays / cs.glint_samples;
             }
+            RateTerm reverse{0.0, 1.0, kMinReverseRate, kMaxReverseRate};
+            if (m_reverse && cs.reverse_samples > 1.0) {
+                const double mean_r = cs.reverse_s1 / cs.reverse_samples;
+                reverse.variance = std::max(0.0, cs.reverse_s2 / cs.reverse_samples - mean_r * mean_r);
+                reverse.cost = std::max(0.05, cs.reverse_cost / cs.reverse_samples);
+            }
+            terms[k] = {nee, glint, reverse};
             a[k] = std::max(0.0, v_hist - mean_x * mean_x);
             const double f = total.mean[kFirstExit + k];
             f2[k] = f * f;
         }
-        // The cheapest (q, g) of cone k with V_k <= level (minimise q c_nee + g c_glint s.t. B/q + C/g <= D).
-        const auto cheapest = [&](std::size_t k, double level, double& q, double& g) {
-            q = kMinFraction;
-            g = kMinGlintRate;
-            const double d = level - a[k];
-            const double sb = std::sqrt(b[k] * c_nee);
-            const double sc = std::sqrt(c[k] * c_glint[k]);
-            if (!(d > 0.0) || sb + sc <= 0.0) {
-                if (!(d > 0.0)) {
-                    q = 1.0;
-                    g = kMaxGlintRate;
-                }
-                return;
-            }
-            q = std::clamp(std::sqrt(b[k] / c_nee) * (sb + sc) / d, kMinFraction, 1.0);
-            g = std::clamp(std::sqrt(c[k] / c_glint[k]) * (sb + sc) / d, kMinGlintRate, kMaxGlintRate);
-            // One of them at its top: the other takes what is left.
-            if (q >= 1.0 && c[k] > 0.0 && d - b[k] > 0.0)
-                g = std::clamp(c[k] / (d - b[k]), kMinGlintRate, kMaxGlintRate);
-            else if (g >= kMaxGlintRate && b[k] > 0.0 && d - c[k] / kMaxGlintRate > 0.0)
-                q = std::clamp(b[k] / (d - c[k] / kMaxGlintRate), kMinFraction, 1.0);
+        const auto variance = [&](std::size_t k, const std::array<double, 3>& x) {
+            double v = a[k];
+            for (std::size_t t = 0; t < 3; ++t) v += terms[k][t].variance / x[t];
+            return v;
         };
-        double rho_min = 0.0;  // the worst cone's relative variance at the largest fractions
+        double rho_min = 0.0;  // the worst cone's relative variance at the largest rates
         for (std::size_t k = 0; k < m_exits; ++k)
-            if (f2[k] > 0.0) rho_min = std::max(rho_min, (a[k] + b[k] + c[k] / kMaxGlintRate) / f2[k]);
+            if (f2[k] > 0.0)
+                rho_min = std::max(rho_min, variance(k, {1.0, kMaxGlintRate, kMaxReverseRate}) / f2[k]);
         if (!(rho_min > 0.0)) return;
         double best = std::numeric_limits<double>::infinity();
-        std::vector<double> q(m_exits), g(m_exits);
+        std::vector<std::array<double, 3>> x(m_exits);
         for (int step = 0; step < 200; ++step) {
             const double rho = rho_min * std::pow(1.06, step);
             double cost = c_walk;
             double worst = 0.0;
             for (std::size_t k = 0; k < m_exits; ++k) {
                 if (f2[k] > 0.0) {
-                    cheapest(k, rho * f2[k], q[k], g[k]);
-                    worst = std::max(worst, (a[k] + b[k] / q[k] + c[k] / g[k]) / f2[k]);
+                    x[k] = cheapestRates(terms[k], rho * f2[k] - a[k]);
+                    worst = std::max(worst, variance(k, x[k]) / f2[k]);
                 } else {
-                    q[k] = kMinFraction;
-                    g[k] = kMinGlintRate;
+                    for (std::size_t t = 0; t < 3; ++t) x[k][t] = terms[k][t].lo;
                 }
-                cost += q[k] * c_nee + (c[k] > 0.0 ? g[k] * c_glint[k] : 0.0);
+                for (std::size_t t = 0; t < 3; ++t)
+                    if (t == 0 || terms[k][t].variance > 0.0) cost += x[k][t] * terms[k][t].cost;
             }
             if (worst * cost < best) {
                 best = worst * cost;
-                m_nee_fraction = q;
-                m_glint_rate = g;
+                for (std::size_t k = 0; k < m_exits; ++k) {
+                    m_nee_fraction[k] = x[k][0];
+                    m_glint_rate[k] = x[k][1];
+                    m_reverse_rate[k] = x[k][2];
+                }
             }
         }
     }
@@ -468,6 +598,10 @@ private:
     double m_connection_fraction = 1.0;
     bool m_azimuths = false;  // glint_azimuths
     bool m_adaptive = false;  // adaptive_fractions
+    bool m_reverse = false;   // reverse_walks
+    bool m_nee_on = true;     // connection_parts
+    bool m_glints_on = true;
+    std::vector<double> m_reverse_rate;  // per exit: reverse walks per path
     std::size_t m_diagnostics = 0;
     std::vector<double> m_nee_fraction;  // per exit: share of paths that run its next-event connections
     std::vector<double> m_glint_rate;    // per exit: glint samples per path

@@ -158,6 +158,19 @@ struct McSettings {
     // their reflectances. Lossless paint then no longer returns exactly 1 per
     // path (the roulette of the split-off branches). false: the analog choice.
     bool split_branches = true;
+    // Explicit flakes with connections: the paths of class Other whose first
+    // direction change was a pigment (or the Lambertian substrate), such as
+    // beam -> pigment -> flake -> cone, the part that limited the flop
+    // geometries, are scored by reverse walks from the cone (reciprocity;
+    // mc_walk.h, traceReversePath) instead of the histogram. false: the histogram.
+    bool reverse_walks = true;
+    // Reverse walks per path and cone in the first round (adaptive_fractions then sets them per cone).
+    double reverse_rate = 0.125;
+    // Diagnostics for error budgets: with connections, the parts that run (bit
+    // mask): 1 next-event from smooth vertices, 2 the beam's single flake
+    // reflections (glints), 4 the reverse walks. A part left out is not scored at
+    // all (the histogram does not take it over).
+    unsigned connection_parts = 7;
     // Diagnostics for error budgets: bit mask of the path classes whose
     // escapes the histogram scores (1 unscattered beam, 2 the beam's first
     // reflection off an explicit flake, 4 last direction change a pigment,
@@ -166,8 +179,10 @@ struct McSettings {
     unsigned histogram_classes = 15;
     // Diagnostics: of class 8, the part the histogram scores: 1 chains of
     // delta events from the beam (several flake reflections, internal
-    // reflections), 2 delta events after a pigment, substrate or continuum-flake vertex.
-    unsigned histogram_other = 3;
+    // reflections), 2 delta events after a pigment, substrate or continuum-flake
+    // vertex when the first direction change was a delta, 4 the same when it was
+    // such a vertex (with reverse_walks, scored by them and never by the histogram).
+    unsigned histogram_other = 7;
 };
 
 struct Estimate {
