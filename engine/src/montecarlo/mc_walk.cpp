@@ -80,6 +80,10 @@ struct Walker {
     bool reverse = false;
     Vec3 reverse_target{0.0, 0.0, 1.0};
     double reverse_score = 0.0;
+    // Delta-chain walk (traceDeltaChains): no collisions; the extinction of the
+    // slices is applied as the weight e^(-sigma t) of the straight flight instead,
+    // and a smooth vertex (the Lambertian substrate) ends it.
+    bool delta_only = false;
     int splits = 0;              // splits above this branch
     double escaped_extra = 0.0;  // what split-off branches carried out through the top
 
@@ -209,7 +213,7 @@ struct Walker {
     // Explicit flakes of the current layer along the free path t (medium) and
     // to_boundary (slice): 1 = a flake was hit and handled, 2 = the ray
     // wrapped at the tile's side, 0 = nothing in the way, -1 = the path ended.
-    int traceTile(const Slice& s, double t, double to_boundary) {
+    int traceTile(const Slice& s, double sigma, double t, double to_boundary) {
         if (explicit_flakes.empty()) return 0;
         const LayerFlakes& lf = explicit_flakes[static_cast<std::size_t>(s.layer)];
         if (lf.tile == nullptr) return 0;
@@ -228,11 +232,13 @@ struct Walker {
         if (hit.kind >= 0) {
             move(hit.t);
             depth = std::clamp(depth - v.z * hit.t, s.top_um, s.bottom_um);
+            if (delta_only) weight *= std::exp(-sigma * hit.t);
             return explicitFlakeEvent(lf.kinds[static_cast<std::size_t>(hit.kind)], hit.normal) ? 1 : -1;
         }
         if (t_side < t && t_side < to_boundary) {
             move(t_side);
             depth = std::clamp(depth - v.z * t_side, s.top_um, s.bottom_um);
+            if (delta_only) weight *= std::exp(-sigma * t_side);
             if (tx <= ty)
                 x = v.x > 0.0 ? 0.0 : L;
             else
@@ -374,6 +380,7 @@ struct Walker {
         case SubstrateKind::Black:
             return false;
         case SubstrateKind::Lambertian: {
+            if (delta_only) return false;
             if (reverse) {
                 if (path_class == kClassBeam) return false;
                 const double emitted = weight * stack.lambert_albedo / kPi;
@@ -423,12 +430,16 @@ struct Walker {
             for (std::size_t k = 0; k < s.flakes.size(); ++k) flake_rate += s.flakeRate(k, abs_cos);
             const double sigma = s.sigma_a_per_um + s.sigma_s_per_um + flake_rate;
             const double to_boundary = (v.z < 0.0 ? s.bottom_um - depth : depth - s.top_um) / abs_cos;
-            const double t =
-                sigma > 0.0 ? -std::log1p(-rng.uniform()) / sigma : std::numeric_limits<double>::infinity();
+            const double t = sigma > 0.0 && !delta_only ? -std::log1p(-rng.uniform()) / sigma
+                                                        : std::numeric_limits<double>::infinity();
             // Free paths are memoryless: after a flake or a wrap, a new one is drawn.
-            const int tile = traceTile(s, t, to_boundary);
+            const int tile = traceTile(s, sigma, t, to_boundary);
             if (tile < 0) return 0.0;
             if (tile > 0) continue;
+            if (delta_only) {
+                weight *= std::exp(-sigma * to_boundary);
+                if (!roulette()) return 0.0;
+            }
             if (t < to_boundary) {
                 move(t);
                 depth = std::clamp(depth - v.z * t, s.top_um, s.bottom_um);
@@ -510,6 +521,35 @@ PathOutcome tracePath(const PathContext& context, Vec3 v, double weight, double 
         scoreGlints(context.stack, context.explicit_flakes, context.glints, context.bins,
                     context.settings.connection_weight, *connection_rng, f_out);
     return {escaped, walker.transmitted, walker.events, walker.rays, walker.nee_rays, walker.nee_attempts};
+}
+
+PathOutcome traceDeltaChains(const PathContext& context, Vec3 v, double weight, double x, double y,
+                             PathRng& rng, std::span<double> f_out) {
+    WalkSettings settings = context.settings;
+    settings.histogram_classes = kClassOther;
+    settings.histogram_other = 1U;
+    Walker walker{context.stack,
+                  {},
+                  context.bins,
+                  context.explicit_flakes,
+                  nullptr,
+                  rng,
+                  nullptr,
+                  settings,
+                  f_out,
+                  v,
+                  weight,
+                  x,
+                  y,
+                  0,
+                  0.0,
+                  0.0,
+                  kClassBeam,
+                  {},
+                  {}};
+    walker.delta_only = true;
+    const double escaped = walker.run() + walker.escaped_extra;
+    return {escaped, walker.transmitted, walker.events, walker.rays, 0, 0};
 }
 
 ReverseOutcome traceReversePath(const PathContext& context, Vec3 v, double weight, double x, double y,

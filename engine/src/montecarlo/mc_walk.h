@@ -91,6 +91,19 @@ struct PathOutcome {
 PathOutcome tracePath(const PathContext& context, Vec3 v, double weight, double x, double y, PathRng& rng,
                       std::span<double> f_out, PathRng* connection_rng = nullptr);
 
+// Delta-chain walks (McSettings::delta_walks): the part of class Other with no
+// smooth vertex (histogram_other bit 1: chains of flake mirror reflections and
+// internal reflections from the beam, e.g. beam -> flake -> flake underside ->
+// flake -> cone, which sets the flop geometries' error in the pearlescent demo)
+// by a forward walk without collisions: the straight flights between delta
+// events carry the weight e^(-sigma_t s) that the analog walk gets as a survival
+// probability (the same expectation: such a path has no collision), splitting at
+// flakes and the top as the walk; the escapes of class Other into the bins are
+// added to f_out. settings.roulette_weight should be low (the chains' weights
+// are R^3 e^-tau, ~1e-2). Never throws.
+PathOutcome traceDeltaChains(const PathContext& context, Vec3 v, double weight, double x, double y,
+                             PathRng& rng, std::span<double> f_out);
+
 // Reverse walks (McSettings::reverse_walks): by reciprocity, f(wi, w) = f(w, wi),
 // so the cone average of f(wi, .) over cone C is (Omega / Omega_proj) times the
 // mean over w uniform in C of w_z f(w, wi). A reverse walk enters from w

@@ -39,8 +39,16 @@ struct ConeStats {
     double reverse_samples = 0.0;
     double reverse_s1 = 0.0;
     double reverse_s2 = 0.0;
-    double reverse_cost = 0.0;  // microseconds on the reference machine (the cost model below)
+    double reverse_cost = 0.0;   // microseconds on the reference machine (the cost model below)
+    double delta_samples = 0.0;  // delta-chain walks (shared by every cone: same count in each)
+    double delta_s1 = 0.0;
+    double delta_s2 = 0.0;
+    double delta_cost = 0.0;
     void add(const ConeStats& o) {
+        delta_samples += o.delta_samples;
+        delta_s1 += o.delta_s1;
+        delta_s2 += o.delta_s2;
+        delta_cost += o.delta_cost;
         reverse_samples += o.reverse_samples;
         reverse_s1 += o.reverse_s1;
         reverse_s2 += o.reverse_s2;
@@ -97,9 +105,13 @@ constexpr std::int64_t kPilotChunkPaths = 16;
 constexpr std::uint64_t kConnectionStream = 0x636f6e6e656374ULL;  // "connect"
 constexpr std::uint64_t kGlintStream = 0x676c696e74ULL;           // "glint"
 constexpr std::uint64_t kReverseStream = 0x72657665727365ULL;     // "reverse"
+constexpr std::uint64_t kDeltaStream = 0x64656c7461ULL;           // "delta"
 // Reverse walks per path and cone: at most (so that sample j of a chunk has a unique stream).
 constexpr double kMaxReverseRate = 4.0;
 constexpr double kMinReverseRate = 1.0 / 256.0;
+// Delta-chain walks per path (the same bound).
+constexpr double kMaxDeltaRate = 4.0;
+constexpr double kMinDeltaRate = 1.0 / 64.0;
 // Bounds of the adaptive fractions: next-event share of paths, glint samples per path.
 constexpr double kMinFraction = 1.0 / 64.0;
 constexpr double kMaxGlintRate = 4.0;
@@ -221,12 +233,14 @@ public:
         m_reverse = m_azimuths && settings.reverse_walks && (settings.connection_parts & 4U) != 0U;
         m_nee_on = (settings.connection_parts & 1U) != 0U;
         m_glints_on = (settings.connection_parts & 2U) != 0U;
+        m_delta = m_azimuths && settings.delta_walks && (settings.connection_parts & 8U) != 0U;
+        m_delta_rate = std::clamp(settings.delta_rate, kMinDeltaRate, kMaxDeltaRate);
         m_reverse_rate.assign(m_exits, std::clamp(settings.reverse_rate, kMinReverseRate, kMaxReverseRate));
         m_diagnostics = m_adaptive ? m_exits : 0;
         m_walk.max_events = settings.max_events;
         m_walk.roulette_weight = settings.roulette_weight;
         m_walk.histogram_classes = m_histogram_classes;
-        m_walk.histogram_other = settings.histogram_other & (m_reverse ? ~4U : ~0U);
+        m_walk.histogram_other = settings.histogram_other & (m_reverse ? ~4U : ~0U) & (m_delta ? ~1U : ~0U);
         m_walk.connections = m_connections;
         m_walk.connection_weight = 1.0 / m_connection_fraction;
         m_walk.split_branches = settings.explicit_flakes && settings.split_branches;
@@ -403,6 +417,48 @@ public:
         }
     }
 
+    // The delta-chain walks of one chunk (delta_walks; mc_walk.h, traceDeltaChains):
+    // S = floor(rate paths + xi) forward walks without collisions (walk j from a
+    // point uniform on the tile at view first_path + j), their escapes of class
+    // Other into every cone added to path j paths / S with weight 1 / rate.
+    void chunkDelta(std::size_t batch, std::int64_t first_path, std::int64_t paths,
+                    std::vector<double>& added, std::vector<ConeStats>& cones) const {
+        if (!m_delta || paths <= 0) return;
+        const std::span<const LayerFlakes> tiles = m_band.explicit_flakes[batch];
+        const std::vector<View>& views = m_views[std::min(batch, m_views.size() - 1)];
+        WalkSettings walk = m_walk;
+        walk.connections = false;
+        walk.roulette_weight = m_settings.delta_roulette_weight;
+        PathRng count_rng(m_settings.seed ^ kDeltaStream, m_band_key, m_incidence_key,
+                          static_cast<std::uint64_t>(first_path));
+        const auto count = static_cast<std::int64_t>(
+            std::floor(m_delta_rate * static_cast<double>(paths) + count_rng.uniform()));
+        std::vector<double> f(m_exits);
+        for (std::int64_t j = 0; j < count; ++j) {
+            // Walk j of the chunk: index 4 first_path + j < 4 (first_path + paths), unique per job (rate <=
+            // 4).
+            PathRng rng(m_settings.seed ^ kDeltaStream ^ 0x5bd1e995ULL, m_band_key, m_incidence_key,
+                        static_cast<std::uint64_t>(4 * first_path + j));
+            const View& view = views[static_cast<std::size_t>(first_path + j) % m_view_count];
+            const double x = rng.uniform() * m_tile_side_um;
+            const double y = rng.uniform() * m_tile_side_um;
+            const PathContext context{m_band.stack, {}, view.bins, tiles, walk, nullptr, {}, {}, {}};
+            std::fill(f.begin(), f.end(), 0.0);
+            const PathOutcome out = traceDeltaChains(context, view.v_in, m_entry_weight, x, y, rng, f);
+            const double cost = kCostPerPath + kCostPerWalkStep * static_cast<double>(out.events + out.rays);
+            const auto path = static_cast<std::size_t>(
+                std::min<std::int64_t>(paths - 1, (2 * j + 1) * paths / (2 * count)));
+            for (std::size_t k = 0; k < m_exits; ++k) {
+                added[path * m_exits + k] += f[k] / m_delta_rate;
+                if (cones.empty()) continue;
+                cones[k].delta_samples += 1.0;
+                cones[k].delta_s1 += f[k];
+                cones[k].delta_s2 += f[k] * f[k];
+                cones[k].delta_cost += cost;
+            }
+        }
+    }
+
     Sums runChunk(std::size_t batch, std::int64_t first_path, std::int64_t paths) const {
         // Sums of deviations from the first path's sample (exact for constant samples), then mean and M2.
         std::vector<double> shift(entries(), 0.0);
@@ -416,6 +472,8 @@ public:
         const std::vector<View>& views = m_views[std::min(batch, m_views.size() - 1)];
         std::vector<double> glints = chunkGlints(batch, first_path, paths, sums.cones);
         chunkReverse(batch, first_path, paths, glints, sums.cones);
+        std::vector<double> delta(m_delta ? glints.size() : 0, 0.0);
+        chunkDelta(batch, first_path, paths, delta, sums.cones);
         std::vector<double> nee(m_azimuths ? m_exits : 0);
         std::vector<double> nee_weights(m_azimuths ? m_exits : 0);
         for (std::int64_t p = first_path; p < first_path + paths; ++p) {
@@ -457,7 +515,8 @@ public:
                     const auto local = static_cast<std::size_t>(p - first_path);
                     for (std::size_t k = 0; k < m_exits; ++k) {
                         if (m_diagnostics > 0) sample[estimateEntries() + k] = f[k];  // the histogram's part
-                        f[k] += nee[k] + glints[local * m_exits + k];
+                        f[k] += nee[k] + glints[local * m_exits + k] +
+                                (delta.empty() ? 0.0 : delta[local * m_exits + k]);
                         if (!sums.cones.empty() && nee_weights[k] > 0.0) {
                             const double raw = nee[k] / nee_weights[k];
                             sums.cones[k].nee_paths += 1.0;
@@ -533,38 +592,58 @@ public:
             const double f = total.mean[kFirstExit + k];
             f2[k] = f * f;
         }
-        const auto variance = [&](std::size_t k, const std::array<double, 3>& x) {
-            double v = a[k];
-            for (std::size_t t = 0; t < 3; ++t) v += terms[k][t].variance / x[t];
-            return v;
-        };
-        double rho_min = 0.0;  // the worst cone's relative variance at the largest rates
-        for (std::size_t k = 0; k < m_exits; ++k)
-            if (f2[k] > 0.0)
-                rho_min = std::max(rho_min, variance(k, {1.0, kMaxGlintRate, kMaxReverseRate}) / f2[k]);
-        if (!(rho_min > 0.0)) return;
+        // The delta-chain walks serve every cone at once: one common rate d, scanned
+        // over powers of two, its variance D_k / d joining A.
+        std::vector<double> delta_variance(m_exits, 0.0);
+        double delta_cost = 0.0;
+        std::vector<double> delta_rates{m_delta_rate};
+        if (m_delta && total.cones[0].delta_samples > 1.0) {
+            delta_rates.clear();
+            for (double d = kMinDeltaRate; d <= kMaxDeltaRate * 1.0001; d *= 2.0) delta_rates.push_back(d);
+            for (std::size_t k = 0; k < m_exits; ++k) {
+                const ConeStats& cs = total.cones[k];
+                const double mean_d = cs.delta_s1 / cs.delta_samples;
+                delta_variance[k] = std::max(0.0, cs.delta_s2 / cs.delta_samples - mean_d * mean_d);
+            }
+            delta_cost = total.cones[0].delta_cost / total.cones[0].delta_samples;
+        }
         double best = std::numeric_limits<double>::infinity();
         std::vector<std::array<double, 3>> x(m_exits);
-        for (int step = 0; step < 200; ++step) {
-            const double rho = rho_min * std::pow(1.06, step);
-            double cost = c_walk;
-            double worst = 0.0;
-            for (std::size_t k = 0; k < m_exits; ++k) {
-                if (f2[k] > 0.0) {
-                    x[k] = cheapestRates(terms[k], rho * f2[k] - a[k]);
-                    worst = std::max(worst, variance(k, x[k]) / f2[k]);
-                } else {
-                    for (std::size_t t = 0; t < 3; ++t) x[k][t] = terms[k][t].lo;
-                }
-                for (std::size_t t = 0; t < 3; ++t)
-                    if (t == 0 || terms[k][t].variance > 0.0) cost += x[k][t] * terms[k][t].cost;
-            }
-            if (worst * cost < best) {
-                best = worst * cost;
+        for (const double d : delta_rates) {
+            std::vector<double> a_d(m_exits);
+            for (std::size_t k = 0; k < m_exits; ++k) a_d[k] = a[k] + delta_variance[k] / d;
+            const auto variance = [&](std::size_t k, const std::array<double, 3>& rates) {
+                double v = a_d[k];
+                for (std::size_t t = 0; t < 3; ++t) v += terms[k][t].variance / rates[t];
+                return v;
+            };
+            double rho_min = 0.0;  // the worst cone's relative variance at the largest rates
+            for (std::size_t k = 0; k < m_exits; ++k)
+                if (f2[k] > 0.0)
+                    rho_min = std::max(rho_min, variance(k, {1.0, kMaxGlintRate, kMaxReverseRate}) / f2[k]);
+            if (!(rho_min > 0.0)) continue;
+            for (int step = 0; step < 200; ++step) {
+                const double rho = rho_min * std::pow(1.06, step);
+                double cost = c_walk + d * delta_cost;
+                double worst = 0.0;
                 for (std::size_t k = 0; k < m_exits; ++k) {
-                    m_nee_fraction[k] = x[k][0];
-                    m_glint_rate[k] = x[k][1];
-                    m_reverse_rate[k] = x[k][2];
+                    if (f2[k] > 0.0) {
+                        x[k] = cheapestRates(terms[k], rho * f2[k] - a_d[k]);
+                        worst = std::max(worst, variance(k, x[k]) / f2[k]);
+                    } else {
+                        for (std::size_t t = 0; t < 3; ++t) x[k][t] = terms[k][t].lo;
+                    }
+                    for (std::size_t t = 0; t < 3; ++t)
+                        if (t == 0 || terms[k][t].variance > 0.0) cost += x[k][t] * terms[k][t].cost;
+                }
+                if (worst * cost < best) {
+                    best = worst * cost;
+                    m_delta_rate = d;
+                    for (std::size_t k = 0; k < m_exits; ++k) {
+                        m_nee_fraction[k] = x[k][0];
+                        m_glint_rate[k] = x[k][1];
+                        m_reverse_rate[k] = x[k][2];
+                    }
                 }
             }
         }
@@ -601,6 +680,8 @@ private:
     bool m_reverse = false;   // reverse_walks
     bool m_nee_on = true;     // connection_parts
     bool m_glints_on = true;
+    bool m_delta = false;  // delta_walks
+    double m_delta_rate = 0.25;
     std::vector<double> m_reverse_rate;  // per exit: reverse walks per path
     std::size_t m_diagnostics = 0;
     std::vector<double> m_nee_fraction;  // per exit: share of paths that run its next-event connections

@@ -166,11 +166,20 @@ struct McSettings {
     bool reverse_walks = true;
     // Reverse walks per path and cone in the first round (adaptive_fractions then sets them per cone).
     double reverse_rate = 0.125;
+    // Explicit flakes with connections: the paths of class Other without a
+    // smooth vertex (chains of flake and internal reflections from the beam)
+    // are scored by delta-chain walks (mc_walk.h, traceDeltaChains): forward
+    // walks without collisions that carry the pigments' extinction as a weight,
+    // delta_rate of them per path, with Russian roulette below
+    // delta_roulette_weight. false: the histogram.
+    bool delta_walks = true;
+    double delta_rate = 0.25;
+    double delta_roulette_weight = 1e-3;
     // Diagnostics for error budgets: with connections, the parts that run (bit
     // mask): 1 next-event from smooth vertices, 2 the beam's single flake
     // reflections (glints), 4 the reverse walks. A part left out is not scored at
-    // all (the histogram does not take it over).
-    unsigned connection_parts = 7;
+    // all (the histogram does not take it over); 8 the delta-chain walks.
+    unsigned connection_parts = 15;
     // Diagnostics for error budgets: bit mask of the path classes whose
     // escapes the histogram scores (1 unscattered beam, 2 the beam's first
     // reflection off an explicit flake, 4 last direction change a pigment,
