@@ -479,4 +479,133 @@ double azimuthGlintSample(const PaintStack& stack, std::span<const LayerFlakes> 
            (2.0 * std::numbers::pi * probability);
 }
 
+namespace {
+
+// Transmittance from (x, y, depth) along u through one layer's tile up to the
+// flake with normal n_flake at distance t_flake: the product of T over the
+// flakes crossed before it; 0 if a mirror blocks the way or the ray does not
+// meet that flake there (its polygon is inside the disk that selected it).
+double transmittanceToFlake(const LayerFlakes& lf, double x, double y, double depth, const Vec3& u,
+                            double t_flake, const Vec3& n_flake, std::int64_t* rays) {
+    const FlakeTile& tile = *lf.tile;
+    const double L = tile.sideUm();
+    const double inf = std::numeric_limits<double>::infinity();
+    const double tolerance = 1e-6 * (1.0 + t_flake);
+    double T = 1.0;
+    double travelled = 0.0;
+    double t_near = kTileEpsilonUm;
+    for (int step = 0; step < kMaxCrossings; ++step) {
+        if (x < 0.0 || x > L) x -= L * std::floor(x / L);
+        if (y < 0.0 || y > L) y -= L * std::floor(y / L);
+        const double tx = u.x > 0.0 ? (L - x) / u.x : (u.x < 0.0 ? -x / u.x : inf);
+        const double ty = u.y > 0.0 ? (L - y) / u.y : (u.y < 0.0 ? -y / u.y : inf);
+        const double t_side = std::min(tx, ty);
+        const double left = t_flake + tolerance - travelled;
+        if (!(left > 0.0)) return 0.0;
+        const double t_far = std::min(left, t_side);
+        const FlakeHit hit = tile.intersect({x, y, -depth}, u, t_near, t_far);
+        if (rays != nullptr) ++*rays;
+        if (hit.kind >= 0) {
+            if (std::abs(travelled + hit.t - t_flake) <= tolerance &&
+                std::abs(dot(hit.normal, n_flake)) > 1.0 - 1e-9)
+                return T;
+            T *= lf.kinds[static_cast<std::size_t>(hit.kind)].T(std::abs(dot(u, hit.normal)));
+            if (!(T > 0.0)) return 0.0;
+            x += u.x * hit.t;
+            y += u.y * hit.t;
+            depth -= u.z * hit.t;
+            travelled += hit.t;
+            t_near = kTileEpsilonUm;
+            continue;
+        }
+        if (t_side >= left) return 0.0;
+        x += u.x * t_side;
+        y += u.y * t_side;
+        depth -= u.z * t_side;
+        travelled += t_side;
+        if (tx <= ty)
+            x = u.x > 0.0 ? 0.0 : L;
+        else
+            y = u.y > 0.0 ? 0.0 : L;
+        t_near = 0.0;
+    }
+    return 0.0;
+}
+
+// Pigment optical depth of the straight segment between two depths of one
+// layer along a direction of cosine |mu| (the slices of a depth profile each at their own extinction).
+double layerOpticalDepth(const PaintStack& stack, int layer, double depth_a, double depth_b, double abs_mu) {
+    const double lo = std::min(depth_a, depth_b);
+    const double hi = std::max(depth_a, depth_b);
+    double tau = 0.0;
+    for (const auto& s : stack.slices) {
+        if (s.layer != layer) continue;
+        const double overlap = std::min(hi, s.bottom_um) - std::max(lo, s.top_um);
+        if (overlap > 0.0) tau += (s.sigma_a_per_um + s.sigma_s_per_um) * overlap;
+    }
+    return tau / abs_mu;
+}
+
+}  // namespace
+
+double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
+                      double depth, double x, double y, const Vec3& v, const Vec3& beam_top,
+                      std::int64_t* rays) {
+    const Slice& s = stack.slices[j];
+    const auto layer = static_cast<std::size_t>(s.layer);
+    if (layer >= tiles.size() || tiles[layer].tile == nullptr) return 0.0;
+    const LayerFlakes& lf = tiles[layer];
+    const FlakeTile& tile = *lf.tile;
+    Vec3 beam;  // the beam in this layer (downward)
+    if (!refractPlanar(beam_top, stack.slices.front().n, s.n, beam) || !(beam.z < 0.0)) return 0.0;
+    const double L = tile.sideUm();
+    const Vec3 z{x, y, -depth};
+    double sum = 0.0;
+    for (std::size_t i = 0; i < tile.flakes().size(); ++i) {
+        const PlacedFlake& flake = tile.flakes()[i];
+        const Vec3& n = flake.normal;
+        const double bn = dot(beam, n);
+        const Vec3 r{beam.x - 2.0 * bn * n.x, beam.y - 2.0 * bn * n.y, beam.z - 2.0 * bn * n.z};
+        const double rn = dot(r, n);
+        if (std::abs(r.z) < 1e-9 || std::abs(rn) < 1e-12) continue;
+        // z seen from the flake's centre, then the periodic image whose column along r can hold it.
+        Vec3 d{z.x - flake.centre.x, z.y - flake.centre.y, z.z - flake.centre.z};
+        const double t0 = d.z / r.z;
+        const double margin = 4.0 * flake.radius_um / L;
+        const double gx = (d.x - t0 * r.x) / L;
+        const double gy = (d.y - t0 * r.y) / L;
+        const double ax = std::round(gx);
+        const double ay = std::round(gy);
+        const double sx = gx - ax > 0.5 - margin ? 1.0 : (gx - ax < margin - 0.5 ? -1.0 : 0.0);
+        const double sy = gy - ay > 0.5 - margin ? 1.0 : (gy - ay < margin - 0.5 ? -1.0 : 0.0);
+        for (int ix = 0; ix <= (sx != 0.0 ? 1 : 0); ++ix)
+            for (int iy = 0; iy <= (sy != 0.0 ? 1 : 0); ++iy) {
+                const Vec3 di{d.x - (ax + ix * sx) * L, d.y - (ay + iy * sy) * L, d.z};
+                const double t = dot(di, n) / rn;
+                if (!(t > kTileEpsilonUm)) continue;
+                const Vec3 rel{di.x - t * r.x, di.y - t * r.y, di.z - t * r.z};
+                if (dot(rel, rel) > flake.radius_um * flake.radius_um) continue;
+                // The point on the flake (lateral coordinates continued from z's).
+                const double px = x - t * r.x;
+                const double py = y - t * r.y;
+                const double p_depth = depth + t * r.z;
+                const std::size_t jp = sliceAt(stack, s.layer, p_depth);
+                if (jp == stack.slices.size()) continue;
+                const double R = lf.kinds[static_cast<std::size_t>(flake.kind)].R(std::abs(bn));
+                if (!(R > 0.0)) continue;
+                const Vec3 u{-r.x, -r.y, -r.z};
+                const double phase = s.kernel(v, u);
+                if (!(phase > 0.0)) continue;
+                const double to_flake =
+                    transmittanceToFlake(lf, x, y, depth, u, t, n, rays) *
+                    std::exp(-layerOpticalDepth(stack, s.layer, depth, p_depth, std::abs(r.z)));
+                if (!(to_flake > 0.0)) continue;
+                const double to_top =
+                    straightToAmbient(stack, tiles, jp, p_depth, px, py, {-beam.x, -beam.y, -beam.z}, rays);
+                sum += phase * to_flake * R * to_top;
+            }
+    }
+    return sum;
+}
+
 }  // namespace paintlab::mc

@@ -194,4 +194,22 @@ double azimuthGlintSample(const PaintStack& stack, std::span<const LayerFlakes> 
                           const AzimuthGlintSet& set, const HistogramBin& bin, const GlintUniforms& u,
                           std::int64_t* rays = nullptr);
 
+// Reverse walks (mc_walk.h, traceReversePath): the beam reflected once by an
+// explicit flake is again a collimated beam (a flat mirror keeps its
+// perpendicular flux density, times R), so a pigment vertex in a flake layer is
+// lit by the beam directly and by every flake below (or above) whose reflected
+// column holds it. For the vertex at (x, y, depth) in slice j, with the walk's
+// propagation direction v and the beam's direction beam_top (downward, in the top
+// slice): the sum over the flakes of its layer's tile (periodic images
+// included) whose reflected column holds the point of kernel(v, -r) (r the
+// reflected direction) times the transmittance from the point to the flake
+// (pigments, the flakes crossed) times R(|beam.n|) times the beam's straight
+// transmittance from the ambient down to the flake. The caller's factor for f
+// is that of the direct beam (weight / (sigma q |beam_z|) and (n_0 / n)^2).
+// Exhaustive over the tile's flakes (a cheap plane test each; the walks reach
+// it rarely, see traceReversePath). Never throws.
+double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
+                      double depth, double x, double y, const Vec3& v, const Vec3& beam_top,
+                      std::int64_t* rays = nullptr);
+
 }  // namespace paintlab::mc

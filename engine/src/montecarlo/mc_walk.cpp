@@ -73,6 +73,8 @@ struct Walker {
     std::int64_t nee_attempts = 0;
     bool delta_chain = true;    // no smooth vertex yet (WalkSettings::histogram_other)
     bool first_smooth = false;  // the first direction change was a smooth vertex
+    int beam_flake_layer = -1;  // layer of the beam's first reflection (class BeamFlake)
+    bool prefix_flake = false;  // a pigment vertex right after that reflection, in its layer
     // Reverse walk (traceReversePath): it enters from the exit cone, and scores
     // next-event estimates towards reverse_target (upward in the top slice, the
     // beam reversed) from its smooth vertices once its first direction change
@@ -131,7 +133,8 @@ struct Walker {
     void escape() {
         if ((settings.histogram_classes & path_class) != 0U &&
             (path_class != kClassOther ||
-             (settings.histogram_other & (delta_chain ? 1U : (first_smooth ? 4U : 2U))) != 0U))
+             (settings.histogram_other &
+              (delta_chain ? 1U : (first_smooth ? 4U : (prefix_flake ? 8U : 2U)))) != 0U))
             for (std::size_t k = 0; k < bins.size(); ++k)
                 if (dot(v, bins[k].wo) >= bins[k].cos_cone)
                     brdf_out[k] += weight / bins[k].projected_solid_angle;
@@ -163,7 +166,8 @@ struct Walker {
     }
 
     // An explicit flake hit with unit normal n: reflect, pass or absorb.
-    bool explicitFlakeEvent(const FlakeKind& f, const Vec3& n) {
+    bool explicitFlakeEvent(const FlakeKind& f, const Vec3& n, int layer) {
+        if (path_class == kClassBeam) beam_flake_layer = layer;
         const double vn = dot(v, n);
         const double c = std::abs(vn);
         const double R = f.R(c);
@@ -233,7 +237,8 @@ struct Walker {
             move(hit.t);
             depth = std::clamp(depth - v.z * hit.t, s.top_um, s.bottom_um);
             if (delta_only) weight *= std::exp(-sigma * hit.t);
-            return explicitFlakeEvent(lf.kinds[static_cast<std::size_t>(hit.kind)], hit.normal) ? 1 : -1;
+            return explicitFlakeEvent(lf.kinds[static_cast<std::size_t>(hit.kind)], hit.normal, s.layer) ? 1
+                                                                                                         : -1;
         }
         if (t_side < t && t_side < to_boundary) {
             move(t_side);
@@ -314,6 +319,19 @@ struct Walker {
             value * straightToAmbient(stack, explicit_flakes, j, depth, x, y, u, &nee_rays) * scale;
     }
 
+    // Reverse walk: the next-event estimates towards the beam's single mirror
+    // images off the flakes of this layer (mc_connection.h, reflectedBeams), with
+    // the direct beam's factors (`factor` = weight / (sigma q), over |beam_z|).
+    void reverseReflectedBeams(const Slice& s, double factor) {
+        Vec3 beam;
+        if (!refractPlanar(reverse_target, stack.slices.front().n, s.n, beam) || !(beam.z > 0.0)) return;
+        ++nee_attempts;
+        const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
+        reverse_score += factor / beam.z * scale *
+                         reflectedBeams(stack, explicit_flakes, j, depth, x, y, v,
+                                        {-reverse_target.x, -reverse_target.y, -reverse_target.z}, &nee_rays);
+    }
+
     bool collide(const Slice& s, double sigma, double flake_rate) {
         // Reverse walk: a smooth first change belongs to the forward connections (the
         // path reversed ends at a smooth vertex); tiled layers have no continuum flakes,
@@ -322,9 +340,11 @@ struct Walker {
             if (path_class == kClassBeam) return false;
             if (s.sigma_s_per_um > 0.0) {
                 const double q = std::min(1.0, s.sigma_s_per_um / sigma);
-                if (connection_rng->uniform() < q)
+                if (connection_rng->uniform() < q) {
                     reverseNextEvent(
                         s, [&](const Vec3& u) { return weight * s.kernel(v, u) / (sigma * q * u.z); });
+                    if (settings.reflected_beams) reverseReflectedBeams(s, weight / (sigma * q));
+                }
             }
         }
         scoreCollision(s, sigma);
@@ -350,6 +370,7 @@ struct Walker {
                 if ((pick -= lobe.weight) < 0.0) break;
             }
             v = around(v, sampleHgCos(g, rng.uniform()), 2.0 * kPi * rng.uniform());
+            if (path_class == kClassBeamFlake && s.layer == beam_flake_layer) prefix_flake = true;
             smoothChange();
         } else {
             u -= s.sigma_s_per_um;

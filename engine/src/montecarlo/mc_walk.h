@@ -20,8 +20,10 @@ struct WalkSettings {
     // Of class Other, which part: 1 chains of delta events from the beam (no
     // pigment, substrate or continuum-flake vertex), 2 after such a vertex when
     // the first direction change was a delta, 4 when it was such a vertex (the
-    // reverse walks' part, traceReversePath).
-    unsigned histogram_other = 7;
+    // reverse walks' part, traceReversePath), 8 instead of 2 when the first
+    // change was the beam's reflection off an explicit flake and the second a
+    // pigment vertex in that flake's layer (the reflected beams' part).
+    unsigned histogram_other = 15;
     // Score classes Smooth and BeamFlake by connections (explicit flakes only; the
     // caller then leaves them out of histogram_classes).
     bool connections = false;
@@ -34,6 +36,9 @@ struct WalkSettings {
     // max_splits deep along each branch (McSettings::split_branches).
     bool split_branches = false;
     int max_splits = 6;
+    // Reverse walks also connect to the beam's single mirror images off the
+    // flakes of the vertex's layer (McSettings::reflected_beams).
+    bool reflected_beams = false;
 };
 
 // Projection of what escapes on the fast model's basis (mc_table.h): the

@@ -281,7 +281,11 @@ TEST(MonteCarloConnections, ReverseWalksMatchTheHistogramOnTheirPathClass) {
           directionFromAnglesDeg(30.0, 180.0)}}};
     auto s = explicitSettings(40000, 10.0, 31);
     s.tile_flakes = 800;
-    expectPartMatchesHistogram(r, req, s, 4, 4, 400000, "reverse walks");
+    // With their connections to the beam's mirror images (reflected_beams, the
+    // default) they also take the paths beam -> flake -> pigment -> ... (bit 8).
+    expectPartMatchesHistogram(r, req, s, 4, 4 | 8, 400000, "reverse walks");
+    s.reflected_beams = false;
+    expectPartMatchesHistogram(r, req, s, 4, 4, 400000, "reverse walks, direct beam only");
 }
 
 TEST(MonteCarloConnections, DeltaWalksMatchTheHistogramOnChainsFromTheBeam) {

@@ -166,6 +166,12 @@ struct McSettings {
     bool reverse_walks = true;
     // Reverse walks per path and cone in the first round (adaptive_fractions then sets them per cone).
     double reverse_rate = 0.125;
+    // Reverse walks: their pigment vertices also connect to the beam's single
+    // mirror images off the explicit flakes of their layer (a flat flake keeps
+    // the beam collimated; mc_connection.h, reflectedBeams), which scores the
+    // forward paths beam -> flake -> pigment -> ... -> delta -> cone
+    // (histogram_other bit 8) instead of the histogram.
+    bool reflected_beams = true;
     // Explicit flakes with connections: the paths of class Other without a
     // smooth vertex (chains of flake and internal reflections from the beam)
     // are scored by delta-chain walks (mc_walk.h, traceDeltaChains): forward
@@ -190,8 +196,11 @@ struct McSettings {
     // delta events from the beam (several flake reflections, internal
     // reflections), 2 delta events after a pigment, substrate or continuum-flake
     // vertex when the first direction change was a delta, 4 the same when it was
-    // such a vertex (with reverse_walks, scored by them and never by the histogram).
-    unsigned histogram_other = 7;
+    // such a vertex (with reverse_walks, scored by them and never by the
+    // histogram), 8 instead of 2 when the first change was the beam's reflection
+    // off an explicit flake and the second a pigment vertex in its layer (with
+    // reflected_beams, scored by the reverse walks).
+    unsigned histogram_other = 15;
 };
 
 struct Estimate {
