@@ -33,7 +33,12 @@
 //    monte_carlo.cpp draws its samples per chunk).
 //  - Other (multiple flake reflections, internal Fresnel reflections, metal
 //    mirrors) and Beam (a beam never leaves unscattered except by a mirror):
-//    left to the histogram.
+//    the histogram, except three parts of Other that have their own walks
+//    (mc_walk.h, default on): the chains without a smooth vertex (delta-chain
+//    walks), the paths whose first change was smooth (reverse walks, by
+//    reciprocity), and those whose first change was the beam's reflection off
+//    a flake followed by a pigment vertex in its layer (reverse walks
+//    connecting to the beam's mirror images, reflectedBeams below).
 // The histogram then scores Beam and Other escapes only, so every path class
 // is counted exactly once. The connections may run on a random share of the
 // paths only, their scores divided by it (McSettings::connection_fraction).

@@ -41,7 +41,10 @@
 //    beam's single flake reflections (averaged over every azimuth of each
 //    tile), are scored by exact connections to the cone through the real
 //    tiles instead (mc_connection.h), same mean; the walk splits at flakes and
-//    at the top interface instead of choosing a branch (split_branches);
+//    at the top interface instead of choosing a branch (split_branches); most
+//    of the rest (multiple reflections) by reverse walks from the cone and
+//    delta-chain walks without collisions (reverse_walks, delta_walks,
+//    reflected_beams);
 //  - a whole table on the fast model's basis: mc_table.h.
 //
 // Standard errors: over independent paths, except with explicit flakes,
@@ -60,10 +63,10 @@
 // Known limits: the tile is periodic (its side is set by tile_flakes, at
 // least two flake diameters), so arrangements longer-ranged than the tile are
 // not represented; its geometry is float (Embree); flakes are thickness-less
-// 16-gons and overlap unless reject_overlaps. What the connections leave to
-// the histogram (several flake reflections, internal reflections, a flake
-// reflection after a pigment vertex) sets the cost of explicit flakes
-// (docs/PERFORMANCE.md).
+// 16-gons and overlap unless reject_overlaps. What the connections and the
+// reverse / delta-chain walks leave to the histogram (a flake reflection
+// followed by a top reflection or more flakes before a pigment vertex, then
+// a flake) sets the cost of explicit flakes at the flop (docs/PERFORMANCE.md).
 // Settings.threads sets TBB's process-wide parallelism for the duration of the call.
 
 #include "paintlab/engine/brdf.h"
@@ -181,7 +184,7 @@ struct McSettings {
     bool delta_walks = true;
     double delta_rate = 0.25;
     double delta_roulette_weight = 1e-3;
-    // Diagnostics for error budgets: with connections, the parts that run (bit
+    // Diagnostics for error budgets: with connections and glint_azimuths, the parts that run (bit
     // mask): 1 next-event from smooth vertices, 2 the beam's single flake
     // reflections (glints), 4 the reverse walks. A part left out is not scored at
     // all (the histogram does not take it over); 8 the delta-chain walks.
