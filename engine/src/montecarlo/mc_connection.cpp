@@ -561,8 +561,7 @@ double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tile
     const double L = tile.sideUm();
     const Vec3 z{x, y, -depth};
     double sum = 0.0;
-    for (std::size_t i = 0; i < tile.flakes().size(); ++i) {
-        const PlacedFlake& flake = tile.flakes()[i];
+    for (const PlacedFlake& flake : tile.flakes()) {
         const Vec3& n = flake.normal;
         const double bn = dot(beam, n);
         const Vec3 r{beam.x - 2.0 * bn * n.x, beam.y - 2.0 * bn * n.y, beam.z - 2.0 * bn * n.z};
