@@ -9,6 +9,7 @@
 
 #include "mc_stack.h"
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -62,8 +63,12 @@ public:
     // (its depth and normal stay, so the depth profile and the
     // orientation distribution are kept); InputError if a flake finds no free
     // place in 1000 draws (the concentration is too high for flat flakes).
+    // `stop`, if given, is polled between flake kinds and by Embree's BVH
+    // build (most of the time): once it is true the constructor throws
+    // Error "cancelled" within a fraction of the build.
     FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, double bottom_um, std::uint64_t seed,
-              int target_flakes, int max_flakes, bool reject_overlaps = false);
+              int target_flakes, int max_flakes, bool reject_overlaps = false,
+              const std::atomic<bool>* stop = nullptr);
     ~FlakeTile();
     FlakeTile(const FlakeTile&) = delete;
     FlakeTile& operator=(const FlakeTile&) = delete;

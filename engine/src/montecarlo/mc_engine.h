@@ -48,8 +48,10 @@ struct JobResult {
 class McEngine {
 public:
     // Builds the tiles (explicit flakes): one per layer with flakes and batch.
-    // Throws InputError as runMonteCarlo.
-    McEngine(const Recipe& recipe, const McSettings& settings);
+    // Throws InputError as runMonteCarlo. `keep_going`, if given, is called
+    // on this thread every ~20 ms while the tiles are built (they take 1-3 s
+    // for the demo paints on 2 cores); false cancels (Error "cancelled").
+    McEngine(const Recipe& recipe, const McSettings& settings, const std::function<bool()>& keep_going = {});
     ~McEngine();
     McEngine(const McEngine&) = delete;
     McEngine& operator=(const McEngine&) = delete;

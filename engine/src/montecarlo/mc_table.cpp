@@ -60,7 +60,9 @@ McTable tabulateMonteCarlo(const Recipe& recipe, const FastModelSettings& grid_s
     if (progress) grid_progress = [&progress](double fraction) { return progress(kGridShare * fraction); };
     const LayeredBrdf grid = computeLayeredBrdf(recipe, grid_settings, grid_progress);
     const auto start = Clock::now();
-    const McEngine engine(recipe, settings);
+    std::function<bool()> keep_going;
+    if (progress) keep_going = [&progress] { return progress(kGridShare); };
+    const McEngine engine(recipe, settings, keep_going);
     const auto wavelengths = grid.wavelengthsNm();
     const auto& grid_bands = grid.bands();
     std::size_t jobs = 0;

@@ -12,8 +12,10 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <memory>
 #include <numbers>
@@ -768,7 +770,7 @@ Estimate batchMeansEstimate(std::span<const double> batch_means, std::span<const
     return {mean, std::sqrt(var * k / (k - 1.0))};
 }
 
-McEngine::McEngine(const Recipe& recipe, const McSettings& settings)
+McEngine::McEngine(const Recipe& recipe, const McSettings& settings, const std::function<bool()>& keep_going)
     : m_recipe(recipe), m_settings(settings), m_batches(std::max(1, settings.batches)) {
     if (settings.explicit_flakes && !(settings.histogram_cone_deg > 0.0))
         throw InputError("", "histogram_cone_deg",
@@ -788,18 +790,38 @@ McEngine::McEngine(const Recipe& recipe, const McSettings& settings)
     m_tiles.resize(static_cast<std::size_t>(m_batches));
     for (auto& tiles : m_tiles) tiles.resize(layers);
     m_tilts.assign(static_cast<std::size_t>(m_batches), std::vector<TiltIndex>(layers));
-    tbb::parallel_for(std::size_t{0}, m_tiles.size() * layers, [&](std::size_t index) {
-        const std::size_t k = index / layers;
-        const std::size_t l = index % layers;
-        if (geometries[l].empty()) return;
-        // Batch 0 keeps the single tile's seed of earlier versions.
-        const std::uint64_t tile_seed =
-            settings.seed ^ (0x9e3779b97f4a7c15ULL * (l + 1)) ^ (0xd1b54a32d192ed03ULL * k);
-        m_tiles[k][l] = std::make_unique<FlakeTile>(
-            geometries[l], tops[l], tops[l] + recipe.layers[l].thickness_um, tile_seed, settings.tile_flakes,
-            settings.max_tile_flakes, settings.reject_overlaps);
-        if (settings.connections && settings.glint_azimuths) m_tilts[k][l] = tiltIndex(*m_tiles[k][l]);
-    });
+    std::atomic<bool> stop{false};
+    const auto build_tiles = [&] {
+        tbb::parallel_for(std::size_t{0}, m_tiles.size() * layers, [&](std::size_t index) {
+            const std::size_t k = index / layers;
+            const std::size_t l = index % layers;
+            if (geometries[l].empty()) return;
+            // Batch 0 keeps the single tile's seed of earlier versions.
+            const std::uint64_t tile_seed =
+                settings.seed ^ (0x9e3779b97f4a7c15ULL * (l + 1)) ^ (0xd1b54a32d192ed03ULL * k);
+            m_tiles[k][l] = std::make_unique<FlakeTile>(
+                geometries[l], tops[l], tops[l] + recipe.layers[l].thickness_um, tile_seed,
+                settings.tile_flakes, settings.max_tile_flakes, settings.reject_overlaps, &stop);
+            if (settings.connections && settings.glint_azimuths) m_tilts[k][l] = tiltIndex(*m_tiles[k][l]);
+        });
+    };
+    if (keep_going) {
+        // The build runs on a helper thread (which joins TBB's arena like this
+        // one would, so both cores still build) while this thread asks
+        // keep_going: a cancel then lands within ~20 ms plus Embree's
+        // monitor interval, not after the whole set-up.
+        auto built = std::async(std::launch::async, build_tiles);
+        while (built.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready)
+            if (!stop.load() && !keep_going()) stop.store(true);
+        try {
+            built.get();  // rethrows the build's error
+        } catch (const std::exception&) {
+            if (!stop.load()) throw;  // a real failure; a cancelled tile's Error is ours
+        }
+        if (stop.load()) throw Error("Monte Carlo: cancelled");
+    } else {
+        build_tiles();
+    }
     for (const auto& tiles : m_tiles)
         for (const auto& tile : tiles)
             if (tile) m_tile_side_um = std::max(m_tile_side_um, tile->sideUm());
@@ -906,7 +928,9 @@ McResult runMonteCarlo(const Recipe& recipe, std::span<const double> wavelengths
     if (settings.threads > 0)
         threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                         static_cast<std::size_t>(settings.threads));
-    const McEngine engine(recipe, settings);
+    std::function<bool()> keep_going;
+    if (progress) keep_going = [&progress] { return progress(0.0); };
+    const McEngine engine(recipe, settings, keep_going);
     McResult result;
     result.wavelengths_nm.assign(wavelengths_nm.begin(), wavelengths_nm.end());
     result.bands.resize(wavelengths_nm.size());
