@@ -2,7 +2,8 @@
 // Explicit flakes of one layer: a laterally periodic tile of side L (µm)
 // filled with flat polygons (regular 16-gons of the flake's area) with
 // sampled position (uniform laterally, depth from the concentration profile)
-// and normal (FlakeOrientation), intersected with Embree. Flakes that cross
+// and normal (FlakeOrientation), intersected with Embree (user geometry: one
+// primitive per flake, the plane and polygon tested in double). Flakes that cross
 // the tile's sides are repeated one period over, so a ray inside the tile
 // sees everything it can hit there; the walk wraps rays at the sides.
 // The only file of the engine that includes Embree (with flake_tile.cpp).
