@@ -156,6 +156,8 @@ ordered_json settingsJson(const mc::McSettings& s, const mc::McResult& r) {
             {"reverse_walks", s.explicit_flakes && s.connections && s.glint_azimuths && s.reverse_walks},
             {"reflected_beams",
              s.explicit_flakes && s.connections && s.glint_azimuths && s.reverse_walks && s.reflected_beams},
+            {"top_images",
+             s.explicit_flakes && s.connections && s.glint_azimuths && s.reverse_walks && s.top_images},
             {"delta_walks", s.explicit_flakes && s.connections && s.glint_azimuths && s.delta_walks},
             {"max_paths", s.max_paths},
             {"target_rel_error", s.target_rel_error},

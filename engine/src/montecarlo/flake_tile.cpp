@@ -397,6 +397,14 @@ double FlakeTile::flakeAreaUm2(std::size_t i) const {
     return 0.5 * kSides * r * r * std::sin(2.0 * std::numbers::pi / kSides);
 }
 
+bool FlakeTile::onFlake(std::size_t i, const Vec3& relative) const {
+    const PlacedFlake& f = m_placed[i];
+    Vec3 b1;
+    Vec3 b2;
+    planeBasis(f.normal, b1, b2);
+    return insidePolygon(dot(relative, b1), dot(relative, b2), f.radius_um, f.rotation);
+}
+
 Vec3 FlakeTile::pointOnFlake(std::size_t i, double u1, double u2, double u3) const {
     const PlacedFlake& f = m_placed[i];
     Vec3 b1;

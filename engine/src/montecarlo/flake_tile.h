@@ -85,6 +85,9 @@ public:
     // A point of flake i's polygon, uniform over its area for u1, u2, u3
     // uniform in [0, 1) (a triangle of the fan, then a point in it).
     Vec3 pointOnFlake(std::size_t i, double u1, double u2, double u3) const;
+    // Whether a point of flake i's plane, given relative to its centre (or to
+    // that of a periodic copy), lies on its polygon.
+    bool onFlake(std::size_t i, const Vec3& relative) const;
     // Nearest flake along origin + t dir, t in (t_near, t_far). Thread-safe.
     FlakeHit intersect(const Vec3& origin, const Vec3& dir, double t_near, double t_far) const;
 

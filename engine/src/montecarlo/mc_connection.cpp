@@ -148,13 +148,13 @@ bool refractPlanar(const Vec3& v, double n_from, double n_to, Vec3& out) {
     return true;
 }
 
-double straightToAmbient(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
+TopArrival straightToTop(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
                          double depth, double x, double y, Vec3 u, std::int64_t* rays) {
     double T = 1.0;
     for (;;) {
         const Slice& s = stack.slices[j];
         const double mu = u.z;
-        if (!(mu > 1e-12)) return 0.0;
+        if (!(mu > 1e-12)) return {};
         const double length = std::max(0.0, depth - s.top_um) / mu;
         // Pigments only: the slices of tiled layers carry no continuum flakes.
         T *= std::exp(-(s.sigma_a_per_um + s.sigma_s_per_um) * length);
@@ -165,18 +165,29 @@ double straightToAmbient(const PaintStack& stack, std::span<const LayerFlakes> t
             x += u.x * length;
             y += u.y * length;
         }
-        if (!(T > 0.0)) return 0.0;
-        const double n_above = j == 0 ? stack.ambient_n : stack.slices[j - 1].n;
+        if (!(T > 0.0)) return {};
+        if (j == 0) return {T, x, y, u};
+        const double n_above = stack.slices[j - 1].n;
         if (std::abs(n_above - s.n) >= 1e-12) {
             T *= 1.0 - fresnelDielectric(mu, n_above / s.n);
             Vec3 refracted;
-            if (!(T > 0.0) || !refractPlanar(u, s.n, n_above, refracted)) return 0.0;
+            if (!(T > 0.0) || !refractPlanar(u, s.n, n_above, refracted)) return {};
             u = refracted;
         }
-        if (j == 0) return T;
         --j;
         depth = stack.slices[j].bottom_um;
     }
+}
+
+double straightToAmbient(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
+                         double depth, double x, double y, Vec3 u, std::int64_t* rays) {
+    const TopArrival top = straightToTop(stack, tiles, j, depth, x, y, u, rays);
+    if (!(top.T > 0.0)) return 0.0;
+    const double n_top = stack.slices.front().n;
+    if (std::abs(stack.ambient_n - n_top) < 1e-12) return top.T;
+    Vec3 out;
+    if (!refractPlanar(top.u, n_top, stack.ambient_n, out)) return 0.0;
+    return top.T * (1.0 - fresnelDielectric(top.u.z, stack.ambient_n / n_top));
 }
 
 Vec3 sampleInCone(const HistogramBin& bin, double u1, double u2) {
@@ -548,66 +559,158 @@ double layerOpticalDepth(const PaintStack& stack, int layer, double depth_a, dou
 
 }  // namespace
 
+namespace {
+
+// Calls hit(t, image_x, image_y) for each periodic image of `flake` (centre
+// shifted by image_x, image_y) whose reflected column along r holds the point
+// z: the point z - t r lies on the image's disk, t > 0. The disk is the
+// polygon's circumcircle; the caller tests the polygon.
+template <class Hit> void columnsHolding(const PlacedFlake& flake, const Vec3& r, double rn, const Vec3& z,
+                                         double L, const Hit& hit) {
+    const Vec3& n = flake.normal;
+    // z seen from the flake's centre, then the periodic image whose column along r can hold it.
+    const Vec3 d{z.x - flake.centre.x, z.y - flake.centre.y, z.z - flake.centre.z};
+    const double t0 = d.z / r.z;
+    const double margin = 4.0 * flake.radius_um / L;
+    const double gx = (d.x - t0 * r.x) / L;
+    const double gy = (d.y - t0 * r.y) / L;
+    const double ax = std::round(gx);
+    const double ay = std::round(gy);
+    const double sx = gx - ax > 0.5 - margin ? 1.0 : (gx - ax < margin - 0.5 ? -1.0 : 0.0);
+    const double sy = gy - ay > 0.5 - margin ? 1.0 : (gy - ay < margin - 0.5 ? -1.0 : 0.0);
+    for (int ix = 0; ix <= (sx != 0.0 ? 1 : 0); ++ix)
+        for (int iy = 0; iy <= (sy != 0.0 ? 1 : 0); ++iy) {
+            const double shift_x = (ax + ix * sx) * L;
+            const double shift_y = (ay + iy * sy) * L;
+            const Vec3 di{d.x - shift_x, d.y - shift_y, d.z};
+            const double t = dot(di, n) / rn;
+            if (!(t > kTileEpsilonUm)) continue;
+            const Vec3 rel{di.x - t * r.x, di.y - t * r.y, di.z - t * r.z};
+            if (dot(rel, rel) > flake.radius_um * flake.radius_um) continue;
+            hit(t, rel);
+        }
+}
+
+// The slices above `layer` (their thickness and index), for the lateral shift
+// of a column that goes up to the paint's top and back down.
+struct SliceAbove {
+    double thickness_um;
+    double n;
+};
+
+}  // namespace
+
 double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
                       double depth, double x, double y, const Vec3& v, const Vec3& beam_top,
-                      std::int64_t* rays) {
+                      BeamImages images, std::int64_t* rays) {
     const Slice& s = stack.slices[j];
     const auto layer = static_cast<std::size_t>(s.layer);
     if (layer >= tiles.size() || tiles[layer].tile == nullptr) return 0.0;
+    if (!images.off_flakes && !images.off_flake_then_top) return 0.0;
     const LayerFlakes& lf = tiles[layer];
     const FlakeTile& tile = *lf.tile;
     Vec3 beam;  // the beam in this layer (downward)
     if (!refractPlanar(beam_top, stack.slices.front().n, s.n, beam) || !(beam.z < 0.0)) return 0.0;
     const double L = tile.sideUm();
     const Vec3 z{x, y, -depth};
+    // The top images: the layer's top and the slices above it.
+    double layer_top_um = s.top_um;
+    std::vector<SliceAbove> above;
+    for (const Slice& slice : stack.slices) {
+        if (slice.layer == s.layer) {
+            layer_top_um = slice.top_um;
+            break;
+        }
+        above.push_back({slice.bottom_um - slice.top_um, slice.n});
+    }
+    const double n_top = stack.slices.front().n;
+    const auto& flakes = tile.flakes();
     double sum = 0.0;
-    for (const PlacedFlake& flake : tile.flakes()) {
+    for (std::size_t i = 0; i < flakes.size(); ++i) {
+        const PlacedFlake& flake = flakes[i];
         const Vec3& n = flake.normal;
         const double bn = dot(beam, n);
         const Vec3 r{beam.x - 2.0 * bn * n.x, beam.y - 2.0 * bn * n.y, beam.z - 2.0 * bn * n.z};
         const double rn = dot(r, n);
         if (std::abs(r.z) < 1e-9 || std::abs(rn) < 1e-12) continue;
-        // z seen from the flake's centre, then the periodic image whose column along r can hold it.
-        Vec3 d{z.x - flake.centre.x, z.y - flake.centre.y, z.z - flake.centre.z};
-        const double t0 = d.z / r.z;
-        const double margin = 4.0 * flake.radius_um / L;
-        const double gx = (d.x - t0 * r.x) / L;
-        const double gy = (d.y - t0 * r.y) / L;
-        const double ax = std::round(gx);
-        const double ay = std::round(gy);
-        const double sx = gx - ax > 0.5 - margin ? 1.0 : (gx - ax < margin - 0.5 ? -1.0 : 0.0);
-        const double sy = gy - ay > 0.5 - margin ? 1.0 : (gy - ay < margin - 0.5 ? -1.0 : 0.0);
-        for (int ix = 0; ix <= (sx != 0.0 ? 1 : 0); ++ix)
-            for (int iy = 0; iy <= (sy != 0.0 ? 1 : 0); ++iy) {
-                const Vec3 di{d.x - (ax + ix * sx) * L, d.y - (ay + iy * sy) * L, d.z};
-                const double t = dot(di, n) / rn;
-                if (!(t > kTileEpsilonUm)) continue;
-                const Vec3 rel{di.x - t * r.x, di.y - t * r.y, di.z - t * r.z};
-                if (dot(rel, rel) > flake.radius_um * flake.radius_um) continue;
+        // R(|beam.n|) on the first column that holds the point (a metal's is a complex Fresnel).
+        double R = -1.0;
+        const auto reflectance = [&]() {
+            if (R < 0.0) R = lf.kinds[static_cast<std::size_t>(flake.kind)].R(std::abs(bn));
+            return R;
+        };
+        if (images.off_flakes) {
+            // The point z lit straight from the flake, along u = -r.
+            const Vec3 u{-r.x, -r.y, -r.z};
+            columnsHolding(flake, r, rn, z, L, [&](double t, const Vec3& /*rel*/) {
                 // The point on the flake (lateral coordinates continued from z's).
                 const double px = x - t * r.x;
                 const double py = y - t * r.y;
                 const double p_depth = depth + t * r.z;
                 const std::size_t jp = sliceAt(stack, s.layer, p_depth);
-                if (jp == stack.slices.size()) continue;
-                const double R = lf.kinds[static_cast<std::size_t>(flake.kind)].R(std::abs(bn));
-                if (!(R > 0.0)) continue;
-                const Vec3 u{-r.x, -r.y, -r.z};
+                if (jp == stack.slices.size() || !(reflectance() > 0.0)) return;
                 const double phase = s.kernel(v, u);
-                if (!(phase > 0.0)) continue;
+                if (!(phase > 0.0)) return;
                 const double to_flake =
                     transmittanceToFlake(lf, x, y, depth, u, t, n, rays) *
                     std::exp(-layerOpticalDepth(stack, s.layer, depth, p_depth, std::abs(r.z)));
-                if (!(to_flake > 0.0)) continue;
+                if (!(to_flake > 0.0)) return;
                 const double to_top =
                     straightToAmbient(stack, tiles, jp, p_depth, px, py, {-beam.x, -beam.y, -beam.z}, rays);
                 sum += phase * to_flake * R * to_top;
+            });
+        }
+        if (images.off_flake_then_top && r.z > 0.0) {
+            // The column the flake reflects upwards, back down from the top's
+            // internal reflection: z is lit along (r.x, r.y, -r.z), so from z
+            // the light is seen along u = (-r.x, -r.y, r.z). Unfolded at the
+            // top, the column is straight: z's image at the layer's top is
+            // shifted by the lateral run of u up from z to the paint's top and
+            // down again through the slices above (Snell in each).
+            const Vec3 u{-r.x, -r.y, r.z};
+            const double phase = s.kernel(v, u);
+            if (!(phase > 0.0)) continue;
+            const double sin2 = r.x * r.x + r.y * r.y;  // in this layer
+            double run = (depth - layer_top_um) / r.z;  // lateral run per unit of (-r.x, -r.y)
+            bool blocked = false;
+            for (const SliceAbove& a : above) {
+                const double ratio = s.n / a.n;
+                const double cos2 = 1.0 - sin2 * ratio * ratio;
+                if (!(cos2 > 1e-12)) {
+                    blocked = true;  // totally reflected on the way up: not this path class
+                    break;
+                }
+                run += 2.0 * a.thickness_um * ratio / std::sqrt(cos2);
             }
+            if (blocked) continue;
+            const Vec3 image{x - run * r.x, y - run * r.y, -layer_top_um};
+            columnsHolding(flake, r, rn, image, L, [&](double t, const Vec3& rel) {
+                if (!tile.onFlake(i, rel)) return;
+                const double px = image.x - t * r.x;
+                const double py = image.y - t * r.y;
+                const double p_depth = layer_top_um + t * r.z;
+                const std::size_t jp = sliceAt(stack, s.layer, p_depth);
+                if (jp == stack.slices.size() || !(reflectance() > 0.0)) return;
+                // From z up to the top, the top's reflectance, from the flake up to the
+                // top (the same straight segment as from the top down to it).
+                const TopArrival down = straightToTop(stack, tiles, j, depth, x, y, u, rays);
+                if (!(down.T > 0.0)) return;
+                const double F = std::abs(stack.ambient_n - n_top) < 1e-12
+                                     ? 0.0
+                                     : fresnelDielectric(down.u.z, stack.ambient_n / n_top);
+                if (!(F > 0.0)) return;
+                const TopArrival up = straightToTop(stack, tiles, jp, p_depth, px, py, r, rays);
+                if (!(up.T > 0.0)) return;
+                const double to_top =
+                    straightToAmbient(stack, tiles, jp, p_depth, px, py, {-beam.x, -beam.y, -beam.z}, rays);
+                sum += phase * down.T * F * up.T * R * to_top;
+            });
+        }
     }
     // The plane tests in the cost model of the adaptive fractions (counted as
     // tile intersections): one test costs ~1/64 of a traced ray (a guess from
     // their operation counts, not measured; it only steers the rates).
-    if (rays != nullptr) *rays += static_cast<std::int64_t>(tile.flakes().size() / 64);
+    if (rays != nullptr) *rays += static_cast<std::int64_t>(flakes.size() / 64);
     return sum;
 }
 

@@ -101,6 +101,19 @@ bool refractPlanar(const Vec3& v, double n_from, double n_to, Vec3& out);
 double straightToAmbient(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
                          double depth, double x, double y, Vec3 u, std::int64_t* rays = nullptr);
 
+// The same path up to just below the paint's top, without the top interface:
+// T (0 if blocked or totally reflected at an index step on the way), the
+// lateral position reached (wrapped into the tile where a tiled layer was
+// crossed last) and the direction in the top slice.
+struct TopArrival {
+    double T = 0.0;
+    double x = 0.0;
+    double y = 0.0;
+    Vec3 u{0.0, 0.0, 1.0};
+};
+TopArrival straightToTop(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
+                         double depth, double x, double y, Vec3 u, std::int64_t* rays = nullptr);
+
 // A direction uniform in the bin's cone (solid angle).
 Vec3 sampleInCone(const HistogramBin& bin, double u1, double u2);
 
@@ -203,18 +216,28 @@ double azimuthGlintSample(const PaintStack& stack, std::span<const LayerFlakes> 
 // explicit flake is again a collimated beam (a flat mirror keeps its
 // perpendicular flux density, times R), so a pigment vertex in a flake layer is
 // lit by the beam directly and by every flake below (or above) whose reflected
-// column holds it. For the vertex at (x, y, depth) in slice j, with the walk's
-// propagation direction v and the beam's direction beam_top (downward, in the top
-// slice): the sum over the flakes of its layer's tile (periodic images
-// included) whose reflected column holds the point of kernel(v, -r) (r the
-// reflected direction) times the transmittance from the point to the flake
-// (pigments, the flakes crossed) times R(|beam.n|) times the beam's straight
-// transmittance from the ambient down to the flake. The caller's factor for f
-// is that of the direct beam (weight / (sigma q |beam_z|) and (n_0 / n)^2).
-// Exhaustive over the tile's flakes (a cheap plane test each; the walks reach
-// it rarely, see traceReversePath). Never throws.
+// column holds it; a column reflected upwards also comes back down from the
+// paint's top (its internal reflection, also flat: times F), and lights the
+// vertex from there. For the vertex at (x, y, depth) in slice j, with the
+// walk's propagation direction v and the beam's direction beam_top (downward,
+// in the top slice), the sum over the flakes of its layer's tile (periodic
+// images included) whose column holds the point of:
+//  - off_flakes: kernel(v, -r) (r the reflected direction) times the
+//    transmittance from the point to the flake (pigments, the flakes crossed)
+//    times R(|beam.n|) times the beam's straight transmittance from the
+//    ambient down to the flake;
+//  - off_flake_then_top: kernel(v, u) (u = r mirrored at the top, reversed)
+//    times the transmittance from the point up to the top, F of the top, the
+//    transmittance from the top down to the flake, R and the beam's as above.
+// The caller's factor for f is that of the direct beam (weight / (sigma q
+// |beam_z|) and (n_0 / n)^2). Exhaustive over the tile's flakes (a cheap plane
+// test each; the walks reach it rarely, see traceReversePath). Never throws.
+struct BeamImages {
+    bool off_flakes = true;
+    bool off_flake_then_top = true;
+};
 double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
                       double depth, double x, double y, const Vec3& v, const Vec3& beam_top,
-                      std::int64_t* rays = nullptr);
+                      BeamImages images, std::int64_t* rays = nullptr);
 
 }  // namespace paintlab::mc

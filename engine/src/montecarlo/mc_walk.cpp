@@ -71,10 +71,12 @@ struct Walker {
     std::int64_t rays = 0;
     std::int64_t nee_rays = 0;
     std::int64_t nee_attempts = 0;
-    bool delta_chain = true;    // no smooth vertex yet (WalkSettings::histogram_other)
-    bool first_smooth = false;  // the first direction change was a smooth vertex
-    int beam_flake_layer = -1;  // layer of the beam's first reflection (class BeamFlake)
-    bool prefix_flake = false;  // a pigment vertex right after that reflection, in its layer
+    bool delta_chain = true;        // no smooth vertex yet (WalkSettings::histogram_other)
+    bool first_smooth = false;      // the first direction change was a smooth vertex
+    int beam_flake_layer = -1;      // layer of the beam's first reflection (class BeamFlake)
+    bool prefix_flake = false;      // a pigment vertex right after that reflection, in its layer
+    bool flake_then_top = false;    // the last changes: that reflection, then the top's internal one
+    bool prefix_flake_top = false;  // a pigment vertex right after both, in the flake's layer
     // Reverse walk (traceReversePath): it enters from the exit cone, and scores
     // next-event estimates towards reverse_target (upward in the top slice, the
     // beam reversed) from its smooth vertices once its first direction change
@@ -121,6 +123,22 @@ struct Walker {
         if (path_class == kClassBeam) first_smooth = true;
         path_class = kClassSmooth;
         delta_chain = false;
+        flake_then_top = false;
+    }
+
+    // A delta direction change other than the beam's first flake reflection;
+    // `at_top`: the internal reflection at the paint's top.
+    void deltaChange(bool at_top) {
+        flake_then_top = at_top && path_class == kClassBeamFlake;
+        path_class = kClassOther;
+    }
+
+    // A mirror reflection off an explicit flake: the class after it.
+    void flakeReflection() {
+        if (path_class == kClassBeam)
+            path_class = kClassBeamFlake;
+        else
+            deltaChange(false);
     }
 
     void move(double t) {
@@ -134,7 +152,9 @@ struct Walker {
         if ((settings.histogram_classes & path_class) != 0U &&
             (path_class != kClassOther ||
              (settings.histogram_other &
-              (delta_chain ? 1U : (first_smooth ? 4U : (prefix_flake ? 8U : 2U)))) != 0U))
+              (delta_chain ? 1U
+                           : (first_smooth ? 4U : (prefix_flake ? 8U : (prefix_flake_top ? 16U : 2U))))) !=
+                 0U))
             for (std::size_t k = 0; k < bins.size(); ++k)
                 if (dot(v, bins[k].wo) >= bins[k].cos_cone)
                     brdf_out[k] += weight / bins[k].projected_solid_angle;
@@ -178,13 +198,13 @@ struct Walker {
             if (!(R > 0.0)) return false;
             weight *= R;
             v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
-            path_class = path_class == kClassBeam ? kClassBeamFlake : kClassOther;
+            flakeReflection();
             return roulette();
         }
         const double u = rng.uniform();
         if (u < R) {
             v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
-            path_class = path_class == kClassBeam ? kClassBeamFlake : kClassOther;
+            flakeReflection();
             return roulette();
         }
         return u < R + f.T(c);
@@ -298,7 +318,7 @@ struct Walker {
             v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
             // A continuum flake's normal is drawn from a density (a smooth vertex), unless D is the delta.
             if (f.orientation.isDelta())
-                path_class = kClassOther;
+                deltaChange(false);
             else
                 smoothChange();
             return true;
@@ -320,7 +340,8 @@ struct Walker {
     }
 
     // Reverse walk: the next-event estimates towards the beam's single mirror
-    // images off the flakes of this layer (mc_connection.h, reflectedBeams), with
+    // images off the flakes of this layer, and those off a flake and then the
+    // paint's top (mc_connection.h, reflectedBeams), with
     // the direct beam's factors (`factor` = weight / (sigma q), over |beam_z|).
     void reverseReflectedBeams(const Slice& s, double factor) {
         Vec3 beam;
@@ -329,7 +350,8 @@ struct Walker {
         const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
         reverse_score += factor / beam.z * scale *
                          reflectedBeams(stack, explicit_flakes, j, depth, x, y, v,
-                                        {-reverse_target.x, -reverse_target.y, -reverse_target.z}, &nee_rays);
+                                        {-reverse_target.x, -reverse_target.y, -reverse_target.z},
+                                        {settings.reflected_beams, settings.top_images}, &nee_rays);
     }
 
     bool collide(const Slice& s, double sigma, double flake_rate) {
@@ -343,7 +365,8 @@ struct Walker {
                 if (connection_rng->uniform() < q) {
                     reverseNextEvent(
                         s, [&](const Vec3& u) { return weight * s.kernel(v, u) / (sigma * q * u.z); });
-                    if (settings.reflected_beams) reverseReflectedBeams(s, weight / (sigma * q));
+                    if (settings.reflected_beams || settings.top_images)
+                        reverseReflectedBeams(s, weight / (sigma * q));
                 }
             }
         }
@@ -371,6 +394,7 @@ struct Walker {
             }
             v = around(v, sampleHgCos(g, rng.uniform()), 2.0 * kPi * rng.uniform());
             if (path_class == kClassBeamFlake && s.layer == beam_flake_layer) prefix_flake = true;
+            if (flake_then_top && s.layer == beam_flake_layer) prefix_flake_top = true;
             smoothChange();
         } else {
             u -= s.sigma_s_per_um;
@@ -385,11 +409,12 @@ struct Walker {
         return roulette();
     }
 
-    bool crossInterface(double n_from, double n_to) {
+    // `top`: the paint's top (the ambient beyond).
+    bool crossInterface(double n_from, double n_to, bool top) {
         if (std::abs(n_from - n_to) < 1e-12) return true;
         if (rng.uniform() < fresnelDielectric(std::abs(v.z), n_to / n_from)) {
             v.z = -v.z;
-            path_class = kClassOther;
+            deltaChange(top);
             return false;
         }
         v = refract(v, n_from, n_to);
@@ -424,12 +449,12 @@ struct Walker {
         case SubstrateKind::Metal:
             weight *= stack.substrateMirrorReflectance(std::abs(v.z));
             v.z = -v.z;
-            path_class = kClassOther;
+            deltaChange(false);
             return roulette();
         case SubstrateKind::Transparent:
             if (rng.uniform() < fresnelDielectric(std::abs(v.z), stack.below_n / s.n)) {
                 v.z = -v.z;
-                path_class = kClassOther;
+                deltaChange(false);
                 return true;
             }
             // += : split branches of this path may already have transmitted (runBranch).
@@ -471,7 +496,7 @@ struct Walker {
             if (v.z < 0.0) {
                 depth = s.bottom_um;
                 if (j + 1 < count) {
-                    if (crossInterface(s.n, stack.slices[j + 1].n)) ++j;
+                    if (crossInterface(s.n, stack.slices[j + 1].n, false)) ++j;
                 } else if (!substrate(s)) {
                     return 0.0;
                 }
@@ -494,16 +519,16 @@ struct Walker {
                     if (!(F > 0.0)) return 0.0;
                     weight *= F;
                     v.z = -v.z;
-                    path_class = kClassOther;
+                    deltaChange(true);
                     if (!roulette()) return 0.0;
                     continue;
                 }
                 if (j == 0) {
-                    if (crossInterface(s.n, stack.ambient_n)) {
+                    if (crossInterface(s.n, stack.ambient_n, true)) {
                         escape();
                         return weight;
                     }
-                } else if (crossInterface(s.n, stack.slices[j - 1].n)) {
+                } else if (crossInterface(s.n, stack.slices[j - 1].n, false)) {
                     --j;
                 }
             }

@@ -22,8 +22,11 @@ struct WalkSettings {
     // the first direction change was a delta, 4 when it was such a vertex (the
     // reverse walks' part, traceReversePath), 8 instead of 2 when the first
     // change was the beam's reflection off an explicit flake and the second a
-    // pigment vertex in that flake's layer (the reflected beams' part).
-    unsigned histogram_other = 15;
+    // pigment vertex in that flake's layer (the reflected beams' part), 16
+    // instead of 2 when the beam's reflection off an explicit flake was followed
+    // by the internal reflection at the paint's top and then a pigment vertex
+    // in that flake's layer (the top images' part).
+    unsigned histogram_other = 31;
     // Score classes Smooth and BeamFlake by connections (explicit flakes only; the
     // caller then leaves them out of histogram_classes).
     bool connections = false;
@@ -39,6 +42,8 @@ struct WalkSettings {
     // Reverse walks also connect to the beam's single mirror images off the
     // flakes of the vertex's layer (McSettings::reflected_beams).
     bool reflected_beams = false;
+    // And to its images off a flake and then the paint's top (McSettings::top_images).
+    bool top_images = false;
 };
 
 // Projection of what escapes on the fast model's basis (mc_table.h): the

@@ -243,8 +243,9 @@ public:
         m_walk.roulette_weight = settings.roulette_weight;
         m_walk.histogram_classes = m_histogram_classes;
         m_walk.reflected_beams = m_reverse && settings.reflected_beams;
+        m_walk.top_images = m_reverse && settings.top_images;
         m_walk.histogram_other = settings.histogram_other & (m_reverse ? ~4U : ~0U) & (m_delta ? ~1U : ~0U) &
-                                 (m_walk.reflected_beams ? ~8U : ~0U);
+                                 (m_walk.reflected_beams ? ~8U : ~0U) & (m_walk.top_images ? ~16U : ~0U);
         m_walk.connections = m_connections;
         m_walk.connection_weight = 1.0 / m_connection_fraction;
         m_walk.split_branches = settings.explicit_flakes && settings.split_branches;

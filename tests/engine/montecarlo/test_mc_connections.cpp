@@ -281,11 +281,64 @@ TEST(MonteCarloConnections, ReverseWalksMatchTheHistogramOnTheirPathClass) {
           directionFromAnglesDeg(30.0, 180.0)}}};
     auto s = explicitSettings(40000, 10.0, 31);
     s.tile_flakes = 800;
-    // With their connections to the beam's mirror images (reflected_beams, the
-    // default) they also take the paths beam -> flake -> pigment -> ... (bit 8).
-    expectPartMatchesHistogram(r, req, s, 4, 4 | 8, 400000, "reverse walks");
+    // With their connections to the beam's mirror images (reflected_beams and
+    // top_images, the default) they also take the paths beam -> flake ->
+    // pigment -> ... (bit 8) and beam -> flake -> top -> pigment -> ... (bit 16;
+    // here ~17 % of the part: left out, exit 2 was off by z = 4.2).
+    expectPartMatchesHistogram(r, req, s, 4, 4 | 8 | 16, 400000, "reverse walks");
     s.reflected_beams = false;
+    s.top_images = false;
     expectPartMatchesHistogram(r, req, s, 4, 4, 400000, "reverse walks, direct beam only");
+}
+
+// A clear coat (index, thickness in µm) over a Lambertian base (albedo)...
+struct ClearCoat {
+    double n;
+    double thickness_um;
+    double base_albedo;
+};
+
+// ... with a 12 µm flake layer (binder index 1.45) between them: 8 µm mirror
+// flakes of reflectance 0.9 at the given volume fraction and spread, and a pigment.
+Recipe mirrorFlakesUnderClearCoat(const ClearCoat& coat, double flake_fraction, double spread_deg,
+                                  const Pigment& pigment) {
+    Recipe r =
+        test::oneLayerRecipe(coat.n, coat.thickness_um, LambertianSubstrate{Spectrum(coat.base_albedo)});
+    Layer base;
+    base.name = "flakes";
+    base.thickness_um = 12.0;
+    base.binder.refractive_index = Spectrum(1.45);
+    MirrorFlake flake = test::mirrorFlake(flake_fraction, spread_deg, 0.9);
+    flake.diameter_um = 8.0;
+    base.components = {flake, pigment};
+    r.layers.push_back(base);
+    return r;
+}
+
+TEST(MonteCarloConnections, TopImagesMatchTheHistogramOnTheirPathClass) {
+    // The reverse walks' connections to the beam's images off a flake and then
+    // the paint's top (McSettings::top_images) score the forward paths beam ->
+    // flake -> top (internal reflection) -> pigment -> ... -> delta -> cone
+    // (histogram_other 16). Tilted mirror flakes in a scattering binder under a
+    // clear coat of another index, so that the column's lateral run up and
+    // down through the coat (Snell in each) is tested too; the flakes' upward
+    // reflections beyond the top's critical angle come back whole. The
+    // reverse walks here score the direct beam as well (bit 4) and not the
+    // flakes' direct images (reflected_beams off), so the histogram takes 4 | 16.
+    // Statistics as above (kZ = 4, 16 batches each, independent seeds; the part
+    // resolved by the histogram, mean > 5 errors).
+    const Recipe r =
+        mirrorFlakesUnderClearCoat({1.6, 6.0, 0.3}, 0.08, 20.0, test::pigment(0.004, 2.0, 10.0, 0.3));
+    const std::vector<mc::IncidenceRequest> req{
+        {directionFromAnglesDeg(45.0, 0.0),
+         {directionFromAnglesDeg(50.0, 0.0), directionFromAnglesDeg(0.0, 0.0),
+          directionFromAnglesDeg(30.0, 180.0)}}};
+    auto s = explicitSettings(30000, 10.0, 77);
+    s.tile_flakes = 800;
+    s.reflected_beams = false;
+    // The top images are ~16 % of the part here (0.0024 of 0.015 1/sr): without
+    // them exit 0 would be off by z = 6.5 (measured, 2026-12-03; ~12 s on two idle cores).
+    expectPartMatchesHistogram(r, req, s, 4, 4 | 16, 1200000, "reverse walks with the top images");
 }
 
 TEST(MonteCarloConnections, DeltaWalksMatchTheHistogramOnChainsFromTheBeam) {
@@ -300,15 +353,8 @@ TEST(MonteCarloConnections, DeltaWalksMatchTheHistogramOnChainsFromTheBeam) {
     // sizeable part of f at every geometry. Statistics as above (kZ = 4,
     // 16 batches each, independent seeds); the part must be resolved by the
     // histogram (mean > 5 errors).
-    Recipe r = test::oneLayerRecipe(1.55, 10.0, LambertianSubstrate{Spectrum(0.5)});
-    Layer base;
-    base.name = "flakes";
-    base.thickness_um = 12.0;
-    base.binder.refractive_index = Spectrum(1.45);
-    MirrorFlake flake = test::mirrorFlake(0.12, 25.0, 0.9);
-    flake.diameter_um = 8.0;
-    base.components = {flake, test::pigment(0.01, 5.0, 2.0, 0.2)};
-    r.layers.push_back(base);
+    const Recipe r =
+        mirrorFlakesUnderClearCoat({1.55, 10.0, 0.5}, 0.12, 25.0, test::pigment(0.01, 5.0, 2.0, 0.2));
     const std::vector<mc::IncidenceRequest> req{
         {directionFromAnglesDeg(45.0, 0.0),
          {directionFromAnglesDeg(45.0, 180.0), directionFromAnglesDeg(0.0, 0.0),

@@ -44,7 +44,7 @@
 //    at the top interface instead of choosing a branch (split_branches); most
 //    of the rest (multiple reflections) by reverse walks from the cone and
 //    delta-chain walks without collisions (reverse_walks, delta_walks,
-//    reflected_beams);
+//    reflected_beams, top_images);
 //  - a whole table on the fast model's basis: mc_table.h.
 //
 // Standard errors: over independent paths, except with explicit flakes,
@@ -175,6 +175,14 @@ struct McSettings {
     // forward paths beam -> flake -> pigment -> ... -> delta -> cone
     // (histogram_other bit 8) instead of the histogram.
     bool reflected_beams = true;
+    // Reverse walks: their pigment vertices also connect to the beam's images
+    // off an explicit flake of their layer and then the paint's top (the
+    // column the flake reflects upwards comes back down from the top's
+    // internal reflection, still collimated), which scores the forward paths
+    // beam -> flake -> top -> pigment -> ... -> delta -> cone (histogram_other
+    // bit 16) instead of the histogram: at the flop they were most of what the
+    // histogram had left (docs/PERFORMANCE.md).
+    bool top_images = true;
     // Explicit flakes with connections: the paths of class Other without a
     // smooth vertex (chains of flake and internal reflections from the beam)
     // are scored by delta-chain walks (mc_walk.h, traceDeltaChains): forward
@@ -202,8 +210,11 @@ struct McSettings {
     // such a vertex (with reverse_walks, scored by them and never by the
     // histogram), 8 instead of 2 when the first change was the beam's reflection
     // off an explicit flake and the second a pigment vertex in its layer (with
-    // reflected_beams, scored by the reverse walks).
-    unsigned histogram_other = 15;
+    // reflected_beams, scored by the reverse walks), 16 instead of 2 when the
+    // first change was that reflection, the second the internal reflection at
+    // the paint's top and the third a pigment vertex in the flake's layer (with
+    // top_images, scored by the reverse walks).
+    unsigned histogram_other = 31;
 };
 
 struct Estimate {
