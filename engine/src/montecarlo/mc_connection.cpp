@@ -668,8 +668,6 @@ double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tile
             // shifted by the lateral run of u up from z to the paint's top and
             // down again through the slices above (Snell in each).
             const Vec3 u{-r.x, -r.y, r.z};
-            const double phase = s.kernel(v, u);
-            if (!(phase > 0.0)) continue;
             const double sin2 = r.x * r.x + r.y * r.y;  // in this layer
             double run = (depth - layer_top_um) / r.z;  // lateral run per unit of (-r.x, -r.y)
             bool blocked = false;
@@ -691,6 +689,8 @@ double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tile
                 const double p_depth = layer_top_um + t * r.z;
                 const std::size_t jp = sliceAt(stack, s.layer, p_depth);
                 if (jp == stack.slices.size() || !(reflectance() > 0.0)) return;
+                const double phase = s.kernel(v, u);
+                if (!(phase > 0.0)) return;
                 // From z up to the top, the top's reflectance, from the flake up to the
                 // top (the same straight segment as from the top down to it).
                 const TopArrival down = straightToTop(stack, tiles, j, depth, x, y, u, rays);
