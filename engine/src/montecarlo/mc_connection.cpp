@@ -557,14 +557,10 @@ double layerOpticalDepth(const PaintStack& stack, int layer, double depth_a, dou
     return tau / abs_mu;
 }
 
-}  // namespace
-
-namespace {
-
-// Calls hit(t, image_x, image_y) for each periodic image of `flake` (centre
-// shifted by image_x, image_y) whose reflected column along r holds the point
-// z: the point z - t r lies on the image's disk, t > 0. The disk is the
-// polygon's circumcircle; the caller tests the polygon.
+// Calls hit(t, rel) for each periodic image of `flake` whose reflected column
+// along r holds the point z: z - t r lies on the image's disk, t > 0, at
+// `rel` from the image's centre. The disk is the polygon's circumcircle; the
+// caller tests the polygon where it matters (FlakeTile::onFlake).
 template <class Hit> void columnsHolding(const PlacedFlake& flake, const Vec3& r, double rn, const Vec3& z,
                                          double L, const Hit& hit) {
     const Vec3& n = flake.normal;
@@ -591,13 +587,6 @@ template <class Hit> void columnsHolding(const PlacedFlake& flake, const Vec3& r
         }
 }
 
-// The slices above `layer` (their thickness and index), for the lateral shift
-// of a column that goes up to the paint's top and back down.
-struct SliceAbove {
-    double thickness_um;
-    double n;
-};
-
 }  // namespace
 
 double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
@@ -613,16 +602,11 @@ double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tile
     if (!refractPlanar(beam_top, stack.slices.front().n, s.n, beam) || !(beam.z < 0.0)) return 0.0;
     const double L = tile.sideUm();
     const Vec3 z{x, y, -depth};
-    // The top images: the layer's top and the slices above it.
-    double layer_top_um = s.top_um;
-    std::vector<SliceAbove> above;
-    for (const Slice& slice : stack.slices) {
-        if (slice.layer == s.layer) {
-            layer_top_um = slice.top_um;
-            break;
-        }
-        above.push_back({slice.bottom_um - slice.top_um, slice.n});
-    }
+    // The top images: the slices above the layer (a layer's slices are contiguous) and its top.
+    std::size_t first = j;
+    while (first > 0 && stack.slices[first - 1].layer == s.layer) --first;
+    const std::span<const Slice> above = std::span(stack.slices).first(first);
+    const double layer_top_um = stack.slices[first].top_um;
     const double n_top = stack.slices.front().n;
     const auto& flakes = tile.flakes();
     double sum = 0.0;
@@ -671,14 +655,14 @@ double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tile
             const double sin2 = r.x * r.x + r.y * r.y;  // in this layer
             double run = (depth - layer_top_um) / r.z;  // lateral run per unit of (-r.x, -r.y)
             bool blocked = false;
-            for (const SliceAbove& a : above) {
+            for (const Slice& a : above) {
                 const double ratio = s.n / a.n;
                 const double cos2 = 1.0 - sin2 * ratio * ratio;
                 if (!(cos2 > 1e-12)) {
                     blocked = true;  // totally reflected on the way up: not this path class
                     break;
                 }
-                run += 2.0 * a.thickness_um * ratio / std::sqrt(cos2);
+                run += 2.0 * (a.bottom_um - a.top_um) * ratio / std::sqrt(cos2);
             }
             if (blocked) continue;
             const Vec3 image{x - run * r.x, y - run * r.y, -layer_top_um};

@@ -336,8 +336,9 @@ TEST(MonteCarloConnections, TopImagesMatchTheHistogramOnTheirPathClass) {
     auto s = explicitSettings(30000, 10.0, 77);
     s.tile_flakes = 800;
     s.reflected_beams = false;
-    // The top images are ~16 % of the part here (0.0024 of 0.015 1/sr): without
-    // them exit 0 would be off by z = 6.5 (measured, 2026-12-03; ~12 s on two idle cores).
+    // The top images are ~16 % of the part here (0.0024 of 0.015 1/sr): the same
+    // run without them is off by z = -6.2 / -6.7 / -4.3 at the three exits
+    // (measured 2026-12-03), so the test fails if they are lost; ~12 s on two idle cores.
     expectPartMatchesHistogram(r, req, s, 4, 4 | 16, 1200000, "reverse walks with the top images");
 }
 
