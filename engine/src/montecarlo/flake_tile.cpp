@@ -113,8 +113,9 @@ struct FlakePrimitive {
     Vec3 normal;
     Vec3 b1;
     Vec3 b2;
-    double radius_um = 0.0;  // circumradius of the polygon
-    double rotation = 0.0;   // of its first vertex from b1 (radians)
+    double radius_um = 0.0;   // circumradius of the polygon
+    double rotation = 0.0;    // of its first vertex from b1 (radians)
+    std::uint32_t flake = 0;  // index of the flake it copies (FlakeTile::flakes())
 };
 
 // Whether in-plane point (u, v) lies in the regular kSides-gon of
@@ -254,6 +255,7 @@ struct FlakeTile::Impl {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
     std::vector<int> kind_of_geometry;
+    std::vector<int> primitives_of_geometry;              // index into primitives
     std::vector<std::vector<FlakePrimitive>> primitives;  // [geometry][primitive], stable once committed
     std::string error;
     ~Impl() {
@@ -364,7 +366,13 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
                     const double cy = centre.y + dy * L;
                     if (cx + radius < 0.0 || cx - radius > L || cy + radius < 0.0 || cy - radius > L)
                         continue;
-                    primitives.push_back({{cx, cy, centre.z}, normal, b1, b2, radius, rotation});
+                    primitives.push_back({{cx, cy, centre.z},
+                                          normal,
+                                          b1,
+                                          b2,
+                                          radius,
+                                          rotation,
+                                          static_cast<std::uint32_t>(m_placed.size() - 1)});
                 }
             m_flakes += 1;
         }
@@ -382,6 +390,8 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
         rtcReleaseGeometry(geometry);
         if (m_impl->kind_of_geometry.size() <= id) m_impl->kind_of_geometry.resize(id + 1, -1);
         m_impl->kind_of_geometry[id] = static_cast<int>(k);
+        if (m_impl->primitives_of_geometry.size() <= id) m_impl->primitives_of_geometry.resize(id + 1, -1);
+        m_impl->primitives_of_geometry[id] = static_cast<int>(m_impl->primitives.size() - 1);
     }
     rtcCommitScene(m_impl->scene);
     if (stopped()) throw Error("flake tile: cancelled");
@@ -444,14 +454,19 @@ FlakeHit FlakeTile::intersect(const Vec3& origin, const Vec3& dir, double t_near
     rtcIntersect1(m_impl->scene, &context, &rh);
     FlakeHit hit;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
-    const auto nx = static_cast<double>(rh.hit.Ng_x);
-    const auto ny = static_cast<double>(rh.hit.Ng_y);
-    const auto nz = static_cast<double>(rh.hit.Ng_z);
-    const double len = std::sqrt(nx * nx + ny * ny + nz * nz);
-    if (!(len > 0.0)) return hit;
-    hit.t = static_cast<double>(rh.ray.tfar);
-    hit.normal = {nx / len, ny / len, nz / len};
+    const FlakePrimitive& p =
+        m_impl->primitives[static_cast<std::size_t>(m_impl->primitives_of_geometry[rh.hit.geomID])]
+                          [rh.hit.primID];
+    // Embree's ray is float (origin rounded by ~1e-4 µm at a 2 mm tile): the
+    // distance again from the double origin and direction, so that the point
+    // reached lies on the flake's plane to double precision.
+    const double denom = dot(p.normal, dir);
+    const Vec3 oc{p.centre.x - origin.x, p.centre.y - origin.y, p.centre.z - origin.z};
+    hit.t = denom != 0.0 ? dot(p.normal, oc) / denom : static_cast<double>(rh.ray.tfar);
+    if (!(hit.t > 0.0)) hit.t = static_cast<double>(rh.ray.tfar);
+    hit.normal = p.normal;
     hit.kind = m_impl->kind_of_geometry[rh.hit.geomID];
+    hit.flake = static_cast<std::int64_t>(p.flake);
     return hit;
 }
 

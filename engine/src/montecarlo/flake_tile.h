@@ -50,8 +50,9 @@ bool disksIntersect(const PlacedFlake& a, const PlacedFlake& b);
 
 struct FlakeHit {
     double t = 0.0;
-    Vec3 normal;    // unit, either side
-    int kind = -1;  // index into the layer's FlakeGeometry list; -1: no hit
+    Vec3 normal;              // unit, either side
+    int kind = -1;            // index into the layer's FlakeGeometry list; -1: no hit
+    std::int64_t flake = -1;  // index into FlakeTile::flakes() (any periodic copy of it)
 };
 
 class FlakeTile {

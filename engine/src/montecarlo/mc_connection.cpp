@@ -492,16 +492,19 @@ double azimuthGlintSample(const PaintStack& stack, std::span<const LayerFlakes> 
 
 namespace {
 
-// Transmittance from (x, y, depth) along u through one layer's tile up to the
-// flake with normal n_flake at distance t_flake: the product of T over the
-// flakes crossed before it; 0 if a mirror blocks the way or the ray does not
-// meet that flake there (its polygon is inside the disk that selected it).
+// Transmittance from (x, y, depth) along u through one layer's tile up to
+// flake `target` (FlakeTile::flakes(), any periodic copy) at distance t_flake:
+// the product of T over the flakes crossed before it; 0 if a mirror blocks the
+// way or the ray does not meet that flake there (its polygon is inside the
+// disk that selected it). The flake is recognised by its index, not by the
+// distance (Embree's float ray, FlakeTile::intersect); the search runs a
+// little beyond t_flake for the same reason.
 double transmittanceToFlake(const LayerFlakes& lf, double x, double y, double depth, const Vec3& u,
-                            double t_flake, const Vec3& n_flake, std::int64_t* rays) {
+                            double t_flake, std::size_t target, std::int64_t* rays) {
     const FlakeTile& tile = *lf.tile;
     const double L = tile.sideUm();
     const double inf = std::numeric_limits<double>::infinity();
-    const double tolerance = 1e-6 * (1.0 + t_flake);
+    const double slack = 1e-3 + 1e-4 * t_flake;  // µm: far above float rounding, far below a flake's size
     double T = 1.0;
     double travelled = 0.0;
     double t_near = kTileEpsilonUm;
@@ -511,15 +514,13 @@ double transmittanceToFlake(const LayerFlakes& lf, double x, double y, double de
         const double tx = u.x > 0.0 ? (L - x) / u.x : (u.x < 0.0 ? -x / u.x : inf);
         const double ty = u.y > 0.0 ? (L - y) / u.y : (u.y < 0.0 ? -y / u.y : inf);
         const double t_side = std::min(tx, ty);
-        const double left = t_flake + tolerance - travelled;
+        const double left = t_flake + slack - travelled;
         if (!(left > 0.0)) return 0.0;
         const double t_far = std::min(left, t_side);
         const FlakeHit hit = tile.intersect({x, y, -depth}, u, t_near, t_far);
         if (rays != nullptr) ++*rays;
         if (hit.kind >= 0) {
-            if (std::abs(travelled + hit.t - t_flake) <= tolerance &&
-                std::abs(dot(hit.normal, n_flake)) > 1.0 - 1e-9)
-                return T;
+            if (hit.flake == static_cast<std::int64_t>(target)) return T;
             T *= lf.kinds[static_cast<std::size_t>(hit.kind)].T(std::abs(dot(u, hit.normal)));
             if (!(T > 0.0)) return 0.0;
             x += u.x * hit.t;
@@ -636,7 +637,7 @@ double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tile
                 const double phase = s.kernel(v, u);
                 if (!(phase > 0.0)) return;
                 const double to_flake =
-                    transmittanceToFlake(lf, x, y, depth, u, t, n, rays) *
+                    transmittanceToFlake(lf, x, y, depth, u, t, i, rays) *
                     std::exp(-layerOpticalDepth(stack, s.layer, depth, p_depth, std::abs(r.z)));
                 if (!(to_flake > 0.0)) return;
                 const double to_top =

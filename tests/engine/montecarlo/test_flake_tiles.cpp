@@ -139,6 +139,47 @@ TEST(FlakeOverlap, ImpossibleConcentrationIsAnInputError) {
     EXPECT_THROW(mc::FlakeTile(packed, 0.0, 5.0, 1, 200, 100000, true), InputError);
 }
 
+TEST(FlakeTileHits, NameTheirFlakeAndLieOnItsPlaneInALargeTile) {
+    // A tile about 1.8 mm across (the pearlescent demo's basecoat: 20,000
+    // flakes of 18 µm): Embree's ray is float, so its origin is rounded by up
+    // to ~6e-5 µm there and the distance it returns is off by as much. The
+    // connections recognise the flake a shadow ray must reach by the index the
+    // hit reports, and put vertices at the hit point, so: every hit names a
+    // flake (or a periodic copy of it) whose plane holds the hit point to
+    // double rounding (1e-9 µm against coordinates of ~1e3 µm: ~1e4 ulps of
+    // headroom, and ~1e5 times below the float error it replaces) and whose
+    // polygon holds it.
+    // Flake area per volume: 6 % by volume of flakes ~0.6 µm thick.
+    const std::vector<mc::FlakeGeometry> basecoat{{0.06 / 0.6, 18.0, 10.0, nullptr}};
+    const mc::FlakeTile tile(basecoat, 40.0, 55.0, 3, 20000, 1000000);
+    const double L = tile.sideUm();
+    ASSERT_GT(L, 1000.0);
+    mc::PathRng rng(4, 5, 6, 7);
+    int hits = 0;
+    for (int i = 0; i < 4000; ++i) {
+        const double z = 2.0 * rng.uniform() - 1.0;
+        const double phi = 2.0 * kPi * rng.uniform();
+        const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+        const mc::Vec3 dir{r * std::cos(phi), r * std::sin(phi), z};
+        const mc::Vec3 origin{rng.uniform() * L, rng.uniform() * L, -40.0 - 15.0 * rng.uniform()};
+        const mc::FlakeHit hit = tile.intersect(origin, dir, 1e-3, 60.0);
+        if (hit.kind < 0) continue;
+        ++hits;
+        ASSERT_GE(hit.flake, 0);
+        ASSERT_LT(hit.flake, static_cast<std::int64_t>(tile.flakes().size()));
+        const mc::PlacedFlake& f = tile.flakes()[static_cast<std::size_t>(hit.flake)];
+        const mc::Vec3 p{origin.x + hit.t * dir.x, origin.y + hit.t * dir.y, origin.z + hit.t * dir.z};
+        // The periodic copy nearest the hit point.
+        mc::Vec3 rel = sub(p, f.centre);
+        rel.x -= L * std::round(rel.x / L);
+        rel.y -= L * std::round(rel.y / L);
+        EXPECT_LT(std::abs(mc::dot(rel, f.normal)), 1e-9) << "hit " << i;
+        EXPECT_TRUE(tile.onFlake(static_cast<std::size_t>(hit.flake), rel)) << "hit " << i;
+        EXPECT_GT(std::abs(mc::dot(hit.normal, f.normal)), 1.0 - 1e-12) << "hit " << i;
+    }
+    EXPECT_GT(hits, 1000);
+}
+
 // The spread of independent runs (different seeds: different tiles and paths)
 // against their error bars: chi^2 = sum (x_s - mean)^2 / se_s^2 over S runs
 // follows chi^2 with S - 1 degrees of freedom if the error bars are right.
