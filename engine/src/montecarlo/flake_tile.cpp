@@ -137,52 +137,71 @@ bool insidePolygon(double u, double v, double r, double rotation) {
 
 void flakeBounds(const RTCBoundsFunctionArguments* args) {
     const auto& p = static_cast<const std::vector<FlakePrimitive>*>(args->geometryUserPtr)->at(args->primID);
-    // A disk's extent along axis i is r sqrt(1 - n_i^2); padded for the float bounds.
-    const auto half = [&p](double n) {
-        return static_cast<float>(p.radius_um * std::sqrt(std::max(0.0, 1.0 - n * n)) * (1.0 + 1e-6) + 1e-6);
+    // A disk's extent along axis i is r sqrt(1 - n_i^2), rounded outwards to
+    // float and padded by a few float ulps of the coordinates, since Embree
+    // walks the BVH with the ray rounded to float (DoubleRay).
+    const double pad = 1e-6 * p.radius_um +
+                       8.0 * static_cast<double>(std::numeric_limits<float>::epsilon()) *
+                           (std::abs(p.centre.x) + std::abs(p.centre.y) + std::abs(p.centre.z) + p.radius_um);
+    const auto half = [&p, pad](double n) {
+        return p.radius_um * std::sqrt(std::max(0.0, 1.0 - n * n)) + pad;
     };
-    const auto c = [](double x) { return static_cast<float>(x); };
-    args->bounds_o->lower_x = c(p.centre.x) - half(p.normal.x);
-    args->bounds_o->upper_x = c(p.centre.x) + half(p.normal.x);
-    args->bounds_o->lower_y = c(p.centre.y) - half(p.normal.y);
-    args->bounds_o->upper_y = c(p.centre.y) + half(p.normal.y);
-    args->bounds_o->lower_z = c(p.centre.z) - half(p.normal.z);
-    args->bounds_o->upper_z = c(p.centre.z) + half(p.normal.z);
+    const float inf = std::numeric_limits<float>::infinity();
+    const auto down = [inf](double x) { return std::nextafter(static_cast<float>(x), -inf); };
+    const auto up = [inf](double x) { return std::nextafter(static_cast<float>(x), inf); };
+    args->bounds_o->lower_x = down(p.centre.x - half(p.normal.x));
+    args->bounds_o->upper_x = up(p.centre.x + half(p.normal.x));
+    args->bounds_o->lower_y = down(p.centre.y - half(p.normal.y));
+    args->bounds_o->upper_y = up(p.centre.y + half(p.normal.y));
+    args->bounds_o->lower_z = down(p.centre.z - half(p.normal.z));
+    args->bounds_o->upper_z = up(p.centre.z + half(p.normal.z));
 }
+
+// The ray in double beside Embree's float copy (which only steers the BVH
+// walk): the flakes are tested against it, so the distance, the t_near that
+// keeps a ray off the flake it leaves, and the polygon test are exact to
+// double rounding at any tile size. With the float ray, a ray leaving a flake
+// at a grazing angle could meet that flake again (its float origin is up to
+// ~6e-5 µm off the plane in a 1.8 mm tile), and a distance was off by as much.
+// Embree hands the context to the callbacks; it must come first.
+struct DoubleRay {
+    RTCIntersectContext embree;
+    Vec3 origin;
+    Vec3 dir;
+    double t_near = 0.0;
+    double t_best = 0.0;  // t_far, then the nearest hit so far
+    const FlakePrimitive* best = nullptr;
+    unsigned geometry = RTC_INVALID_GEOMETRY_ID;
+};
 
 void flakeIntersect(const RTCIntersectFunctionNArguments* args) {
     const auto& p = (*static_cast<const std::vector<FlakePrimitive>*>(args->geometryUserPtr))[args->primID];
-    RTCRayHitN* rayhit = args->rayhit;
-    RTCRayN* ray = RTCRayHitN_RayN(rayhit, args->N);
-    RTCHitN* hit = RTCRayHitN_HitN(rayhit, args->N);
-    for (unsigned i = 0; i < args->N; ++i) {
-        if (args->valid[i] == 0) continue;
-        const auto at = [](float x) { return static_cast<double>(x); };
-        const Vec3 o{at(RTCRayN_org_x(ray, args->N, i)), at(RTCRayN_org_y(ray, args->N, i)),
-                     at(RTCRayN_org_z(ray, args->N, i))};
-        const Vec3 d{at(RTCRayN_dir_x(ray, args->N, i)), at(RTCRayN_dir_y(ray, args->N, i)),
-                     at(RTCRayN_dir_z(ray, args->N, i))};
-        const double denom = dot(p.normal, d);
-        if (denom == 0.0) continue;  // in the plane of a thickness-less flake: no hit
-        const Vec3 oc{p.centre.x - o.x, p.centre.y - o.y, p.centre.z - o.z};
-        const double t = dot(p.normal, oc) / denom;
-        const double t_near = at(RTCRayN_tnear(ray, args->N, i));
-        float& t_far = RTCRayN_tfar(ray, args->N, i);
-        if (!(t > t_near) || !(t < static_cast<double>(t_far))) continue;
-        const Vec3 q{o.x + t * d.x - p.centre.x, o.y + t * d.y - p.centre.y, o.z + t * d.z - p.centre.z};
-        const double u = dot(q, p.b1);
-        const double v = dot(q, p.b2);
-        if (!insidePolygon(u, v, p.radius_um, p.rotation)) continue;
-        t_far = static_cast<float>(t);
-        RTCHitN_Ng_x(hit, args->N, i) = static_cast<float>(p.normal.x);
-        RTCHitN_Ng_y(hit, args->N, i) = static_cast<float>(p.normal.y);
-        RTCHitN_Ng_z(hit, args->N, i) = static_cast<float>(p.normal.z);
-        RTCHitN_u(hit, args->N, i) = 0.0F;
-        RTCHitN_v(hit, args->N, i) = 0.0F;
-        RTCHitN_primID(hit, args->N, i) = args->primID;
-        RTCHitN_geomID(hit, args->N, i) = args->geomID;
-        RTCHitN_instID(hit, args->N, i, 0) = args->context->instID[0];
-    }
+    auto* ray = reinterpret_cast<DoubleRay*>(args->context);  // NOLINT: Embree's documented context extension
+    // FlakeTile::intersect traces single rays (rtcIntersect1: N = 1).
+    if (args->N != 1 || args->valid[0] == 0) return;
+    const double denom = dot(p.normal, ray->dir);
+    if (denom == 0.0) return;  // in the plane of a thickness-less flake: no hit
+    const Vec3 oc{p.centre.x - ray->origin.x, p.centre.y - ray->origin.y, p.centre.z - ray->origin.z};
+    const double t = dot(p.normal, oc) / denom;
+    if (!(t > ray->t_near) || !(t < ray->t_best)) return;
+    const Vec3 q{ray->origin.x + t * ray->dir.x - p.centre.x, ray->origin.y + t * ray->dir.y - p.centre.y,
+                 ray->origin.z + t * ray->dir.z - p.centre.z};
+    if (!insidePolygon(dot(q, p.b1), dot(q, p.b2), p.radius_um, p.rotation)) return;
+    ray->t_best = t;
+    ray->best = &p;
+    ray->geometry = args->geomID;
+    // Embree culls what lies beyond its float tfar: rounded up, so nothing nearer in double is lost.
+    RTCRayN_tfar(RTCRayHitN_RayN(args->rayhit, 1), 1, 0) =
+        std::nextafter(static_cast<float>(t), std::numeric_limits<float>::infinity());
+    RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, 1);
+    RTCHitN_Ng_x(hit, 1, 0) = static_cast<float>(p.normal.x);
+    RTCHitN_Ng_y(hit, 1, 0) = static_cast<float>(p.normal.y);
+    RTCHitN_Ng_z(hit, 1, 0) = static_cast<float>(p.normal.z);
+    RTCHitN_u(hit, 1, 0) = 0.0F;
+    RTCHitN_v(hit, 1, 0) = 0.0F;
+    RTCHitN_primID(hit, 1, 0) = args->primID;
+    RTCHitN_geomID(hit, 1, 0) = args->geomID;
+    RTCHitN_instID(hit, 1, 0, 0) = args->context->instID[0];
 }
 
 }  // namespace
@@ -255,7 +274,6 @@ struct FlakeTile::Impl {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
     std::vector<int> kind_of_geometry;
-    std::vector<int> primitives_of_geometry;              // index into primitives
     std::vector<std::vector<FlakePrimitive>> primitives;  // [geometry][primitive], stable once committed
     std::string error;
     ~Impl() {
@@ -390,8 +408,6 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
         rtcReleaseGeometry(geometry);
         if (m_impl->kind_of_geometry.size() <= id) m_impl->kind_of_geometry.resize(id + 1, -1);
         m_impl->kind_of_geometry[id] = static_cast<int>(k);
-        if (m_impl->primitives_of_geometry.size() <= id) m_impl->primitives_of_geometry.resize(id + 1, -1);
-        m_impl->primitives_of_geometry[id] = static_cast<int>(m_impl->primitives.size() - 1);
     }
     rtcCommitScene(m_impl->scene);
     if (stopped()) throw Error("flake tile: cancelled");
@@ -436,8 +452,13 @@ Vec3 FlakeTile::pointOnFlake(std::size_t i, double u1, double u2, double u3) con
 }
 
 FlakeHit FlakeTile::intersect(const Vec3& origin, const Vec3& dir, double t_near, double t_far) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+    DoubleRay ray;
+    rtcInitIntersectContext(&ray.embree);
+    ray.origin = origin;
+    ray.dir = dir;
+    ray.t_near = t_near;
+    ray.t_best = t_far;
+    const float inf = std::numeric_limits<float>::infinity();
     RTCRayHit rh{};
     rh.ray.org_x = static_cast<float>(origin.x);
     rh.ray.org_y = static_cast<float>(origin.y);
@@ -445,28 +466,20 @@ FlakeHit FlakeTile::intersect(const Vec3& origin, const Vec3& dir, double t_near
     rh.ray.dir_x = static_cast<float>(dir.x);
     rh.ray.dir_y = static_cast<float>(dir.y);
     rh.ray.dir_z = static_cast<float>(dir.z);
-    rh.ray.tnear = static_cast<float>(t_near);
-    rh.ray.tfar = std::isfinite(t_far) ? static_cast<float>(t_far) : std::numeric_limits<float>::infinity();
+    // The float interval only culls the walk; widened so that it holds the double one.
+    rh.ray.tnear = 0.0F;
+    rh.ray.tfar = std::isfinite(t_far) ? std::nextafter(static_cast<float>(t_far), inf) : inf;
     rh.ray.mask = 0xFFFFFFFFU;
     rh.ray.flags = 0;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(m_impl->scene, &context, &rh);
+    rtcIntersect1(m_impl->scene, &ray.embree, &rh);
     FlakeHit hit;
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
-    const FlakePrimitive& p =
-        m_impl->primitives[static_cast<std::size_t>(m_impl->primitives_of_geometry[rh.hit.geomID])]
-                          [rh.hit.primID];
-    // Embree's ray is float (origin rounded by ~1e-4 µm at a 2 mm tile): the
-    // distance again from the double origin and direction, so that the point
-    // reached lies on the flake's plane to double precision.
-    const double denom = dot(p.normal, dir);
-    const Vec3 oc{p.centre.x - origin.x, p.centre.y - origin.y, p.centre.z - origin.z};
-    hit.t = denom != 0.0 ? dot(p.normal, oc) / denom : static_cast<double>(rh.ray.tfar);
-    if (!(hit.t > 0.0)) hit.t = static_cast<double>(rh.ray.tfar);
-    hit.normal = p.normal;
-    hit.kind = m_impl->kind_of_geometry[rh.hit.geomID];
-    hit.flake = static_cast<std::int64_t>(p.flake);
+    if (ray.best == nullptr) return hit;
+    hit.t = ray.t_best;
+    hit.normal = ray.best->normal;
+    hit.kind = m_impl->kind_of_geometry[ray.geometry];
+    hit.flake = static_cast<std::int64_t>(ray.best->flake);
     return hit;
 }
 
