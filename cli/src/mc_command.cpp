@@ -159,6 +159,7 @@ ordered_json settingsJson(const mc::McSettings& s, const mc::McResult& r) {
             {"top_images",
              s.explicit_flakes && s.connections && s.glint_azimuths && s.reverse_walks && s.top_images},
             {"delta_walks", s.explicit_flakes && s.connections && s.glint_azimuths && s.delta_walks},
+            {"flake_images", s.explicit_flakes && s.connections && s.glint_azimuths && s.flake_images},
             {"max_paths", s.max_paths},
             {"target_rel_error", s.target_rel_error},
             {"max_seconds", s.max_seconds},

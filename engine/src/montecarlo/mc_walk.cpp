@@ -77,6 +77,13 @@ struct Walker {
     bool prefix_flake = false;      // a pigment vertex right after that reflection, in its layer
     bool flake_then_top = false;    // the last changes: that reflection, then the top's internal one
     bool prefix_flake_top = false;  // a pigment vertex right after both, in the flake's layer
+    // How the path ends (histogram_other 32, 64; the forward flake images):
+    // 1 the last change was a pigment vertex in the tiled layer end_layer, on a
+    // path of part 2 (classTwoPrefixAt); 2 then the internal reflection at the
+    // paint's top; 3 after 1, and 4 after 2, a reflection off a flake of
+    // end_layer; 0 anything else.
+    int end_state = 0;
+    int end_layer = -1;
     // Reverse walk (traceReversePath): it enters from the exit cone, and scores
     // next-event estimates towards reverse_target (upward in the top slice, the
     // beam reversed) from its smooth vertices once its first direction change
@@ -124,6 +131,22 @@ struct Walker {
         path_class = kClassSmooth;
         delta_chain = false;
         flake_then_top = false;
+        end_state = 0;
+    }
+
+    bool tiled(int layer) const {
+        return static_cast<std::size_t>(layer) < explicit_flakes.size() &&
+               explicit_flakes[static_cast<std::size_t>(layer)].tile != nullptr;
+    }
+
+    // Whether a pigment vertex in `layer` now leaves the path in part 2 of
+    // class Other's histogram (WalkSettings::histogram_other): its prefix is
+    // none of parts 1, 4, 8 and 16, which are fixed at the first smooth vertex.
+    bool classTwoPrefixAt(int layer) const {
+        if (first_smooth || prefix_flake || prefix_flake_top || path_class == kClassBeam) return false;
+        if (!delta_chain) return true;  // an earlier smooth vertex fixed the prefix
+        // This vertex would be the first smooth one.
+        return !((path_class == kClassBeamFlake || flake_then_top) && layer == beam_flake_layer);
     }
 
     // A delta direction change other than the beam's first flake reflection;
@@ -131,14 +154,18 @@ struct Walker {
     void deltaChange(bool at_top) {
         flake_then_top = at_top && path_class == kClassBeamFlake;
         path_class = kClassOther;
+        end_state = at_top && end_state == 1 ? 2 : 0;
     }
 
-    // A mirror reflection off an explicit flake: the class after it.
-    void flakeReflection() {
-        if (path_class == kClassBeam)
+    // A mirror reflection off an explicit flake of `layer`: the class after it.
+    void flakeReflection(int layer) {
+        if (path_class == kClassBeam) {
             path_class = kClassBeamFlake;
-        else
-            deltaChange(false);
+            return;
+        }
+        const int next = layer == end_layer && (end_state == 1 || end_state == 2) ? end_state + 2 : 0;
+        deltaChange(false);
+        end_state = next;
     }
 
     void move(double t) {
@@ -150,11 +177,13 @@ struct Walker {
     // histogram bins that contain the exit direction.
     void escape() {
         if ((settings.histogram_classes & path_class) != 0U &&
-            (path_class != kClassOther ||
-             (settings.histogram_other &
-              (delta_chain ? 1U
-                           : (first_smooth ? 4U : (prefix_flake ? 8U : (prefix_flake_top ? 16U : 2U))))) !=
-                 0U))
+            (path_class != kClassOther || (settings.histogram_other & (delta_chain        ? 1U
+                                                                       : first_smooth     ? 4U
+                                                                       : prefix_flake     ? 8U
+                                                                       : prefix_flake_top ? 16U
+                                                                       : end_state == 3   ? 32U
+                                                                       : end_state == 4   ? 64U
+                                                                                          : 2U)) != 0U))
             for (std::size_t k = 0; k < bins.size(); ++k)
                 if (dot(v, bins[k].wo) >= bins[k].cos_cone)
                     brdf_out[k] += weight / bins[k].projected_solid_angle;
@@ -198,13 +227,13 @@ struct Walker {
             if (!(R > 0.0)) return false;
             weight *= R;
             v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
-            flakeReflection();
+            flakeReflection(layer);
             return roulette();
         }
         const double u = rng.uniform();
         if (u < R) {
             v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
-            flakeReflection();
+            flakeReflection(layer);
             return roulette();
         }
         return u < R + f.T(c);
@@ -231,6 +260,40 @@ struct Walker {
             const double t = straightToAmbient(stack, explicit_flakes, j, depth, x, y, u, &nee_rays);
             (nee_out.empty() ? brdf_out : nee_out)[k] +=
                 connection_weight * value * t * scale * w.z * bin.solid_angle / bin.projected_solid_angle;
+        }
+    }
+
+    // Connections through one flake (WalkSettings::flake_images): from a pigment
+    // vertex in slice j (a tiled layer), for a direction w uniform in each cone
+    // (u in the top slice), the light that reaches w after one mirror reflection
+    // off a flake of this layer, straight or by way of the top's internal
+    // reflection: by reciprocity the beam -u's images off those flakes seen from
+    // the vertex (mc_connection.h, reflectedBeams), which a planar flake makes
+    // exact. `factor` is the vertex's weight / (sigma q); its scattered weight
+    // per sr towards the flake is factor times the kernel (reflectedBeams
+    // includes it), and the 1 / u_z of a direct connection is that of the last
+    // leg (mirroring keeps the volume element), as for the reverse walks' images.
+    void coneFlakeImages(const Slice& s, double factor) {
+        const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
+        const double n_top = stack.slices.front().n;
+        for (std::size_t k = 0; k < bins.size(); ++k) {
+            const double connection_weight =
+                nee_weights.empty() ? settings.connection_weight : nee_weights[k];
+            if (!(connection_weight > 0.0)) continue;
+            const HistogramBin& bin = bins[k];
+            const double u1 = connection_rng->uniform();
+            const Vec3 w = sampleInCone(bin, u1, connection_rng->uniform());
+            Vec3 u;
+            Vec3 u_top;
+            if (!(w.z > 0.0) || !refractPlanar(w, stack.ambient_n, s.n, u) ||
+                !refractPlanar(w, stack.ambient_n, n_top, u_top) || !(u.z > 0.0))
+                continue;
+            ++nee_attempts;
+            const double images = reflectedBeams(stack, explicit_flakes, j, depth, x, y, v,
+                                                 {-u_top.x, -u_top.y, -u_top.z}, {true, true}, &nee_rays);
+            if (!(images > 0.0)) continue;
+            (nee_out.empty() ? brdf_out : nee_out)[k] += connection_weight * factor / u.z * images * scale *
+                                                         w.z * bin.solid_angle / bin.projected_solid_angle;
         }
     }
 
@@ -318,7 +381,7 @@ struct Walker {
             v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
             // A continuum flake's normal is drawn from a density (a smooth vertex), unless D is the delta.
             if (f.orientation.isDelta())
-                deltaChange(false);
+                deltaChange(false);  // not a tile's flake: never a flake image's end
             else
                 smoothChange();
             return true;
@@ -378,8 +441,13 @@ struct Walker {
         // shadow rays each for next to nothing (the demo's carbon black: q ~ 1 %).
         if (connection_rng != nullptr && s.sigma_s_per_um > 0.0) {
             const double q = std::min(1.0, s.sigma_s_per_um / sigma);
-            if (connection_rng->uniform() < q)
-                coneNextEvent(s, [&](const Vec3& u) { return weight * s.kernel(v, u) / (sigma * q * u.z); });
+            if (connection_rng->uniform() < q) {
+                if (settings.cone_direct)
+                    coneNextEvent(s,
+                                  [&](const Vec3& u) { return weight * s.kernel(v, u) / (sigma * q * u.z); });
+                if (settings.flake_images && tiled(s.layer) && classTwoPrefixAt(s.layer))
+                    coneFlakeImages(s, weight / (sigma * q));
+            }
         }
         const double scatter = s.sigma_s_per_um + flake_rate;
         if (!(scatter > 0.0)) return false;  // a pure absorber
@@ -395,7 +463,12 @@ struct Walker {
             v = around(v, sampleHgCos(g, rng.uniform()), 2.0 * kPi * rng.uniform());
             if (path_class == kClassBeamFlake && s.layer == beam_flake_layer) prefix_flake = true;
             if (flake_then_top && s.layer == beam_flake_layer) prefix_flake_top = true;
+            const bool ends = tiled(s.layer) && classTwoPrefixAt(s.layer);
             smoothChange();
+            if (ends) {
+                end_state = 1;
+                end_layer = s.layer;
+            }
         } else {
             u -= s.sigma_s_per_um;
             std::size_t k = 0;
@@ -434,7 +507,7 @@ struct Walker {
             }
             for (std::size_t k = 0; k < chains.size(); ++k)
                 brdf_out[k] += weight * stack.lambert_albedo / kPi * chains[k].lambert;
-            if (connection_rng != nullptr) {
+            if (connection_rng != nullptr && settings.cone_direct) {
                 const double emitted = weight * stack.lambert_albedo / kPi;
                 coneNextEvent(s, [emitted](const Vec3& /*u*/) { return emitted; });
             }

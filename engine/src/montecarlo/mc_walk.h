@@ -25,8 +25,12 @@ struct WalkSettings {
     // pigment vertex in that flake's layer (the reflected beams' part), 16
     // instead of 2 when the beam's reflection off an explicit flake was followed
     // by the internal reflection at the paint's top and then a pigment vertex
-    // in that flake's layer (the top images' part).
-    unsigned histogram_other = 31;
+    // in that flake's layer (the top images' part), 32 instead of 2 when the
+    // path ends with a pigment vertex in a tiled layer, one reflection off a
+    // flake of that layer and the way out (the forward flake images' part,
+    // flake_images), 64 the same with the internal reflection at the paint's
+    // top between the vertex and the flake.
+    unsigned histogram_other = 127;
     // Score classes Smooth and BeamFlake by connections (explicit flakes only; the
     // caller then leaves them out of histogram_classes).
     bool connections = false;
@@ -44,6 +48,14 @@ struct WalkSettings {
     bool reflected_beams = false;
     // And to its images off a flake and then the paint's top (McSettings::top_images).
     bool top_images = false;
+    // Connections (forward): the direct next-event estimate from pigment and
+    // Lambertian vertices into each cone (off only to isolate a part in tests:
+    // McSettings::connection_parts).
+    bool cone_direct = true;
+    // Connections (forward): pigment vertices of class-2 prefixes (see
+    // histogram_other) also connect to each cone through one flake of their
+    // layer, and through the top and then such a flake (McSettings::flake_images).
+    bool flake_images = false;
 };
 
 // Projection of what escapes on the fast model's basis (mc_table.h): the

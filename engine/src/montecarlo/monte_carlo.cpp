@@ -244,8 +244,11 @@ public:
         m_walk.histogram_classes = m_histogram_classes;
         m_walk.reflected_beams = m_reverse && settings.reflected_beams;
         m_walk.top_images = m_reverse && settings.top_images;
+        m_walk.flake_images = m_azimuths && settings.flake_images && (settings.connection_parts & 16U) != 0U;
+        m_walk.cone_direct = m_nee_on;
         m_walk.histogram_other = settings.histogram_other & (m_reverse ? ~4U : ~0U) & (m_delta ? ~1U : ~0U) &
-                                 (m_walk.reflected_beams ? ~8U : ~0U) & (m_walk.top_images ? ~16U : ~0U);
+                                 (m_walk.reflected_beams ? ~8U : ~0U) & (m_walk.top_images ? ~16U : ~0U) &
+                                 (m_walk.flake_images ? ~(32U | 64U) : ~0U);
         m_walk.connections = m_connections;
         m_walk.connection_weight = 1.0 / m_connection_fraction;
         m_walk.split_branches = settings.explicit_flakes && settings.split_branches;
@@ -497,7 +500,9 @@ public:
                 if (m_azimuths) {
                     const double u = connection_rng.uniform();
                     for (std::size_t k = 0; k < m_exits; ++k) {
-                        nee_weights[k] = m_nee_on && u < m_nee_fraction[k] ? 1.0 / m_nee_fraction[k] : 0.0;
+                        nee_weights[k] = (m_nee_on || m_walk.flake_images) && u < m_nee_fraction[k]
+                                             ? 1.0 / m_nee_fraction[k]
+                                             : 0.0;
                         connect = connect || nee_weights[k] > 0.0;
                     }
                     std::fill(nee.begin(), nee.end(), 0.0);

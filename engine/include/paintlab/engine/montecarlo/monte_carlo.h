@@ -183,6 +183,18 @@ struct McSettings {
     // bit 16) instead of the histogram: at the flop they were most of what the
     // histogram had left (docs/PERFORMANCE.md).
     bool top_images = true;
+    // Explicit flakes with connections and glint_azimuths: the forward
+    // next-event connections from a pigment vertex in a flake layer also reach
+    // each cone through one mirror reflection off a flake of that layer
+    // (straight, or after the top's internal reflection), for the paths whose
+    // prefix no other walk takes (histogram_other bit 2): by reciprocity the
+    // cone direction's images off the flakes, as reflected_beams and top_images
+    // (mc_connection.h, reflectedBeams). It scores the paths ending pigment ->
+    // flake -> cone and pigment -> top -> flake -> cone after chains such as
+    // beam -> flake -> flake (histogram_other bits 32 and 64) instead of the
+    // histogram: the last path the histogram found at 45as110 in the demo was
+    // one of them (docs/PERFORMANCE.md).
+    bool flake_images = true;
     // Explicit flakes with connections: the paths of class Other without a
     // smooth vertex (chains of flake and internal reflections from the beam)
     // are scored by delta-chain walks (mc_walk.h, traceDeltaChains): forward
@@ -195,8 +207,9 @@ struct McSettings {
     // Diagnostics for error budgets: with connections and glint_azimuths, the parts that run (bit
     // mask): 1 next-event from smooth vertices, 2 the beam's single flake
     // reflections (glints), 4 the reverse walks. A part left out is not scored at
-    // all (the histogram does not take it over); 8 the delta-chain walks.
-    unsigned connection_parts = 15;
+    // all (the histogram does not take it over); 8 the delta-chain walks, 16
+    // the forward flake images (flake_images).
+    unsigned connection_parts = 31;
     // Diagnostics for error budgets: bit mask of the path classes whose
     // escapes the histogram scores (1 unscattered beam, 2 the beam's first
     // reflection off an explicit flake, 4 last direction change a pigment,
@@ -213,8 +226,12 @@ struct McSettings {
     // reflected_beams, scored by the reverse walks), 16 instead of 2 when the
     // first change was that reflection, the second the internal reflection at
     // the paint's top and the third a pigment vertex in the flake's layer (with
-    // top_images, scored by the reverse walks).
-    unsigned histogram_other = 31;
+    // top_images, scored by the reverse walks), 32 instead of 2 when the path
+    // ends with a pigment vertex in a flake layer, one reflection off a flake
+    // of that layer and the way out, 64 the same with the top's internal
+    // reflection between the vertex and the flake (with flake_images, scored
+    // by the forward connections).
+    unsigned histogram_other = 127;
 };
 
 struct Estimate {
