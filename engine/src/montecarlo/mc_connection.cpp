@@ -285,6 +285,33 @@ TiltIndex tiltIndex(const FlakeTile& tile) {
     });
     TiltIndex index;
     for (std::uint32_t i : order) index.tilt.push_back(tilt[i]);
+    // The lateral grid: cells about a flake diameter wide (a query's box is
+    // then covered with little waste), each cell's flakes in tilt order.
+    const double L = tile.sideUm();
+    for (const auto& f : flakes) index.max_radius_um = std::max(index.max_radius_um, f.radius_um);
+    index.cells =
+        static_cast<int>(std::clamp(std::floor(L / std::max(2.0 * index.max_radius_um, 1e-9)), 1.0, 1024.0));
+    index.cell_um = L / index.cells;
+    const auto cell_of = [&](std::uint32_t i) {
+        const auto c = [&](double a) {
+            return std::clamp(static_cast<int>(std::floor(a / index.cell_um)), 0, index.cells - 1);
+        };
+        return static_cast<std::size_t>(c(flakes[i].centre.y)) * static_cast<std::size_t>(index.cells) +
+               static_cast<std::size_t>(c(flakes[i].centre.x));
+    };
+    const std::size_t cell_count =
+        static_cast<std::size_t>(index.cells) * static_cast<std::size_t>(index.cells);
+    index.cell_start.assign(cell_count + 1, 0);
+    for (std::uint32_t i : order) ++index.cell_start[cell_of(i) + 1];
+    for (std::size_t c = 0; c < cell_count; ++c) index.cell_start[c + 1] += index.cell_start[c];
+    index.cell_flakes.resize(order.size());
+    index.cell_tilts.resize(order.size());
+    std::vector<std::uint32_t> fill(index.cell_start.begin(), index.cell_start.end() - 1);
+    for (std::uint32_t i : order) {  // ascending tilt, so each cell stays sorted
+        const std::uint32_t at = fill[cell_of(i)]++;
+        index.cell_flakes[at] = i;
+        index.cell_tilts[at] = tilt[i];
+    }
     index.order = std::move(order);
     return index;
 }
@@ -590,6 +617,82 @@ template <class Hit> void columnsHolding(const PlacedFlake& flake, const Vec3& r
 
 }  // namespace
 
+namespace {
+
+// The flakes a reflected column can reach a point from: those with tilt up
+// to tilt_cut whose centre lies within reach_um of (x, y) laterally (periodic),
+// from the grid, and every steeper one; each flake once. reach_um infinite (or
+// over half the tile): every flake.
+template <class Visit> std::size_t visitCandidates(const TiltIndex& index, std::size_t flake_count, double L,
+                                                   double x, double y, double tilt_cut, double reach_um,
+                                                   const Visit& visit) {
+    if (!(reach_um < 0.5 * L) || index.cells <= 0) {
+        for (std::size_t i = 0; i < flake_count; ++i) visit(i);
+        return flake_count;
+    }
+    std::size_t visited = 0;
+    const int n = index.cells;
+    const auto range = [&](double c, int& lo, int& count) {
+        lo = static_cast<int>(std::floor((c - reach_um) / index.cell_um));
+        count = std::min(n, static_cast<int>(std::floor((c + reach_um) / index.cell_um)) - lo + 1);
+    };
+    int x0 = 0;
+    int nx = 0;
+    int y0 = 0;
+    int ny = 0;
+    range(x, x0, nx);
+    range(y, y0, ny);
+    const auto wrap = [n](int c) { return ((c % n) + n) % n; };
+    for (int iy = 0; iy < ny; ++iy) {
+        const auto row = static_cast<std::size_t>(wrap(y0 + iy)) * static_cast<std::size_t>(n);
+        for (int ix = 0; ix < nx; ++ix) {
+            const std::size_t cell = row + static_cast<std::size_t>(wrap(x0 + ix));
+            for (std::uint32_t k = index.cell_start[cell]; k < index.cell_start[cell + 1]; ++k) {
+                if (index.cell_tilts[k] > tilt_cut) break;
+                visit(index.cell_flakes[k]);
+                ++visited;
+            }
+        }
+    }
+    const auto steep = std::upper_bound(index.tilt.begin(), index.tilt.end(), tilt_cut) - index.tilt.begin();
+    for (auto k = static_cast<std::size_t>(steep); k < index.order.size(); ++k) visit(index.order[k]);
+    return visited + (index.order.size() - static_cast<std::size_t>(steep));
+}
+
+// The tilt cut for a beam at polar angle theta_b (in the layer) that makes
+// visitCandidates cheapest: a flake of tilt tau sends the beam at most
+// theta_b + 2 tau from the vertical, so below the cut the lateral reach is
+// reach(theta_b + 2 tau_cut) (infinite: no bound); a few cuts are costed by
+// the flakes they would visit (steep ones all, the others over the box).
+struct CandidateCut {
+    double tilt_cut = std::numbers::pi;
+    double reach_um = std::numeric_limits<double>::infinity();
+};
+template <class Reach>
+CandidateCut cheapestCut(const TiltIndex& index, double L, double theta_b, const Reach& reach) {
+    CandidateCut best;
+    const auto all = static_cast<double>(index.order.size());
+    double best_cost = all;
+    for (const double limit_deg : {55.0, 65.0, 72.0, 78.0, 82.0, 85.0, 87.5}) {
+        const double theta_max = limit_deg * std::numbers::pi / 180.0;
+        if (theta_max <= theta_b) continue;
+        const double cut = 0.5 * (theta_max - theta_b);
+        const double r = reach(theta_max);
+        if (!(r < 0.5 * L)) continue;
+        const auto gentle = static_cast<double>(std::upper_bound(index.tilt.begin(), index.tilt.end(), cut) -
+                                                index.tilt.begin());
+        const double side = std::min(1.0, (2.0 * r + 2.0 * index.cell_um) / L);
+        const double cost = (all - gentle) + gentle * side * side;
+        if (cost < best_cost) {
+            best_cost = cost;
+            best = {cut, r};
+        }
+    }
+    return best;
+}
+
+}  // namespace
+
 double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
                       double depth, double x, double y, const Vec3& v, const Vec3& beam_top,
                       BeamImages images, std::int64_t* rays) {
@@ -603,99 +706,136 @@ double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tile
     if (!refractPlanar(beam_top, stack.slices.front().n, s.n, beam) || !(beam.z < 0.0)) return 0.0;
     const double L = tile.sideUm();
     const Vec3 z{x, y, -depth};
-    // The top images: the slices above the layer (a layer's slices are contiguous) and its top.
+    // The layer's slices (contiguous), the slices above it and its top.
     std::size_t first = j;
     while (first > 0 && stack.slices[first - 1].layer == s.layer) --first;
+    std::size_t last = j;
+    while (last + 1 < stack.slices.size() && stack.slices[last + 1].layer == s.layer) ++last;
     const std::span<const Slice> above = std::span(stack.slices).first(first);
     const double layer_top_um = stack.slices[first].top_um;
+    const double layer_um = stack.slices[last].bottom_um - layer_top_um;
     const double n_top = stack.slices.front().n;
     const auto& flakes = tile.flakes();
     double sum = 0.0;
-    for (std::size_t i = 0; i < flakes.size(); ++i) {
+    // The point z lit straight from flake i, along u = -r.
+    const auto offFlake = [&](std::size_t i) {
         const PlacedFlake& flake = flakes[i];
         const Vec3& n = flake.normal;
         const double bn = dot(beam, n);
         const Vec3 r{beam.x - 2.0 * bn * n.x, beam.y - 2.0 * bn * n.y, beam.z - 2.0 * bn * n.z};
         const double rn = dot(r, n);
-        if (std::abs(r.z) < 1e-9 || std::abs(rn) < 1e-12) continue;
-        // R(|beam.n|) on the first column that holds the point (a metal's is a complex Fresnel).
-        double R = -1.0;
-        const auto reflectance = [&]() {
-            if (R < 0.0) R = lf.kinds[static_cast<std::size_t>(flake.kind)].R(std::abs(bn));
-            return R;
-        };
-        if (images.off_flakes) {
-            // The point z lit straight from the flake, along u = -r.
-            const Vec3 u{-r.x, -r.y, -r.z};
-            columnsHolding(flake, r, rn, z, L, [&](double t, const Vec3& /*rel*/) {
-                // The point on the flake (lateral coordinates continued from z's).
-                const double px = x - t * r.x;
-                const double py = y - t * r.y;
-                const double p_depth = depth + t * r.z;
-                const std::size_t jp = sliceAt(stack, s.layer, p_depth);
-                if (jp == stack.slices.size() || !(reflectance() > 0.0)) return;
-                const double phase = s.kernel(v, u);
-                if (!(phase > 0.0)) return;
-                const double to_flake =
-                    transmittanceToFlake(lf, x, y, depth, u, t, i, rays) *
-                    std::exp(-layerOpticalDepth(stack, s.layer, depth, p_depth, std::abs(r.z)));
-                if (!(to_flake > 0.0)) return;
-                const double to_top =
-                    straightToAmbient(stack, tiles, jp, p_depth, px, py, {-beam.x, -beam.y, -beam.z}, rays);
-                sum += phase * to_flake * R * to_top;
-            });
+        if (std::abs(r.z) < 1e-9 || std::abs(rn) < 1e-12) return;
+        const Vec3 u{-r.x, -r.y, -r.z};
+        columnsHolding(flake, r, rn, z, L, [&](double t, const Vec3& /*rel*/) {
+            // The point on the flake (lateral coordinates continued from z's).
+            const double px = x - t * r.x;
+            const double py = y - t * r.y;
+            const double p_depth = depth + t * r.z;
+            const std::size_t jp = sliceAt(stack, s.layer, p_depth);
+            if (jp == stack.slices.size()) return;
+            // R(|beam.n|) (a metal's is a complex Fresnel).
+            const double R = lf.kinds[static_cast<std::size_t>(flake.kind)].R(std::abs(bn));
+            const double phase = s.kernel(v, u);
+            if (!(R > 0.0) || !(phase > 0.0)) return;
+            const double to_flake =
+                transmittanceToFlake(lf, x, y, depth, u, t, i, rays) *
+                std::exp(-layerOpticalDepth(stack, s.layer, depth, p_depth, std::abs(r.z)));
+            if (!(to_flake > 0.0)) return;
+            const double to_top =
+                straightToAmbient(stack, tiles, jp, p_depth, px, py, {-beam.x, -beam.y, -beam.z}, rays);
+            sum += phase * to_flake * R * to_top;
+        });
+    };
+    // The column flake i reflects upwards, back down from the top's internal
+    // reflection: z is lit along (r.x, r.y, -r.z), so from z the light is seen
+    // along u = (-r.x, -r.y, r.z). Unfolded at the top, the column is
+    // straight: z's image at the layer's top is shifted by the lateral run of
+    // u up from z to the paint's top and down again through the slices above
+    // (Snell in each).
+    const auto offFlakeThenTop = [&](std::size_t i) {
+        const PlacedFlake& flake = flakes[i];
+        const Vec3& n = flake.normal;
+        const double bn = dot(beam, n);
+        const Vec3 r{beam.x - 2.0 * bn * n.x, beam.y - 2.0 * bn * n.y, beam.z - 2.0 * bn * n.z};
+        const double rn = dot(r, n);
+        if (!(r.z > 1e-9) || std::abs(rn) < 1e-12) return;
+        const Vec3 u{-r.x, -r.y, r.z};
+        const double sin2 = r.x * r.x + r.y * r.y;  // in this layer
+        double run = (depth - layer_top_um) / r.z;  // lateral run per unit of (-r.x, -r.y)
+        for (const Slice& a : above) {
+            const double ratio = s.n / a.n;
+            const double cos2 = 1.0 - sin2 * ratio * ratio;
+            if (!(cos2 > 1e-12)) return;  // totally reflected on the way up: not this path class
+            run += 2.0 * (a.bottom_um - a.top_um) * ratio / std::sqrt(cos2);
         }
-        if (images.off_flake_then_top && r.z > 0.0) {
-            // The column the flake reflects upwards, back down from the top's
-            // internal reflection: z is lit along (r.x, r.y, -r.z), so from z
-            // the light is seen along u = (-r.x, -r.y, r.z). Unfolded at the
-            // top, the column is straight: z's image at the layer's top is
-            // shifted by the lateral run of u up from z to the paint's top and
-            // down again through the slices above (Snell in each).
-            const Vec3 u{-r.x, -r.y, r.z};
-            const double sin2 = r.x * r.x + r.y * r.y;  // in this layer
-            double run = (depth - layer_top_um) / r.z;  // lateral run per unit of (-r.x, -r.y)
-            bool blocked = false;
-            for (const Slice& a : above) {
-                const double ratio = s.n / a.n;
-                const double cos2 = 1.0 - sin2 * ratio * ratio;
-                if (!(cos2 > 1e-12)) {
-                    blocked = true;  // totally reflected on the way up: not this path class
-                    break;
-                }
-                run += 2.0 * (a.bottom_um - a.top_um) * ratio / std::sqrt(cos2);
-            }
-            if (blocked) continue;
-            const Vec3 image{x - run * r.x, y - run * r.y, -layer_top_um};
-            columnsHolding(flake, r, rn, image, L, [&](double t, const Vec3& rel) {
-                if (!tile.onFlake(i, rel)) return;
-                const double px = image.x - t * r.x;
-                const double py = image.y - t * r.y;
-                const double p_depth = layer_top_um + t * r.z;
-                const std::size_t jp = sliceAt(stack, s.layer, p_depth);
-                if (jp == stack.slices.size() || !(reflectance() > 0.0)) return;
-                const double phase = s.kernel(v, u);
-                if (!(phase > 0.0)) return;
-                // From z up to the top, the top's reflectance, from the flake up to the
-                // top (the same straight segment as from the top down to it).
-                const TopArrival down = straightToTop(stack, tiles, j, depth, x, y, u, rays);
-                if (!(down.T > 0.0)) return;
-                const double F = std::abs(stack.ambient_n - n_top) < 1e-12
-                                     ? 0.0
-                                     : fresnelDielectric(down.u.z, stack.ambient_n / n_top);
-                if (!(F > 0.0)) return;
-                const TopArrival up = straightToTop(stack, tiles, jp, p_depth, px, py, r, rays);
-                if (!(up.T > 0.0)) return;
-                const double to_top =
-                    straightToAmbient(stack, tiles, jp, p_depth, px, py, {-beam.x, -beam.y, -beam.z}, rays);
-                sum += phase * down.T * F * up.T * R * to_top;
+        const Vec3 image{x - run * r.x, y - run * r.y, -layer_top_um};
+        columnsHolding(flake, r, rn, image, L, [&](double t, const Vec3& rel) {
+            if (!tile.onFlake(i, rel)) return;
+            const double px = image.x - t * r.x;
+            const double py = image.y - t * r.y;
+            const double p_depth = layer_top_um + t * r.z;
+            const std::size_t jp = sliceAt(stack, s.layer, p_depth);
+            if (jp == stack.slices.size()) return;
+            const double R = lf.kinds[static_cast<std::size_t>(flake.kind)].R(std::abs(bn));
+            const double phase = s.kernel(v, u);
+            if (!(R > 0.0) || !(phase > 0.0)) return;
+            // From z up to the top, the top's reflectance, from the flake up to the
+            // top (the same straight segment as from the top down to it).
+            const TopArrival down = straightToTop(stack, tiles, j, depth, x, y, u, rays);
+            if (!(down.T > 0.0)) return;
+            const double F = std::abs(stack.ambient_n - n_top) < 1e-12
+                                 ? 0.0
+                                 : fresnelDielectric(down.u.z, stack.ambient_n / n_top);
+            if (!(F > 0.0)) return;
+            const TopArrival up = straightToTop(stack, tiles, jp, p_depth, px, py, r, rays);
+            if (!(up.T > 0.0)) return;
+            const double to_top =
+                straightToAmbient(stack, tiles, jp, p_depth, px, py, {-beam.x, -beam.y, -beam.z}, rays);
+            sum += phase * down.T * F * up.T * R * to_top;
+        });
+    };
+    // Which flakes to test (TiltIndex's grid; without it, all). A column from a
+    // flake tilted by tau leaves at most theta_max = theta_b + 2 tau from the
+    // vertical, and both its ends lie in the layer (its top for the top
+    // images, which then also run twice through each slice above).
+    std::size_t tested = 0;
+    const double theta_b = std::acos(std::clamp(-beam.z, 0.0, 1.0));
+    const auto tanOf = [](double sin_theta) {
+        return sin_theta < 1.0 ? sin_theta / std::sqrt(1.0 - sin_theta * sin_theta)
+                               : std::numeric_limits<double>::infinity();
+    };
+    if (images.off_flakes) {
+        if (lf.tilts == nullptr) {
+            for (std::size_t i = 0; i < flakes.size(); ++i) offFlake(i);
+            tested += flakes.size();
+        } else {
+            const TiltIndex& index = *lf.tilts;
+            const CandidateCut cut = cheapestCut(index, L, theta_b, [&](double theta_max) {
+                return layer_um * std::tan(theta_max) + index.max_radius_um;
             });
+            tested += visitCandidates(index, flakes.size(), L, x, y, cut.tilt_cut, cut.reach_um, offFlake);
+        }
+    }
+    if (images.off_flake_then_top) {
+        if (lf.tilts == nullptr) {
+            for (std::size_t i = 0; i < flakes.size(); ++i) offFlakeThenTop(i);
+            tested += flakes.size();
+        } else {
+            const TiltIndex& index = *lf.tilts;
+            const CandidateCut cut = cheapestCut(index, L, theta_b, [&](double theta_max) {
+                double reach = 2.0 * layer_um * std::tan(theta_max) + index.max_radius_um;
+                for (const Slice& a : above)
+                    reach += 2.0 * a.thicknessUm() * tanOf(std::sin(theta_max) * s.n / a.n);
+                return reach;
+            });
+            tested +=
+                visitCandidates(index, flakes.size(), L, x, y, cut.tilt_cut, cut.reach_um, offFlakeThenTop);
         }
     }
     // The plane tests in the cost model of the adaptive fractions (counted as
     // tile intersections): one test costs ~1/64 of a traced ray (a guess from
     // their operation counts, not measured; it only steers the rates).
-    if (rays != nullptr) *rays += static_cast<std::int64_t>(flakes.size() / 64);
+    if (rays != nullptr) *rays += static_cast<std::int64_t>(tested / 64);
     return sum;
 }
 

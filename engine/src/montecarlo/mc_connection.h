@@ -177,6 +177,16 @@ void scoreGlints(const PaintStack& stack, std::span<const LayerFlakes> tiles,
 struct TiltIndex {
     std::vector<std::uint32_t> order;  // flake indices by ascending tilt
     std::vector<double> tilt;          // their tilts (radians), ascending
+    // A lateral grid of the same flakes (reflectedBeams' candidates): cells x
+    // cells squares of side cell_um over the tile, cell c = row * cells + column
+    // holding cell_flakes[cell_start[c] .. cell_start[c + 1]) (by the centre's
+    // position), each cell by ascending tilt (cell_tilts).
+    int cells = 0;
+    double cell_um = 0.0;
+    double max_radius_um = 0.0;
+    std::vector<std::uint32_t> cell_start;
+    std::vector<std::uint32_t> cell_flakes;
+    std::vector<double> cell_tilts;
 };
 TiltIndex tiltIndex(const FlakeTile& tile);
 
