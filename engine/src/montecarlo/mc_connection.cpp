@@ -718,12 +718,21 @@ double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tile
     const auto& flakes = tile.flakes();
     double sum = 0.0;
     // The point z lit straight from flake i, along u = -r.
-    const auto offFlake = [&](std::size_t i) {
-        const PlacedFlake& flake = flakes[i];
+    // The beam's mirror direction r off a flake, with beam.n and r.n.
+    struct Mirror {
+        Vec3 r;
+        double bn = 0.0;
+        double rn = 0.0;
+    };
+    const auto mirror = [&beam](const PlacedFlake& flake) {
         const Vec3& n = flake.normal;
         const double bn = dot(beam, n);
         const Vec3 r{beam.x - 2.0 * bn * n.x, beam.y - 2.0 * bn * n.y, beam.z - 2.0 * bn * n.z};
-        const double rn = dot(r, n);
+        return Mirror{r, bn, dot(r, n)};
+    };
+    const auto offFlake = [&](std::size_t i) {
+        const PlacedFlake& flake = flakes[i];
+        const auto [r, bn, rn] = mirror(flake);
         if (std::abs(r.z) < 1e-9 || std::abs(rn) < 1e-12) return;
         const Vec3 u{-r.x, -r.y, -r.z};
         columnsHolding(flake, r, rn, z, L, [&](double t, const Vec3& /*rel*/) {
@@ -754,10 +763,7 @@ double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tile
     // (Snell in each).
     const auto offFlakeThenTop = [&](std::size_t i) {
         const PlacedFlake& flake = flakes[i];
-        const Vec3& n = flake.normal;
-        const double bn = dot(beam, n);
-        const Vec3 r{beam.x - 2.0 * bn * n.x, beam.y - 2.0 * bn * n.y, beam.z - 2.0 * bn * n.z};
-        const double rn = dot(r, n);
+        const auto [r, bn, rn] = mirror(flake);
         if (!(r.z > 1e-9) || std::abs(rn) < 1e-12) return;
         const Vec3 u{-r.x, -r.y, r.z};
         const double sin2 = r.x * r.x + r.y * r.y;  // in this layer

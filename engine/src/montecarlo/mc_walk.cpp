@@ -239,11 +239,11 @@ struct Walker {
         return u < R + f.T(c);
     }
 
-    // Connections: next-event estimation from a smooth vertex in slice j into
-    // a direction uniform in each cone, through the tiles (mc_connection.h);
-    // `emitted(u)` is the vertex's scattered weight per sr towards u (in the
-    // slice) over the cosine's projection factor.
-    template <class Emitted> void coneNextEvent(const Slice& s, const Emitted& emitted) {
+    // Connections into the cones: for each cone this path connects to, a
+    // direction w uniform in it (u: refracted into slice s) and score(w, u),
+    // the vertex's estimate towards w before the connection weight, the
+    // radiance law (n_0 / n)^2 and the cone's factor w_z Omega / Omega_proj.
+    template <class Score> void eachCone(const Slice& s, const Score& score) {
         const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
         for (std::size_t k = 0; k < bins.size(); ++k) {
             const double connection_weight =
@@ -254,47 +254,47 @@ struct Walker {
             const Vec3 w = sampleInCone(bin, u1, connection_rng->uniform());
             Vec3 u;
             if (!(w.z > 0.0) || !refractPlanar(w, stack.ambient_n, s.n, u)) continue;
-            const double value = emitted(u);
+            const double value = score(w, u);
             if (!(value > 0.0)) continue;
-            ++nee_attempts;
-            const double t = straightToAmbient(stack, explicit_flakes, j, depth, x, y, u, &nee_rays);
             (nee_out.empty() ? brdf_out : nee_out)[k] +=
-                connection_weight * value * t * scale * w.z * bin.solid_angle / bin.projected_solid_angle;
+                connection_weight * value * scale * w.z * bin.solid_angle / bin.projected_solid_angle;
         }
+    }
+
+    // Connections: next-event estimation from a smooth vertex in slice j into
+    // a direction uniform in each cone, through the tiles (mc_connection.h);
+    // `emitted(u)` is the vertex's scattered weight per sr towards u (in the
+    // slice) over the cosine's projection factor.
+    template <class Emitted> void coneNextEvent(const Slice& s, const Emitted& emitted) {
+        eachCone(s, [&](const Vec3& /*w*/, const Vec3& u) {
+            const double value = emitted(u);
+            if (!(value > 0.0)) return 0.0;
+            ++nee_attempts;
+            return value * straightToAmbient(stack, explicit_flakes, j, depth, x, y, u, &nee_rays);
+        });
     }
 
     // Connections through one flake (WalkSettings::flake_images): from a pigment
     // vertex in slice j (a tiled layer), for a direction w uniform in each cone
-    // (u in the top slice), the light that reaches w after one mirror reflection
-    // off a flake of this layer, straight or by way of the top's internal
-    // reflection: by reciprocity the beam -u's images off those flakes seen from
-    // the vertex (mc_connection.h, reflectedBeams), which a planar flake makes
-    // exact. `factor` is the vertex's weight / (sigma q); its scattered weight
-    // per sr towards the flake is factor times the kernel (reflectedBeams
-    // includes it), and the 1 / u_z of a direct connection is that of the last
-    // leg (mirroring keeps the volume element), as for the reverse walks' images.
+    // (u_top in the top slice), the light that reaches w after one mirror
+    // reflection off a flake of this layer, straight or by way of the top's
+    // internal reflection: by reciprocity the beam -u_top's images off those
+    // flakes seen from the vertex (mc_connection.h, reflectedBeams), which a
+    // planar flake makes exact. `factor` is the vertex's weight / (sigma q);
+    // its scattered weight per sr towards the flake is factor times the kernel
+    // (reflectedBeams includes it), and the 1 / u_z of a direct connection is
+    // that of the last leg (mirroring keeps the volume element), as for the
+    // reverse walks' images.
     void coneFlakeImages(const Slice& s, double factor) {
-        const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
         const double n_top = stack.slices.front().n;
-        for (std::size_t k = 0; k < bins.size(); ++k) {
-            const double connection_weight =
-                nee_weights.empty() ? settings.connection_weight : nee_weights[k];
-            if (!(connection_weight > 0.0)) continue;
-            const HistogramBin& bin = bins[k];
-            const double u1 = connection_rng->uniform();
-            const Vec3 w = sampleInCone(bin, u1, connection_rng->uniform());
-            Vec3 u;
+        eachCone(s, [&](const Vec3& w, const Vec3& u) {
             Vec3 u_top;
-            if (!(w.z > 0.0) || !refractPlanar(w, stack.ambient_n, s.n, u) ||
-                !refractPlanar(w, stack.ambient_n, n_top, u_top) || !(u.z > 0.0))
-                continue;
+            if (!(u.z > 0.0) || !refractPlanar(w, stack.ambient_n, n_top, u_top)) return 0.0;
             ++nee_attempts;
-            const double images = reflectedBeams(stack, explicit_flakes, j, depth, x, y, v,
-                                                 {-u_top.x, -u_top.y, -u_top.z}, {true, true}, &nee_rays);
-            if (!(images > 0.0)) continue;
-            (nee_out.empty() ? brdf_out : nee_out)[k] += connection_weight * factor / u.z * images * scale *
-                                                         w.z * bin.solid_angle / bin.projected_solid_angle;
-        }
+            return factor / u.z *
+                   reflectedBeams(stack, explicit_flakes, j, depth, x, y, v, {-u_top.x, -u_top.y, -u_top.z},
+                                  {true, true}, &nee_rays);
+        });
     }
 
     // Explicit flakes of the current layer along the free path t (medium) and

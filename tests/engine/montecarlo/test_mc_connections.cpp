@@ -351,9 +351,9 @@ TEST(MonteCarloConnections, FlakeImagesMatchTheHistogramOnTheirPathClass) {
     // (chains of two reflections before a pigment vertex are common): the
     // histogram restricted to those two bits against the flake images alone
     // (connection_parts 16). The top's part is ~25 % of it here (measured
-    // 2026-12-03: 0.00058 of which 0.00044 direct), several errors, so it is
-    // tested too. Statistics as above (kZ = 4, 16 batches each, independent
-    // seeds; the part resolved by the histogram, mean > 5 errors).
+    // 2026-12-03: 0.00058 of which 0.00044 direct); against ~4 % errors on each
+    // side, losing it would be z ~ 4.5 (estimated, not run). Statistics as above (kZ = 4, 16 batches each,
+    // independent seeds; the part resolved by the histogram, mean > 5 errors).
     const Recipe r =
         mirrorFlakesUnderClearCoat({1.55, 10.0, 0.5}, 0.12, 25.0, test::pigment(0.01, 5.0, 2.0, 0.2));
     const std::vector<mc::IncidenceRequest> req{
