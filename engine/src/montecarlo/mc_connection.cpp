@@ -732,7 +732,10 @@ double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tile
     };
     const auto offFlake = [&](std::size_t i) {
         const PlacedFlake& flake = flakes[i];
-        const auto [r, bn, rn] = mirror(flake);
+        const Mirror m = mirror(flake);
+        const Vec3& r = m.r;
+        const double bn = m.bn;
+        const double rn = m.rn;
         if (std::abs(r.z) < 1e-9 || std::abs(rn) < 1e-12) return;
         const Vec3 u{-r.x, -r.y, -r.z};
         columnsHolding(flake, r, rn, z, L, [&](double t, const Vec3& /*rel*/) {
@@ -763,7 +766,10 @@ double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tile
     // (Snell in each).
     const auto offFlakeThenTop = [&](std::size_t i) {
         const PlacedFlake& flake = flakes[i];
-        const auto [r, bn, rn] = mirror(flake);
+        const Mirror m = mirror(flake);
+        const Vec3& r = m.r;
+        const double bn = m.bn;
+        const double rn = m.rn;
         if (!(r.z > 1e-9) || std::abs(rn) < 1e-12) return;
         const Vec3 u{-r.x, -r.y, r.z};
         const double sin2 = r.x * r.x + r.y * r.y;  // in this layer
