@@ -50,7 +50,7 @@ struct McOptions {
     bool reject_overlaps = false;
     bool histogram_only = false;  // explicit flakes: no connections (the estimator before 2026-12)
     int tile_views = 32;          // explicit flakes: azimuths each tile is traced at
-    int batches = 8;
+    int batches = mc::McSettings{}.batches;
     bool table = false;     // mc: tabulate on the fast model's basis (mc_table.h)
     double step_deg = 5.0;  // mc --table: angular step of the written table
 };

@@ -67,10 +67,15 @@ struct Walker {
     unsigned path_class = kClassBeam;     // what the last direction change was (mc_connection.h)
     std::span<const double> nee_weights;  // per bin (empty: settings.connection_weight)
     std::span<double> nee_out;            // per bin (empty: brdf_out)
+    // Per bin, the factor (>= 1) on a pigment collision's chance to run the
+    // connections into it (PathContext::nee_boost); empty: 1.
+    std::span<const double> nee_boost = {};
     std::int64_t events = 0;
     std::int64_t rays = 0;
     std::int64_t nee_rays = 0;
     std::int64_t nee_attempts = 0;
+    std::int64_t image_calls = 0;   // flake-image connections (reflectedBeams) traced
+    std::int64_t image_rays = 0;    // their tile intersections and candidate tests
     bool delta_chain = true;        // no smooth vertex yet (WalkSettings::histogram_other)
     bool first_smooth = false;      // the first direction change was a smooth vertex
     int beam_flake_layer = -1;      // layer of the beam's first reflection (class BeamFlake)
@@ -114,6 +119,8 @@ struct Walker {
         branch.rays = 0;
         branch.nee_rays = 0;
         branch.nee_attempts = 0;
+        branch.image_calls = 0;
+        branch.image_rays = 0;
         branch.reverse_score = 0.0;
         const double escaped = branch.roulette() ? branch.run() : 0.0;
         escaped_extra += escaped + branch.escaped_extra;
@@ -122,6 +129,8 @@ struct Walker {
         rays += branch.rays;
         nee_rays += branch.nee_rays;
         nee_attempts += branch.nee_attempts;
+        image_calls += branch.image_calls;
+        image_rays += branch.image_rays;
         reverse_score += branch.reverse_score;
     }
 
@@ -243,11 +252,13 @@ struct Walker {
     // direction w uniform in it (u: refracted into slice s) and score(w, u),
     // the vertex's estimate towards w before the connection weight, the
     // radiance law (n_0 / n)^2 and the cone's factor w_z Omega / Omega_proj.
-    template <class Score> void eachCone(const Slice& s, const Score& score) {
+    // `cone_weight(k)`: this vertex's own factor on cone k's connection (0: none).
+    template <class Score, class ConeWeight>
+    void eachCone(const Slice& s, const Score& score, const ConeWeight& cone_weight) {
         const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
         for (std::size_t k = 0; k < bins.size(); ++k) {
             const double connection_weight =
-                nee_weights.empty() ? settings.connection_weight : nee_weights[k];
+                (nee_weights.empty() ? settings.connection_weight : nee_weights[k]) * cone_weight(k);
             if (!(connection_weight > 0.0)) continue;
             const HistogramBin& bin = bins[k];
             const double u1 = connection_rng->uniform();
@@ -265,13 +276,17 @@ struct Walker {
     // a direction uniform in each cone, through the tiles (mc_connection.h);
     // `emitted(u)` is the vertex's scattered weight per sr towards u (in the
     // slice) over the cosine's projection factor.
-    template <class Emitted> void coneNextEvent(const Slice& s, const Emitted& emitted) {
-        eachCone(s, [&](const Vec3& /*w*/, const Vec3& u) {
-            const double value = emitted(u);
-            if (!(value > 0.0)) return 0.0;
-            ++nee_attempts;
-            return value * straightToAmbient(stack, explicit_flakes, j, depth, x, y, u, &nee_rays);
-        });
+    template <class Emitted, class ConeWeight>
+    void coneNextEvent(const Slice& s, const Emitted& emitted, const ConeWeight& cone_weight) {
+        eachCone(
+            s,
+            [&](const Vec3& /*w*/, const Vec3& u) {
+                const double value = emitted(u);
+                if (!(value > 0.0)) return 0.0;
+                ++nee_attempts;
+                return value * straightToAmbient(stack, explicit_flakes, j, depth, x, y, u, &nee_rays);
+            },
+            cone_weight);
     }
 
     // Connections through one flake (WalkSettings::flake_images): from a pigment
@@ -285,16 +300,26 @@ struct Walker {
     // (reflectedBeams includes it), and the 1 / u_z of a direct connection is
     // that of the last leg (mirroring keeps the volume element), as for the
     // reverse walks' images.
-    void coneFlakeImages(const Slice& s, double factor) {
+    template <class ConeWeight>
+    void coneFlakeImages(const Slice& s, double factor, const ConeWeight& cone_weight) {
         const double n_top = stack.slices.front().n;
-        eachCone(s, [&](const Vec3& w, const Vec3& u) {
-            Vec3 u_top;
-            if (!(u.z > 0.0) || !refractPlanar(w, stack.ambient_n, n_top, u_top)) return 0.0;
-            ++nee_attempts;
-            return factor / u.z *
-                   reflectedBeams(stack, explicit_flakes, j, depth, x, y, v, {-u_top.x, -u_top.y, -u_top.z},
-                                  {true, true}, &nee_rays);
-        });
+        eachCone(
+            s,
+            [&](const Vec3& w, const Vec3& u) {
+                Vec3 u_top;
+                if (!(u.z > 0.0) || !refractPlanar(w, stack.ambient_n, n_top, u_top)) return 0.0;
+                ++image_calls;
+                return factor / u.z *
+                       reflectedBeams(stack, explicit_flakes, j, depth, x, y, v,
+                                      {-u_top.x, -u_top.y, -u_top.z}, {true, true}, &image_rays);
+            },
+            cone_weight);
+    }
+
+    // A pigment collision's chance to run cone k's connections: the share
+    // q = sigma_s / sigma of the collisions that scatter, times the cone's boost.
+    double coneCollisionRate(double q, std::size_t k) const {
+        return nee_boost.empty() ? q : std::min(1.0, q * nee_boost[k]);
     }
 
     // Explicit flakes of the current layer along the free path t (medium) and
@@ -409,12 +434,12 @@ struct Walker {
     void reverseReflectedBeams(const Slice& s, double factor) {
         Vec3 beam;
         if (!refractPlanar(reverse_target, stack.slices.front().n, s.n, beam) || !(beam.z > 0.0)) return;
-        ++nee_attempts;
+        ++image_calls;
         const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
         reverse_score += factor / beam.z * scale *
                          reflectedBeams(stack, explicit_flakes, j, depth, x, y, v,
                                         {-reverse_target.x, -reverse_target.y, -reverse_target.z},
-                                        {settings.reflected_beams, settings.top_images}, &nee_rays);
+                                        {settings.reflected_beams, settings.top_images}, &image_rays);
     }
 
     bool collide(const Slice& s, double sigma, double flake_rate) {
@@ -435,18 +460,33 @@ struct Walker {
         }
         scoreCollision(s, sigma);
         // Connections: the kernel of a tiled layer's slice is the pigments' alone
-        // (sigma_s HG), so the next event is drawn with probability q =
-        // sigma_s / sigma and weighted by 1 / q (unbiased). With absorbing
-        // pigments most collisions absorb by weighting and would cost six
-        // shadow rays each for next to nothing (the demo's carbon black: q ~ 1 %).
+        // (sigma_s HG), so cone k's next event is drawn with probability
+        // q_k = min(1, b_k sigma_s / sigma) and weighted by 1 / q_k (unbiased;
+        // one uniform for every cone, so the cones' draws nest). With absorbing
+        // pigments most collisions absorb by weighting: at b_k = 1 (the chance
+        // that the collision scatters) a connection costs six shadow rays per
+        // scattering, but the score is then zero on all but q of the
+        // collisions (the demo's carbon black: q ~ 0.5-3 %), and at the flop,
+        // where these connections are most of f, that thinning was most of
+        // the variance. The boosts b_k (nee_boost) trade the two per cone.
         if (connection_rng != nullptr && s.sigma_s_per_um > 0.0) {
             const double q = std::min(1.0, s.sigma_s_per_um / sigma);
-            if (connection_rng->uniform() < q) {
+            double q_max = q;
+            for (std::size_t k = 0; k < nee_boost.size(); ++k)
+                q_max = std::max(q_max, coneCollisionRate(q, k));
+            const double u_connect = connection_rng->uniform();
+            if (u_connect < q_max) {
+                const auto fired = [&](std::size_t k) {
+                    const double q_k = coneCollisionRate(q, k);
+                    return u_connect < q_k ? 1.0 / q_k : 0.0;
+                };
                 if (settings.cone_direct)
-                    coneNextEvent(s,
-                                  [&](const Vec3& u) { return weight * s.kernel(v, u) / (sigma * q * u.z); });
-                if (settings.flake_images && tiled(s.layer) && classTwoPrefixAt(s.layer))
-                    coneFlakeImages(s, weight / (sigma * q));
+                    coneNextEvent(
+                        s, [&](const Vec3& u) { return weight * s.kernel(v, u) / (sigma * u.z); }, fired);
+                // The flake images keep the unboosted chance q: they cost a search of
+                // the tile's flakes each, and are a small part of f where boosts pay.
+                if (settings.flake_images && u_connect < q && tiled(s.layer) && classTwoPrefixAt(s.layer))
+                    coneFlakeImages(s, weight / (sigma * q), [](std::size_t /*k*/) { return 1.0; });
             }
         }
         const double scatter = s.sigma_s_per_um + flake_rate;
@@ -509,7 +549,9 @@ struct Walker {
                 brdf_out[k] += weight * stack.lambert_albedo / kPi * chains[k].lambert;
             if (connection_rng != nullptr && settings.cone_direct) {
                 const double emitted = weight * stack.lambert_albedo / kPi;
-                coneNextEvent(s, [emitted](const Vec3& /*u*/) { return emitted; });
+                coneNextEvent(
+                    s, [emitted](const Vec3& /*u*/) { return emitted; },
+                    [](std::size_t /*k*/) { return 1.0; });
             }
             weight *= stack.lambert_albedo;
             smoothChange();
@@ -634,12 +676,14 @@ PathOutcome tracePath(const PathContext& context, Vec3 v, double weight, double 
                   0.0,
                   kClassBeam,
                   context.nee_weights,
-                  context.nee_out};
+                  context.nee_out,
+                  context.nee_boost};
     const double escaped = walker.run() + walker.escaped_extra;
     if (connect && !context.glints.empty())
         scoreGlints(context.stack, context.explicit_flakes, context.glints, context.bins,
                     context.settings.connection_weight, *connection_rng, f_out);
-    return {escaped, walker.transmitted, walker.events, walker.rays, walker.nee_rays, walker.nee_attempts};
+    return {escaped,         walker.transmitted,  walker.events,      walker.rays,
+            walker.nee_rays, walker.nee_attempts, walker.image_calls, walker.image_rays};
 }
 
 PathOutcome traceDeltaChains(const PathContext& context, Vec3 v, double weight, double x, double y,
@@ -697,7 +741,8 @@ ReverseOutcome traceReversePath(const PathContext& context, Vec3 v, double weigh
     walker.reverse = true;
     walker.reverse_target = target;
     walker.run();
-    return {walker.reverse_score, walker.events + walker.rays, walker.nee_rays + walker.nee_attempts};
+    return {walker.reverse_score, walker.events + walker.rays, walker.nee_rays + walker.nee_attempts,
+            walker.image_calls, walker.image_rays};
 }
 
 }  // namespace paintlab::mc

@@ -89,6 +89,11 @@ struct PathContext {
     std::span<const double> nee_weights;
     // Where the next-event connections' scores go (per bin); empty: f_out.
     std::span<double> nee_out;
+    // Per bin, b >= 1: a pigment collision runs the connections into it with
+    // probability min(1, b sigma_s / sigma) instead of sigma_s / sigma, the
+    // chance that it scatters (weighted by the inverse; mc_walk.cpp, collide);
+    // empty: 1 for all.
+    std::span<const double> nee_boost = {};
 };
 
 // What one path carries out of the paint (power per unit incident power),
@@ -100,6 +105,8 @@ struct PathOutcome {
     std::int64_t rays = 0;          // tile intersections of the walk itself
     std::int64_t nee_rays = 0;      // tile intersections of its next-event connections
     std::int64_t nee_attempts = 0;  // next-event connections traced (vertex x bin)
+    std::int64_t image_calls = 0;   // connections through one flake's mirror image (vertex x bin)
+    std::int64_t image_rays = 0;    // their tile intersections and candidate tests (reflectedBeams)
 };
 
 // Traces a path that has just been refracted into the top slice with
@@ -141,8 +148,10 @@ PathOutcome traceDeltaChains(const PathContext& context, Vec3 v, double weight, 
 // of those estimates (f(w, wi), 1/sr) and the work done. Never throws.
 struct ReverseOutcome {
     double f = 0.0;
-    std::int64_t walk_steps = 0;  // free paths + tile intersections of the walk
-    std::int64_t nee_steps = 0;   // tile intersections + attempts of its connections
+    std::int64_t walk_steps = 0;   // free paths + tile intersections of the walk
+    std::int64_t nee_steps = 0;    // tile intersections + attempts of its next-event connections
+    std::int64_t image_calls = 0;  // its connections to the beam's images (reflectedBeams)
+    std::int64_t image_rays = 0;   // their tile intersections and candidate tests
 };
 ReverseOutcome traceReversePath(const PathContext& context, Vec3 v, double weight, double x, double y,
                                 const Vec3& target, PathRng& rng, PathRng& connection_rng);

@@ -31,9 +31,10 @@ using Clock = std::chrono::steady_clock;
 // need besides the per-path entries: the raw next-event score of the paths
 // that ran it (unweighted by the fraction), the raw glint samples, and costs.
 struct ConeStats {
-    double nee_paths = 0.0;
-    double nee_s1 = 0.0;
-    double nee_s2 = 0.0;
+    double nee_paths = 0.0;  // paths counted, with or without connections
+    double nee_rate = 0.0;   // sum of their rates x (the cost's unit)
+    double nee_s1 = 0.0;     // sum of the weighted scores Y (E[Y] = E[X])
+    double nee_s2 = 0.0;     // sum of x Y^2 (E[x Y^2] = E[X^2] at x <= 1)
     double glint_samples = 0.0;
     double glint_s1 = 0.0;
     double glint_s2 = 0.0;
@@ -56,6 +57,7 @@ struct ConeStats {
         reverse_s2 += o.reverse_s2;
         reverse_cost += o.reverse_cost;
         nee_paths += o.nee_paths;
+        nee_rate += o.nee_rate;
         nee_s1 += o.nee_s1;
         nee_s2 += o.nee_s2;
         glint_samples += o.glint_samples;
@@ -76,7 +78,7 @@ struct Sums {
     std::vector<double> m2;
     std::vector<ConeStats> cones;  // adaptive fractions only
     double walk_cost = 0.0;        // free paths + tile intersections of the walks
-    double nee_cost = 0.0;         // tile intersections + attempts of the next-event connections
+    double nee_cost = 0.0;         // the next-event and flake-image connections' cost (the model's µs)
     double nee_attempts = 0.0;
 
     explicit Sums(std::size_t entries = 0, std::size_t cone_count = 0)
@@ -114,19 +116,27 @@ constexpr double kMinReverseRate = 1.0 / 256.0;
 // Delta-chain walks per path (the same bound).
 constexpr double kMaxDeltaRate = 4.0;
 constexpr double kMinDeltaRate = 1.0 / 64.0;
-// Bounds of the adaptive fractions: next-event share of paths, glint samples per path.
+// Bounds of the adaptive fractions: next-event rate (the share of paths up to
+// 1, beyond it the boost of every collision's chance), glint samples per path.
 constexpr double kMinFraction = 1.0 / 64.0;
+constexpr double kMaxNeeRate = 64.0;
 constexpr double kMaxGlintRate = 4.0;
 constexpr double kMinGlintRate = 1.0 / 64.0;
-// Their cost model (microseconds on the reference machine, measured 2026-12-02
-// with the pearlescent demo): per path, per free path or tile intersection of
-// the walk, per next-event attempt or intersection, per glint sample (its 16
-// azimuth tests) and per intersection of its traces.
-constexpr double kCostPerPath = 0.3;
-constexpr double kCostPerWalkStep = 0.4;
-constexpr double kCostPerNeeStep = 1.3;
-constexpr double kCostPerGlint = 1.0;
-constexpr double kCostPerGlintRay = 0.5;
+// Their cost model (thread-microseconds on the reference machine): per path
+// (walk or delta-chain walk), per free path or tile intersection of a walk, per
+// next-event attempt or intersection, per unit of a flake-image connection's
+// work (reflectedBeams: a shadow ray or 64 candidate flakes tested), per glint
+// sample and per intersection of its traces. Fitted 2026-12-03 (2 vCPU EPYC,
+// docs/PERFORMANCE.md) to the four parts' measured times in 16 stop-rule runs
+// of the pearlescent demo (residuals within 7 %). Those of 2026-12-02 made a
+// next-event step 3x too dear against a walk step and a flake image's unit
+// of work 8x too cheap, which set the rates far from the cheapest.
+constexpr double kCostPerPath = 0.32;
+constexpr double kCostPerWalkStep = 0.135;
+constexpr double kCostPerNeeStep = 0.134;
+constexpr double kCostPerImageRay = 3.6;
+constexpr double kCostPerGlint = 1.2;
+constexpr double kCostPerGlintRay = 0.13;
 
 // One rate of a cone's variance model (JobRunner::adapt): its variance
 // coefficient (the variance it adds per path is variance / x at rate x), the
@@ -228,9 +238,10 @@ public:
         m_histogram_classes = settings.histogram_classes;
         if (m_connections) m_histogram_classes &= ~(kClassBeamFlake | kClassSmooth);
         m_connection_fraction = std::clamp(settings.connection_fraction, 1e-3, 1.0);
+        const double nee_rate = std::clamp(settings.connection_fraction, 1e-3, kMaxNeeRate);
         m_azimuths = m_connections && settings.glint_azimuths;
         m_adaptive = m_azimuths && settings.adaptive_fractions;
-        m_nee_fraction.assign(m_exits, m_connection_fraction);
+        m_nee_fraction.assign(m_exits, nee_rate);
         m_glint_rate.assign(m_exits, m_connection_fraction);
         m_reverse = m_azimuths && settings.reverse_walks && (settings.connection_parts & 4U) != 0U;
         m_nee_on = (settings.connection_parts & 1U) != 0U;
@@ -407,7 +418,8 @@ public:
                                              {-view.v_in.x, -view.v_in.y, -view.v_in.z}, rng, connection_rng);
                         value = out.f * w.z * bin.solid_angle / bin.projected_solid_angle;
                         cost += kCostPerPath + kCostPerWalkStep * static_cast<double>(out.walk_steps) +
-                                kCostPerNeeStep * static_cast<double>(out.nee_steps);
+                                kCostPerNeeStep * static_cast<double>(out.nee_steps) +
+                                kCostPerImageRay * static_cast<double>(out.image_rays);
                     }
                 }
                 const auto path = static_cast<std::size_t>(
@@ -484,6 +496,7 @@ public:
         chunkDelta(batch, first_path, paths, delta, sums.cones);
         std::vector<double> nee(m_azimuths ? m_exits : 0);
         std::vector<double> nee_weights(m_azimuths ? m_exits : 0);
+        std::vector<double> nee_boost(m_azimuths ? m_exits : 0);
         for (std::int64_t p = first_path; p < first_path + paths; ++p) {
             std::fill(sample.begin(), sample.end(), 0.0);
             if (m_entry_weight > 0.0) {
@@ -495,14 +508,15 @@ public:
                 const double x = rng.uniform() * m_tile_side_um;
                 const double y = rng.uniform() * m_tile_side_um;
                 // Connections on a random share of the paths (all when the fraction is 1); with
-                // glint_azimuths per exit cone: cone k when u < its fraction (nested shares).
+                // glint_azimuths per exit cone: cone k when u < its rate x_k (nested shares),
+                // and beyond x_k = 1 on every path, each pigment collision's chance raised x_k times.
                 bool connect = false;
                 if (m_azimuths) {
                     const double u = connection_rng.uniform();
                     for (std::size_t k = 0; k < m_exits; ++k) {
-                        nee_weights[k] = (m_nee_on || m_walk.flake_images) && u < m_nee_fraction[k]
-                                             ? 1.0 / m_nee_fraction[k]
-                                             : 0.0;
+                        const double share = std::min(1.0, m_nee_fraction[k]);
+                        nee_weights[k] = (m_nee_on || m_walk.flake_images) && u < share ? 1.0 / share : 0.0;
+                        nee_boost[k] = std::max(1.0, m_nee_fraction[k]);
                         connect = connect || nee_weights[k] > 0.0;
                     }
                     std::fill(nee.begin(), nee.end(), 0.0);
@@ -510,16 +524,18 @@ public:
                     connect = m_connections && (m_connection_fraction >= 1.0 ||
                                                 connection_rng.uniform() < m_connection_fraction);
                 }
-                const PathContext context{
-                    m_band.stack,    m_chains,    view.bins,
-                    explicit_flakes, m_walk,      m_projected > 0 ? &view.cells : nullptr,
-                    view.glints,     nee_weights, nee};
+                const PathContext context{m_band.stack, m_chains,
+                                          view.bins,    explicit_flakes,
+                                          m_walk,       m_projected > 0 ? &view.cells : nullptr,
+                                          view.glints,  nee_weights,
+                                          nee,          nee_boost};
                 const PathOutcome out = tracePath(context, view.v_in, m_entry_weight, x, y, rng, f,
                                                   connect ? &connection_rng : nullptr);
                 sample[kEscaped] = out.escaped;
                 sample[kTransmitted] = out.transmitted;
                 sums.walk_cost += static_cast<double>(out.events + out.rays);
-                sums.nee_cost += static_cast<double>(out.nee_rays + out.nee_attempts);
+                sums.nee_cost += kCostPerNeeStep * static_cast<double>(out.nee_rays + out.nee_attempts) +
+                                 kCostPerImageRay * static_cast<double>(out.image_rays);
                 sums.nee_attempts += static_cast<double>(out.nee_attempts);
                 if (m_azimuths) {
                     const auto local = static_cast<std::size_t>(p - first_path);
@@ -527,11 +543,16 @@ public:
                         if (m_diagnostics > 0) sample[estimateEntries() + k] = f[k];  // the histogram's part
                         f[k] += nee[k] + glints[local * m_exits + k] +
                                 (delta.empty() ? 0.0 : delta[local * m_exits + k]);
-                        if (!sums.cones.empty() && nee_weights[k] > 0.0) {
-                            const double raw = nee[k] / nee_weights[k];
+                        if (!sums.cones.empty()) {
+                            // The adaptive model's moments at rate x (adapt): E[Y] = E[X] and
+                            // E[x Y^2] = E[X^2] at x <= 1 (Y = X / x on a share x of the paths);
+                            // beyond, the thinning's variance falls as 1 / x while a collision's
+                            // chance stays below 1, and x Y^2 keeps the model's B / x.
+                            const double rate = m_nee_fraction[k];
                             sums.cones[k].nee_paths += 1.0;
-                            sums.cones[k].nee_s1 += raw;
-                            sums.cones[k].nee_s2 += raw * raw;
+                            sums.cones[k].nee_rate += rate;
+                            sums.cones[k].nee_s1 += nee[k];
+                            sums.cones[k].nee_s2 += rate * nee[k] * nee[k];
                         }
                     }
                 }
@@ -568,14 +589,14 @@ public:
     // takes the cheapest (q, g, r) that reaches it (cheapestRates), and rho is
     // scanned over a geometric grid. Only the next paths' fractions change, so
     // each path's estimate stays unbiased.
-    void adapt(const Sums& total) {
-        if (!m_adaptive || total.paths < 1024 || total.cones.size() != m_exits) return;
+    // Returns whether it set the rates.
+    bool adapt(const Sums& total) {
+        if (!m_adaptive || total.paths < 1024 || total.cones.size() != m_exits) return false;
         const auto n = static_cast<double>(total.paths);
         const double c_walk = kCostPerPath + kCostPerWalkStep * total.walk_cost / n;
-        double nee_paths = 0.0;
-        for (const auto& c : total.cones) nee_paths += c.nee_paths;
-        const double c_nee =
-            nee_paths > 0.0 ? std::max(0.05, kCostPerNeeStep * total.nee_cost / nee_paths) : 0.5;
+        double nee_rate = 0.0;
+        for (const auto& c : total.cones) nee_rate += c.nee_rate;
+        const double c_nee = nee_rate > 0.0 ? std::max(0.01, total.nee_cost / nee_rate) : 0.5;
         // Per cone: the three rates' variance coefficients, costs and bounds (next-event, glint, reverse).
         std::vector<std::array<RateTerm, 3>> terms(m_exits);
         std::vector<double> a(m_exits), f2(m_exits);
@@ -584,7 +605,8 @@ public:
             const std::size_t h = estimateEntries() + k;
             const double v_hist = total.paths > 1 ? total.m2[h] / (n - 1.0) : 0.0;
             const double mean_x = cs.nee_paths > 0.0 ? cs.nee_s1 / cs.nee_paths : 0.0;
-            RateTerm nee{cs.nee_paths > 0.0 ? cs.nee_s2 / cs.nee_paths : 0.0, c_nee, kMinFraction, 1.0};
+            RateTerm nee{cs.nee_paths > 0.0 ? cs.nee_s2 / cs.nee_paths : 0.0, c_nee, kMinFraction,
+                         kMaxNeeRate};
             RateTerm glint{0.0, kCostPerGlint, kMinGlintRate, kMaxGlintRate};
             if (cs.glint_samples > 1.0) {
                 const double mean_g = cs.glint_s1 / cs.glint_samples;
@@ -630,7 +652,8 @@ public:
             double rho_min = 0.0;  // the worst cone's relative variance at the largest rates
             for (std::size_t k = 0; k < m_exits; ++k)
                 if (f2[k] > 0.0)
-                    rho_min = std::max(rho_min, variance(k, {1.0, kMaxGlintRate, kMaxReverseRate}) / f2[k]);
+                    rho_min =
+                        std::max(rho_min, variance(k, {kMaxNeeRate, kMaxGlintRate, kMaxReverseRate}) / f2[k]);
             if (!(rho_min > 0.0)) continue;
             for (int step = 0; step < 200; ++step) {
                 const double rho = rho_min * std::pow(1.06, step);
@@ -657,6 +680,7 @@ public:
                 }
             }
         }
+        return true;
     }
 
 private:
@@ -871,6 +895,8 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
     std::int64_t next_chunk = 0;  // chunks started: chunk k goes to batch k % batches
     std::int64_t started = 0;     // paths started: the next chunk's first path index
     JobResult current;
+    Sums seen(runner.entries(), runner.coneStats());  // every path so far, for the adaptive rates
+    bool pilot_dropped = false;
     while (started < max_paths) {
         // One round of chunks in parallel; summed in chunk order (deterministic).
         const std::int64_t remaining = max_paths - started;
@@ -908,12 +934,27 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
                 sums[static_cast<std::size_t>(c)]);
         next_chunk += round_chunks;
         started = std::min(max_paths, started + round_chunks * round_chunk);
-        if (runner.coneStats() > 0) {
-            Sums all(runner.entries(), runner.coneStats());
-            for (const auto& b : batches) all.add(b);
-            runner.adapt(all);
-        }
         const double elapsed = std::chrono::duration<double>(Clock::now() - job_start).count();
+        bool dropped_now = false;
+        if (runner.coneStats() > 0) {
+            for (const auto& c : sums) seen.add(c);
+            // The paths before the first adaptation ran at the first round's
+            // rates, whose variance can be many times the adapted one (the
+            // demo's flop: next-event connections on 1/8 of the paths at the
+            // unboosted chance, then boosted up to 64 times); they only set the
+            // rates and are dropped while they are a small part of the job
+            // (unbiased: the rates are fixed before the kept paths run).
+            // Measured on the demo at 380 nm: 328k paths to 1 % instead of 574k.
+            if (!pilot_dropped && runner.adapt(seen)) {
+                pilot_dropped = true;
+                if (started * 8 <= max_paths && (budget_seconds <= 0.0 || elapsed * 8.0 <= budget_seconds)) {
+                    for (auto& b : batches) b = Sums(runner.entries(), runner.coneStats());
+                    dropped_now = true;
+                }
+            } else {
+                runner.adapt(seen);
+            }
+        }
         current = finish(runner, batches, over_batches, elapsed);
         const bool out_of_time = budget_seconds > 0.0 && elapsed >= budget_seconds;
         if (progress) {
@@ -921,7 +962,13 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
             if (budget_seconds > 0.0) fraction = std::max(fraction, std::min(1.0, elapsed / budget_seconds));
             if (!progress(fraction)) throw Error("Monte Carlo: cancelled");
         }
-        if (out_of_time || converged(current, m_settings.target_rel_error, job.orders)) break;
+        // The stop rule reads the spread of the batches: only once every batch has paths
+        // (a spread over a few batches of one chunk each is itself too uncertain to stop on).
+        const bool every_batch = !over_batches || std::all_of(batches.begin(), batches.end(),
+                                                              [](const Sums& b) { return b.paths > 0; });
+        if (out_of_time ||
+            (!dropped_now && every_batch && converged(current, m_settings.target_rel_error, job.orders)))
+            break;
     }
     return current;
 }

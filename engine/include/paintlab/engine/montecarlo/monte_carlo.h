@@ -111,7 +111,11 @@ struct McSettings {
     // are those of the batches' means (batches - 1 degrees of freedom), so they
     // include the randomness of the flake arrangement; otherwise they are over
     // paths. tabulateMonteCarlo (mc_table.h) also keeps one table per batch.
-    int batches = 8;
+    // 16 (8 before 2026-12-03): the tiles' own spread is then half as large
+    // (measured on the demo: as large as the paths' error at the near-specular
+    // cones with 8 tiles), and an error from 15 degrees of freedom scatters by
+    // ~18 % instead of ~27 %, so the stop rule stops less often on a low draw.
+    int batches = 16;
     // Explicit flakes: score the path classes that allow it by connections
     // instead of the histogram (mc_connection.h): next-event estimation from
     // pigment and Lambertian vertices through the tiles into each cone, and
@@ -131,7 +135,14 @@ struct McSettings {
     // in [1e-3, 1]) that run them, their scores divided by it (unbiased). The
     // connections cost ~10 shadow rays per path and their own noise is small,
     // while the histogram's share (multiple flake reflections) needs many
-    // paths: fewer connected paths buy more paths per second.
+    // paths: fewer connected paths buy more paths per second. With
+    // glint_azimuths, a value x above 1 (up to 64) runs the next-event
+    // connections on every path and raises each pigment collision's chance to
+    // run them from sigma_s / sigma (the chance that it scatters) to
+    // min(1, x sigma_s / sigma) (mc_walk.h, PathContext::nee_boost): with an
+    // absorbing pigment (the demo's carbon black) the scores are otherwise
+    // zero on all but 0.5-3 % of the collisions. adaptive_fractions then sets
+    // x per cone from the first round on.
     double connection_fraction = 0.125;
     // Explicit flakes with connections: the beam's single flake reflections
     // (class BeamFlake) estimated over every azimuth of each tile at once, the
@@ -144,12 +155,14 @@ struct McSettings {
     // exact, errors over paths (batches = 1) conservative.
     bool glint_azimuths = true;
     // Explicit flakes with connections and glint_azimuths: per exit cone, the
-    // share of paths that run the next-event connections into it and the glint
-    // samples per path, chosen after every round of chunks from that cone's own
-    // variance so far (histogram, next-event, glint) and their cost in tile
-    // intersections (monte_carlo.cpp); the first round uses connection_fraction
-    // for both. Unbiased: a path's fractions are fixed before it runs. false:
-    // connection_fraction for every cone.
+    // next-event rate (share of paths, or beyond 1 the collisions' boost; see
+    // connection_fraction), the glint samples and the reverse walks per path,
+    // and the delta-chain walks per path, chosen after every round of chunks
+    // from each cone's own variance so far and a cost model of counted work
+    // (monte_carlo.cpp); the first round uses connection_fraction, and its
+    // paths are then dropped from the estimate when they are a small part of
+    // the job (they only set the rates). Unbiased: a path's rates are fixed
+    // before it runs. false: connection_fraction for every cone.
     bool adaptive_fractions = true;
     // Explicit flakes: a path follows both branches wherever an explicit flake
     // reflects or passes it (weights R and T) and where the top interface
