@@ -5,6 +5,8 @@
 // Figures for docs/PERFORMANCE.md come from running bench_montecarlo
 // directly; the smoke test runs only the cheap cases.
 #include "flake_tile.h"
+#include "mc_connection.h"
+#include "mc_engine.h"
 #include "mc_random.h"
 
 #include "paintlab/engine/montecarlo/mc_table.h"
@@ -277,6 +279,45 @@ void BM_FlakeTileRays(benchmark::State& state) {
 BENCHMARK(BM_FlakeTileRays)->Arg(2000)->Arg(20000)->Arg(200000)->Unit(benchmark::kMicrosecond);
 
 // Building one tile of the basecoat against the flake count.
+// reflectedBeams (the flake-image connections of the reverse walks and the
+// forward flake images): the pearlescent demo's basecoat tile (20,000 flakes),
+// the 45 degree beam at 450 nm, points uniform in the basecoat. Argument: 0
+// the images off one flake, 1 those off a flake and then the top. Reports the
+// candidate flakes tested per call (in the cost model's units: 64 per unit).
+void BM_ReflectedBeams(benchmark::State& state) {
+    mc::McSettings settings;
+    settings.explicit_flakes = true;
+    settings.histogram_cone_deg = 5.0;
+    settings.batches = 1;
+    const Recipe recipe = pearlescent();  // the engine keeps a reference
+    const mc::McEngine engine(recipe, settings);
+    const mc::McEngine::Band band = engine.band(450.0);
+    const mc::PaintStack& stack = band.stack;
+    const std::span<const mc::LayerFlakes> tiles = band.explicit_flakes[0];
+    const mc::Slice& base = stack.slices.back();
+    const double L = tiles[static_cast<std::size_t>(base.layer)].tile->sideUm();
+    const Direction wi = multiAngleGeometry(kAspecularAnglesDeg[0]).wi;
+    const double ratio = stack.ambient_n / stack.slices.front().n;
+    const mc::Vec3 beam_top{-wi.x * ratio, -wi.y * ratio,
+                            -std::sqrt(1.0 - (wi.x * wi.x + wi.y * wi.y) * ratio * ratio)};
+    const mc::BeamImages images{state.range(0) == 0, state.range(0) == 1};
+    mc::PathRng rng(5, 6, 7, 8);
+    std::int64_t units = 0;
+    std::int64_t calls = 0;
+    double sum = 0.0;
+    for (auto _ : state) {
+        const double depth = base.top_um + rng.uniform() * base.thicknessUm();
+        sum += mc::reflectedBeams(stack, tiles, stack.slices.size() - 1, depth, rng.uniform() * L,
+                                  rng.uniform() * L, {0.0, 0.0, -1.0}, beam_top, images, &units);
+        ++calls;
+    }
+    benchmark::DoNotOptimize(sum);
+    state.counters["units_per_call"] =
+        static_cast<double>(units) / static_cast<double>(std::max<std::int64_t>(1, calls));
+    state.SetLabel(state.range(0) == 0 ? "off one flake" : "off a flake, then the top");
+}
+BENCHMARK(BM_ReflectedBeams)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
 void BM_FlakeTileBuild(benchmark::State& state) {
     const Recipe recipe = pearlescent();
     const Layer& basecoat = recipe.layers[1];

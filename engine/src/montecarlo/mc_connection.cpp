@@ -619,17 +619,41 @@ template <class Hit> void columnsHolding(const PlacedFlake& flake, const Vec3& r
 
 namespace {
 
-// The flakes a reflected column can reach a point from: those with tilt up
-// to tilt_cut whose centre lies within reach_um of (x, y) laterally (periodic),
-// from the grid, and every steeper one; each flake once. reach_um infinite (or
-// over half the tile): every flake.
+// Lateral reach by tilt class (reflectedBeams' candidates): a flake of tilt up
+// to tilt[i] lights points at most reach[i] (µm) from its centre laterally;
+// both ascending. Flakes steeper than the last tilt (the cut) are all visited;
+// an empty table visits every flake.
+struct ReachTable {
+    std::vector<double> tilt;
+    std::vector<double> reach;
+    std::vector<double> reach2;  // reach squared
+};
+
+// Distance from p to the nearest periodic copy (period L) of the interval [a, b].
+double periodicGap(double a, double b, double p, double L) {
+    double best = std::numeric_limits<double>::infinity();
+    for (int k = -1; k <= 1; ++k) {
+        const double lo = a + k * L;
+        const double hi = b + k * L;
+        best = std::min(best, p < lo ? lo - p : (p > hi ? p - hi : 0.0));
+    }
+    return best;
+}
+
+// The flakes a reflected column can reach a point from, each once: in every
+// cell of the lateral grid within the table's last reach of (x, y), those of
+// a tilt class whose reach is at least the cell's distance, up to the cut;
+// then every steeper one. Returns how many were visited.
 template <class Visit> std::size_t visitCandidates(const TiltIndex& index, std::size_t flake_count, double L,
-                                                   double x, double y, double tilt_cut, double reach_um,
+                                                   double x, double y, const ReachTable& table,
                                                    const Visit& visit) {
-    if (!(reach_um < 0.5 * L) || index.cells <= 0) {
+    if (table.tilt.empty() || index.cells <= 0) {
         for (std::size_t i = 0; i < flake_count; ++i) visit(i);
         return flake_count;
     }
+    const double tilt_cut = table.tilt.back();
+    const double reach_um = table.reach.back();
+    const std::vector<double>& reach2 = table.reach2;
     std::size_t visited = 0;
     const int n = index.cells;
     const auto range = [&](double c, int& lo, int& count) {
@@ -642,14 +666,27 @@ template <class Visit> std::size_t visitCandidates(const TiltIndex& index, std::
     int ny = 0;
     range(x, x0, nx);
     range(y, y0, ny);
+    const double px = x - L * std::floor(x / L);
+    const double py = y - L * std::floor(y / L);
     const auto wrap = [n](int c) { return ((c % n) + n) % n; };
     for (int iy = 0; iy < ny; ++iy) {
-        const auto row = static_cast<std::size_t>(wrap(y0 + iy)) * static_cast<std::size_t>(n);
+        const int cy = wrap(y0 + iy);
+        const double gap_y = periodicGap(cy * index.cell_um, (cy + 1) * index.cell_um, py, L);
+        const auto row = static_cast<std::size_t>(cy) * static_cast<std::size_t>(n);
         for (int ix = 0; ix < nx; ++ix) {
-            const std::size_t cell = row + static_cast<std::size_t>(wrap(x0 + ix));
-            for (std::uint32_t k = index.cell_start[cell]; k < index.cell_start[cell + 1]; ++k) {
-                if (index.cell_tilts[k] > tilt_cut) break;
-                visit(index.cell_flakes[k]);
+            const int cx = wrap(x0 + ix);
+            const double gap_x = periodicGap(cx * index.cell_um, (cx + 1) * index.cell_um, px, L);
+            const double gap2 = gap_x * gap_x + gap_y * gap_y;
+            if (gap2 > reach2.back()) continue;
+            // The classes whose reach falls short of the cell: their flakes cannot light the point.
+            const auto short_classes = static_cast<std::size_t>(
+                std::lower_bound(reach2.begin(), reach2.end(), gap2) - reach2.begin());
+            const double tilt_floor = short_classes == 0 ? -1.0 : table.tilt[short_classes - 1];
+            const std::size_t cell = row + static_cast<std::size_t>(cx);
+            const auto first = index.cell_tilts.begin() + index.cell_start[cell];
+            const auto last = index.cell_tilts.begin() + index.cell_start[cell + 1];
+            for (auto it = std::upper_bound(first, last, tilt_floor); it != last && *it <= tilt_cut; ++it) {
+                visit(index.cell_flakes[static_cast<std::size_t>(it - index.cell_tilts.begin())]);
                 ++visited;
             }
         }
@@ -659,33 +696,41 @@ template <class Visit> std::size_t visitCandidates(const TiltIndex& index, std::
     return visited + (index.order.size() - static_cast<std::size_t>(steep));
 }
 
-// The tilt cut for a beam at polar angle theta_b (in the layer) that makes
+// The reach table for a beam at polar angle theta_b (in the layer) that makes
 // visitCandidates cheapest: a flake of tilt tau sends the beam at most
-// theta_b + 2 tau from the vertical, so below the cut the lateral reach is
-// reach(theta_b + 2 tau_cut) (infinite: no bound); a few cuts are costed by
-// the flakes they would visit (steep ones all, the others over the box).
-struct CandidateCut {
-    double tilt_cut = std::numbers::pi;
-    double reach_um = std::numeric_limits<double>::infinity();
-};
+// theta_b + 2 tau from the vertical, so tilt class i (up to tau_i, theta_i =
+// theta_b + 2 tau_i every 2.5 degrees) reaches reach(theta_i) (infinite: no
+// bound); each cut is costed by the flakes it would visit (the steep ones all,
+// each class over its own box) and the cells of its box.
 template <class Reach>
-CandidateCut cheapestCut(const TiltIndex& index, double L, double theta_b, const Reach& reach) {
-    CandidateCut best;
+ReachTable cheapestTable(const TiltIndex& index, double L, double theta_b, const Reach& reach) {
+    constexpr double kStep = 2.5 * std::numbers::pi / 180.0;
+    constexpr double kLimit = 87.5 * std::numbers::pi / 180.0;
+    constexpr double kCellCost = 0.25;  // a cell's distance test against a flake's column test
+    ReachTable table;
+    ReachTable best;
     const auto all = static_cast<double>(index.order.size());
     double best_cost = all;
-    for (const double limit_deg : {55.0, 65.0, 72.0, 78.0, 82.0, 85.0, 87.5}) {
-        const double theta_max = limit_deg * std::numbers::pi / 180.0;
-        if (theta_max <= theta_b) continue;
-        const double cut = 0.5 * (theta_max - theta_b);
-        const double r = reach(theta_max);
-        if (!(r < 0.5 * L)) continue;
-        const auto gentle = static_cast<double>(std::upper_bound(index.tilt.begin(), index.tilt.end(), cut) -
-                                                index.tilt.begin());
+    double inner = 0.0;  // the classes so far, each over its box
+    std::size_t below = 0;
+    for (double theta = theta_b + kStep; theta <= kLimit; theta += kStep) {
+        const double cut = 0.5 * (theta - theta_b);
+        const double r = reach(theta);
+        if (!(r < 0.5 * L)) break;
+        const auto upto = static_cast<std::size_t>(
+            std::upper_bound(index.tilt.begin(), index.tilt.end(), cut) - index.tilt.begin());
         const double side = std::min(1.0, (2.0 * r + 2.0 * index.cell_um) / L);
-        const double cost = (all - gentle) + gentle * side * side;
+        inner += static_cast<double>(upto - below) * side * side;
+        below = upto;
+        table.tilt.push_back(cut);
+        table.reach.push_back(r);
+        table.reach2.push_back(r * r);
+        const double cells =
+            side * side * static_cast<double>(index.cells) * static_cast<double>(index.cells);
+        const double cost = (all - static_cast<double>(upto)) + inner + kCellCost * cells;
         if (cost < best_cost) {
             best_cost = cost;
-            best = {cut, r};
+            best = table;
         }
     }
     return best;
@@ -822,10 +867,10 @@ double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tile
             tested += flakes.size();
         } else {
             const TiltIndex& index = *lf.tilts;
-            const CandidateCut cut = cheapestCut(index, L, theta_b, [&](double theta_max) {
+            const ReachTable table = cheapestTable(index, L, theta_b, [&](double theta_max) {
                 return layer_um * std::tan(theta_max) + index.max_radius_um;
             });
-            tested += visitCandidates(index, flakes.size(), L, x, y, cut.tilt_cut, cut.reach_um, offFlake);
+            tested += visitCandidates(index, flakes.size(), L, x, y, table, offFlake);
         }
     }
     if (images.off_flake_then_top) {
@@ -834,14 +879,13 @@ double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tile
             tested += flakes.size();
         } else {
             const TiltIndex& index = *lf.tilts;
-            const CandidateCut cut = cheapestCut(index, L, theta_b, [&](double theta_max) {
+            const ReachTable table = cheapestTable(index, L, theta_b, [&](double theta_max) {
                 double reach = 2.0 * layer_um * std::tan(theta_max) + index.max_radius_um;
                 for (const Slice& a : above)
                     reach += 2.0 * a.thicknessUm() * tanOf(std::sin(theta_max) * s.n / a.n);
                 return reach;
             });
-            tested +=
-                visitCandidates(index, flakes.size(), L, x, y, cut.tilt_cut, cut.reach_um, offFlakeThenTop);
+            tested += visitCandidates(index, flakes.size(), L, x, y, table, offFlakeThenTop);
         }
     }
     // The plane tests in the cost model of the adaptive fractions (counted as
