@@ -620,13 +620,12 @@ template <class Hit> void columnsHolding(const PlacedFlake& flake, const Vec3& r
 namespace {
 
 // Lateral reach by tilt class (reflectedBeams' candidates): a flake of tilt up
-// to tilt[i] lights points at most reach[i] (µm) from its centre laterally;
-// both ascending. Flakes steeper than the last tilt (the cut) are all visited;
-// an empty table visits every flake.
+// to tilt[i] lights points at most sqrt(reach2[i]) (µm) from its centre
+// laterally (squared: the cells' test); both ascending. Flakes steeper than
+// the last tilt (the cut) are all visited; an empty table visits every flake.
 struct ReachTable {
     std::vector<double> tilt;
-    std::vector<double> reach;
-    std::vector<double> reach2;  // reach squared
+    std::vector<double> reach2;
 };
 
 // Distance from p to the nearest periodic copy (period L) of the interval [a, b].
@@ -644,16 +643,17 @@ double periodicGap(double a, double b, double p, double L) {
 // cell of the lateral grid within the table's last reach of (x, y), those of
 // a tilt class whose reach is at least the cell's distance, up to the cut;
 // then every steeper one. Returns how many were visited.
-template <class Visit> std::size_t visitCandidates(const TiltIndex& index, std::size_t flake_count, double L,
+template <class Visit> std::size_t visitCandidates(const TiltIndex* tilts, std::size_t flake_count, double L,
                                                    double x, double y, const ReachTable& table,
                                                    const Visit& visit) {
-    if (table.tilt.empty() || index.cells <= 0) {
+    if (tilts == nullptr || table.tilt.empty() || tilts->cells <= 0) {
         for (std::size_t i = 0; i < flake_count; ++i) visit(i);
         return flake_count;
     }
+    const TiltIndex& index = *tilts;
     const double tilt_cut = table.tilt.back();
-    const double reach_um = table.reach.back();
     const std::vector<double>& reach2 = table.reach2;
+    const double reach_um = std::sqrt(reach2.back());
     std::size_t visited = 0;
     const int n = index.cells;
     const auto range = [&](double c, int& lo, int& count) {
@@ -723,7 +723,6 @@ ReachTable cheapestTable(const TiltIndex& index, double L, double theta_b, const
         inner += static_cast<double>(upto - below) * side * side;
         below = upto;
         table.tilt.push_back(cut);
-        table.reach.push_back(r);
         table.reach2.push_back(r * r);
         const double cells =
             side * side * static_cast<double>(index.cells) * static_cast<double>(index.cells);
@@ -861,36 +860,27 @@ double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tile
         return sin_theta < 1.0 ? sin_theta / std::sqrt(1.0 - sin_theta * sin_theta)
                                : std::numeric_limits<double>::infinity();
     };
-    if (images.off_flakes) {
-        if (lf.tilts == nullptr) {
-            for (std::size_t i = 0; i < flakes.size(); ++i) offFlake(i);
-            tested += flakes.size();
-        } else {
-            const TiltIndex& index = *lf.tilts;
-            const ReachTable table = cheapestTable(index, L, theta_b, [&](double theta_max) {
-                return layer_um * std::tan(theta_max) + index.max_radius_um;
-            });
-            tested += visitCandidates(index, flakes.size(), L, x, y, table, offFlake);
-        }
-    }
-    if (images.off_flake_then_top) {
-        if (lf.tilts == nullptr) {
-            for (std::size_t i = 0; i < flakes.size(); ++i) offFlakeThenTop(i);
-            tested += flakes.size();
-        } else {
-            const TiltIndex& index = *lf.tilts;
-            const ReachTable table = cheapestTable(index, L, theta_b, [&](double theta_max) {
-                double reach = 2.0 * layer_um * std::tan(theta_max) + index.max_radius_um;
+    // Without the tilt index every flake is a candidate (visitCandidates).
+    const auto candidates = [&](const auto& reach, const auto& visit) {
+        const ReachTable table =
+            lf.tilts == nullptr ? ReachTable{} : cheapestTable(*lf.tilts, L, theta_b, reach);
+        tested += visitCandidates(lf.tilts, flakes.size(), L, x, y, table, visit);
+    };
+    const double radius_um = lf.tilts == nullptr ? 0.0 : lf.tilts->max_radius_um;
+    if (images.off_flakes)
+        candidates([&](double theta_max) { return layer_um * std::tan(theta_max) + radius_um; }, offFlake);
+    if (images.off_flake_then_top)
+        candidates(
+            [&](double theta_max) {
+                double reach = 2.0 * layer_um * std::tan(theta_max) + radius_um;
                 for (const Slice& a : above)
                     reach += 2.0 * a.thicknessUm() * tanOf(std::sin(theta_max) * s.n / a.n);
                 return reach;
-            });
-            tested += visitCandidates(index, flakes.size(), L, x, y, table, offFlakeThenTop);
-        }
-    }
-    // The plane tests in the cost model of the adaptive fractions (counted as
-    // tile intersections): one test costs ~1/64 of a traced ray (a guess from
-    // their operation counts, not measured; it only steers the rates).
+            },
+            offFlakeThenTop);
+    // The candidates' plane tests join the shadow rays in the cost model of
+    // the adaptive rates, 64 tests as one unit; the unit's cost
+    // (kCostPerImageRay, monte_carlo.cpp) is fitted to measured times.
     if (rays != nullptr) *rays += static_cast<std::int64_t>(tested / 64);
     return sum;
 }

@@ -31,10 +31,10 @@ using Clock = std::chrono::steady_clock;
 // need besides the per-path entries: the raw next-event score of the paths
 // that ran it (unweighted by the fraction), the raw glint samples, and costs.
 struct ConeStats {
-    double nee_paths = 0.0;  // paths counted, with or without connections
-    double nee_rate = 0.0;   // sum of their rates x (the cost's unit)
-    double nee_s1 = 0.0;     // sum of the weighted scores Y (E[Y] = E[X])
-    double nee_s2 = 0.0;     // sum of x Y^2 (E[x Y^2] = E[X^2] at x <= 1)
+    // Over every path (Sums::paths of them), with or without connections:
+    double nee_rate = 0.0;  // sum of their rates x (the cost's unit)
+    double nee_s1 = 0.0;    // sum of the weighted scores Y (E[Y] = E[X])
+    double nee_s2 = 0.0;    // sum of x Y^2 (E[x Y^2] = E[X^2] at x <= 1)
     double glint_samples = 0.0;
     double glint_s1 = 0.0;
     double glint_s2 = 0.0;
@@ -56,7 +56,6 @@ struct ConeStats {
         reverse_s1 += o.reverse_s1;
         reverse_s2 += o.reverse_s2;
         reverse_cost += o.reverse_cost;
-        nee_paths += o.nee_paths;
         nee_rate += o.nee_rate;
         nee_s1 += o.nee_s1;
         nee_s2 += o.nee_s2;
@@ -127,8 +126,9 @@ constexpr double kMinGlintRate = 1.0 / 64.0;
 // next-event attempt or intersection, per unit of a flake-image connection's
 // work (reflectedBeams: a shadow ray or 64 candidate flakes tested), per glint
 // sample and per intersection of its traces. Fitted 2026-12-03 (2 vCPU EPYC,
-// docs/PERFORMANCE.md) to the four parts' measured times in 16 stop-rule runs
-// of the pearlescent demo (residuals within 7 %). Those of 2026-12-02 made a
+// docs/PERFORMANCE.md) to the four parts' measured times in the 16 jobs (8
+// bands, two seeds) of two stop-rule runs of the pearlescent demo (residuals
+// within 7 %). Those of 2026-12-02 made a
 // next-event step 3x too dear against a walk step and a flake image's unit
 // of work 8x too cheap, which set the rates far from the cheapest.
 constexpr double kCostPerPath = 0.32;
@@ -549,7 +549,6 @@ public:
                             // beyond, the thinning's variance falls as 1 / x while a collision's
                             // chance stays below 1, and x Y^2 keeps the model's B / x.
                             const double rate = m_nee_fraction[k];
-                            sums.cones[k].nee_paths += 1.0;
                             sums.cones[k].nee_rate += rate;
                             sums.cones[k].nee_s1 += nee[k];
                             sums.cones[k].nee_s2 += rate * nee[k] * nee[k];
@@ -604,9 +603,8 @@ public:
             const ConeStats& cs = total.cones[k];
             const std::size_t h = estimateEntries() + k;
             const double v_hist = total.paths > 1 ? total.m2[h] / (n - 1.0) : 0.0;
-            const double mean_x = cs.nee_paths > 0.0 ? cs.nee_s1 / cs.nee_paths : 0.0;
-            RateTerm nee{cs.nee_paths > 0.0 ? cs.nee_s2 / cs.nee_paths : 0.0, c_nee, kMinFraction,
-                         kMaxNeeRate};
+            const double mean_x = cs.nee_s1 / n;
+            RateTerm nee{cs.nee_s2 / n, c_nee, kMinFraction, kMaxNeeRate};
             RateTerm glint{0.0, kCostPerGlint, kMinGlintRate, kMaxGlintRate};
             if (cs.glint_samples > 1.0) {
                 const double mean_g = cs.glint_s1 / cs.glint_samples;
@@ -945,14 +943,12 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
             // rates and are dropped while they are a small part of the job
             // (unbiased: the rates are fixed before the kept paths run).
             // Measured on the demo at 380 nm: 328k paths to 1 % instead of 574k.
-            if (!pilot_dropped && runner.adapt(seen)) {
+            if (runner.adapt(seen) && !pilot_dropped) {
                 pilot_dropped = true;
                 if (started * 8 <= max_paths && (budget_seconds <= 0.0 || elapsed * 8.0 <= budget_seconds)) {
                     for (auto& b : batches) b = Sums(runner.entries(), runner.coneStats());
                     dropped_now = true;
                 }
-            } else {
-                runner.adapt(seen);
             }
         }
         current = finish(runner, batches, over_batches, elapsed);
