@@ -159,6 +159,8 @@ ordered_json settingsJson(const mc::McSettings& s, const mc::McResult& r) {
             {"top_images",
              s.explicit_flakes && s.connections && s.glint_azimuths && s.reverse_walks && s.top_images},
             {"delta_walks", s.explicit_flakes && s.connections && s.glint_azimuths && s.delta_walks},
+            {"first_flake_walks",
+             s.explicit_flakes && s.connections && s.glint_azimuths && s.delta_walks && s.first_flake_walks},
             {"flake_images", s.explicit_flakes && s.connections && s.glint_azimuths && s.flake_images},
             {"max_paths", s.max_paths},
             {"target_rel_error", s.target_rel_error},

@@ -21,6 +21,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <numbers>
 #include <string>
@@ -60,6 +61,21 @@ double processCpuSeconds() {
            1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
 }
 
+// The runs' seed: PAINTLAB_BENCH_SEED if set (the spread of a stop-rule time
+// between seeds is part of the figure), else 1.
+std::uint64_t benchSeed() {
+    const char* text = std::getenv("PAINTLAB_BENCH_SEED");
+    return text != nullptr ? std::strtoull(text, nullptr, 10) : 1U;
+}
+
+// Where a run's time went: paths and wall seconds per band (stderr, so that
+// the benchmark's own table stays parseable).
+void printBandTimes(const mc::McResult& r) {
+    for (std::size_t b = 0; b < r.bands.size(); ++b)
+        std::fprintf(stderr, "  band %3.0f nm: %9lld paths %6.2f s\n", r.wavelengths_nm[b],
+                     static_cast<long long>(r.bands[b][0].paths), r.bands[b][0].seconds);
+}
+
 // Explicit-flake estimators of the benchmarks below: the default, or that of 2026-12-01.
 void estimatorOf20261201(mc::McSettings& s) {
     s.glint_azimuths = false;
@@ -95,6 +111,7 @@ void BM_McPearlescentOnePercent(benchmark::State& state) {
     }
     if (state.range(1) == 3) estimatorOf20261201(s);
     if (s.explicit_flakes) s.max_seconds = 60.0;
+    s.seed = benchSeed();
     std::int64_t paths = 0;
     double worst = 0.0;
     double worst_near = 0.0;
@@ -106,6 +123,7 @@ void BM_McPearlescentOnePercent(benchmark::State& state) {
         cpu += processCpuSeconds() - cpu_start;
         paths += r.total_paths;
         seconds += r.seconds;
+        printBandTimes(r);
         for (const auto& band : r.bands)
             for (std::size_t k = 0; k < band[0].brdf_per_sr.size(); ++k) {
                 worst = std::max(worst, band[0].brdf_per_sr[k].relError());

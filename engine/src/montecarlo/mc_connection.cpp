@@ -61,17 +61,6 @@ double tileTransmittance(const LayerFlakes& lf, double& x, double& y, double dep
     return T;
 }
 
-// The slice of `layer` that holds `depth`; stack.slices.size() if none (a point
-// of a flake tilted in a film thinner than it pokes out of the layer, which the
-// walk cannot hit there either: it traces a tile inside its layer only).
-std::size_t sliceAt(const PaintStack& stack, int layer, double depth) {
-    std::size_t j = 0;
-    while (j < stack.slices.size() && !(stack.slices[j].layer == layer && depth >= stack.slices[j].top_um &&
-                                        depth <= stack.slices[j].bottom_um))
-        ++j;
-    return j;
-}
-
 Vec3 turn(const Vec3& a, double c, double s) { return {c * a.x - s * a.y, s * a.x + c * a.y, a.z}; }
 
 Vec3 normalised(const Vec3& a) {
@@ -138,6 +127,14 @@ bool glintsAt(const Vec3& v0, const Vec3& n, double n_layer, double ambient_n, c
 }
 
 }  // namespace
+
+std::size_t sliceAt(const PaintStack& stack, int layer, double depth) {
+    std::size_t j = 0;
+    while (j < stack.slices.size() && !(stack.slices[j].layer == layer && depth >= stack.slices[j].top_um &&
+                                        depth <= stack.slices[j].bottom_um))
+        ++j;
+    return j;
+}
 
 bool refractPlanar(const Vec3& v, double n_from, double n_to, Vec3& out) {
     const double ratio = n_from / n_to;

@@ -72,10 +72,12 @@ struct HistogramBin {
 // Explicit flakes of one layer: its tile and the optics of its kinds at this
 // wavelength, in the tile's kind order.
 struct TiltIndex;
+struct FlakeGroups;
 struct LayerFlakes {
     const FlakeTile* tile = nullptr;
     std::vector<FlakeKind> kinds;
-    const TiltIndex* tilts = nullptr;  // the tile's flakes by tilt (azimuthGlintSets; null: none)
+    const TiltIndex* tilts = nullptr;     // the tile's flakes by tilt (azimuthGlintSets; null: none)
+    const FlakeGroups* groups = nullptr;  // by tilt, azimuth and depth (first_flake.h; null: none)
 };
 
 enum PathClass : unsigned {
@@ -113,6 +115,11 @@ struct TopArrival {
 };
 TopArrival straightToTop(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
                          double depth, double x, double y, Vec3 u, std::int64_t* rays = nullptr);
+
+// The slice of `layer` that holds `depth`; stack.slices.size() if none (a point
+// of a flake tilted in a film thinner than it pokes out of the layer, which the
+// walk cannot hit there either: it traces a tile inside its layer only).
+std::size_t sliceAt(const PaintStack& stack, int layer, double depth);
 
 // A direction uniform in the bin's cone (solid angle).
 Vec3 sampleInCone(const HistogramBin& bin, double u1, double u2);

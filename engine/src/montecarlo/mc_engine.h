@@ -14,6 +14,7 @@
 // not independent: errors over batches (of chunks) stay exact, errors over
 // paths (batches = 1) become conservative.
 
+#include "first_flake.h"
 #include "flake_tile.h"
 #include "mc_connection.h"
 #include "mc_stack.h"
@@ -76,6 +77,7 @@ private:
     int m_batches = 1;
     std::vector<std::vector<std::unique_ptr<FlakeTile>>> m_tiles;  // [batch][layer]
     std::vector<std::vector<TiltIndex>> m_tilts;                   // [batch][layer], for every band
+    std::vector<std::vector<FlakeGroups>> m_groups;                // [batch][layer] (first_flake_walks)
     double m_tile_side_um = 1.0;
 };
 

@@ -1,5 +1,7 @@
 #include "mc_walk.h"
 
+#include "first_flake.h"
+
 #include "paintlab/engine/fresnel.h"
 
 #include <algorithm>
@@ -229,6 +231,16 @@ struct Walker {
         const double vn = dot(v, n);
         const double c = std::abs(vn);
         const double R = f.R(c);
+        if (delta_only && settings.skip_beam_flake_reflections && path_class == kClassBeam) {
+            // The first-flake walks take the reflected branch; only the passed one goes on.
+            const double T = f.T(c);
+            if (splitting()) {
+                ++splits;
+                weight *= T;
+                return T > 0.0 && roulette();
+            }
+            return rng.uniform() < T;
+        }
         if (splitting()) {
             ++splits;
             const double T = f.T(c);
@@ -686,11 +698,20 @@ PathOutcome tracePath(const PathContext& context, Vec3 v, double weight, double 
             walker.nee_rays, walker.nee_attempts, walker.image_calls, walker.image_rays};
 }
 
-PathOutcome traceDeltaChains(const PathContext& context, Vec3 v, double weight, double x, double y,
-                             PathRng& rng, std::span<double> f_out) {
-    WalkSettings settings = context.settings;
-    settings.histogram_classes = kClassOther;
-    settings.histogram_other = 1U;
+namespace {
+
+// What the delta-chain walks score: class Other's chains without a smooth vertex (histogram_other 1).
+WalkSettings deltaChainSettings(const WalkSettings& settings) {
+    WalkSettings delta = settings;
+    delta.histogram_classes = kClassOther;
+    delta.histogram_other = 1U;
+    return delta;
+}
+
+// A walk without collisions (Walker::delta_only) from (x, y, depth) in slice j.
+Walker deltaWalker(const PathContext& context, const WalkSettings& settings, PathRng& rng,
+                   std::span<double> f_out, const Vec3& v, double weight, double x, double y, std::size_t j,
+                   double depth, unsigned path_class) {
     Walker walker{context.stack,
                   {},
                   context.bins,
@@ -704,15 +725,70 @@ PathOutcome traceDeltaChains(const PathContext& context, Vec3 v, double weight, 
                   weight,
                   x,
                   y,
-                  0,
+                  j,
+                  depth,
                   0.0,
-                  0.0,
-                  kClassBeam,
+                  path_class,
                   {},
                   {}};
     walker.delta_only = true;
+    return walker;
+}
+
+}  // namespace
+
+PathOutcome traceDeltaChains(const PathContext& context, Vec3 v, double weight, double x, double y,
+                             PathRng& rng, std::span<double> f_out) {
+    const WalkSettings settings = deltaChainSettings(context.settings);
+    Walker walker = deltaWalker(context, settings, rng, f_out, v, weight, x, y, 0, 0.0, kClassBeam);
     const double escaped = walker.run() + walker.escaped_extra;
     return {escaped, walker.transmitted, walker.events, walker.rays, 0, 0};
+}
+
+PathOutcome traceFromFirstFlake(const PathContext& context, const Vec3& v_top, double weight,
+                                const FirstFlakeDraw& draw, PathRng& rng, std::span<double> f_out) {
+    if (draw.layer < 0 || static_cast<std::size_t>(draw.layer) >= context.explicit_flakes.size()) return {};
+    const PaintStack& stack = context.stack;
+    const LayerFlakes& lf = context.explicit_flakes[static_cast<std::size_t>(draw.layer)];
+    const PlacedFlake& flake = lf.tile->flakes()[draw.flake];
+    const double depth = -draw.point.z;
+    const std::size_t j = sliceAt(stack, draw.layer, depth);
+    if (j == stack.slices.size()) return {};
+    // The beam in slice j: refracted at every index step above it.
+    Vec3 v = v_top;
+    for (std::size_t i = 0; i < j; ++i) {
+        const double n_from = stack.slices[i].n;
+        const double n_to = stack.slices[i + 1].n;
+        Vec3 below;
+        if (std::abs(n_from - n_to) < 1e-12) continue;
+        if (!refractPlanar(v, n_from, n_to, below)) return {};
+        v = below;
+    }
+    const double vn = dot(v, flake.normal);
+    const double R = lf.kinds[static_cast<std::size_t>(flake.kind)].R(std::abs(vn));
+    if (!(R > 0.0) || !(std::abs(v.z) > 1e-12)) return {};
+    PathOutcome outcome;
+    const double t_in = straightToTop(stack, context.explicit_flakes, j, depth, draw.point.x, draw.point.y,
+                                      {-v.x, -v.y, -v.z}, &outcome.rays)
+                            .T;
+    if (!(t_in > 0.0)) return outcome;
+    const double L = lf.tile->sideUm();
+    const double start =
+        weight * t_in * R * draw.area_over_probability * std::abs(vn) / (L * L * std::abs(v.z));
+    WalkSettings settings = deltaChainSettings(context.settings);
+    settings.roulette_weight *= draw.natural_over_probability;
+    const Vec3 r{v.x - 2.0 * vn * flake.normal.x, v.y - 2.0 * vn * flake.normal.y,
+                 v.z - 2.0 * vn * flake.normal.z};
+    Walker walker = deltaWalker(context, settings, rng, f_out, r, start, draw.point.x, draw.point.y, j, depth,
+                                kClassBeamFlake);
+    walker.beam_flake_layer = draw.layer;
+    walker.splits = 1;  // as after the uniform walk's split at this flake
+    if (!walker.roulette()) return outcome;
+    outcome.escaped = walker.run() + walker.escaped_extra;
+    outcome.transmitted = walker.transmitted;
+    outcome.events = walker.events;
+    outcome.rays += walker.rays;
+    return outcome;
 }
 
 ReverseOutcome traceReversePath(const PathContext& context, Vec3 v, double weight, double x, double y,

@@ -56,6 +56,9 @@ struct WalkSettings {
     // histogram_other) also connect to each cone through one flake of their
     // layer, and through the top and then such a flake (McSettings::flake_images).
     bool flake_images = false;
+    // Delta-chain walks: the beam's reflections off explicit flakes end the
+    // branch (the first-flake walks score those chains; McSettings::first_flake_walks).
+    bool skip_beam_flake_reflections = false;
 };
 
 // Projection of what escapes on the fast model's basis (mc_table.h): the
@@ -132,6 +135,18 @@ PathOutcome tracePath(const PathContext& context, Vec3 v, double weight, double 
 // are R^3 e^-tau, ~1e-2). Never throws.
 PathOutcome traceDeltaChains(const PathContext& context, Vec3 v, double weight, double x, double y,
                              PathRng& rng, std::span<double> f_out);
+
+// First-flake walks (first_flake.h): the delta chains that begin with the
+// beam's reflection off explicit flake `draw.flake` of layer `draw.layer` at
+// draw.point. The beam (v_top, refracted into the top slice, with weight
+// `weight` per unit area) is traced straight down to the point (pigments,
+// flakes crossed, index steps), reflected with the flake's R, and followed as
+// a delta-chain walk; its escapes of class Other without a smooth vertex into
+// the bins are added to f_out, weighted by A_G |v.n| / (L^2 P_G |v_z|)
+// (draw.area_over_probability = A_G / P_G). Never throws.
+struct FirstFlakeDraw;
+PathOutcome traceFromFirstFlake(const PathContext& context, const Vec3& v_top, double weight,
+                                const FirstFlakeDraw& draw, PathRng& rng, std::span<double> f_out);
 
 // Reverse walks (McSettings::reverse_walks): by reciprocity, f(wi, w) = f(w, wi),
 // so the cone average of f(wi, .) over cone C is (Omega / Omega_proj) times the

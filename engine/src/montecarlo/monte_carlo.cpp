@@ -1,5 +1,6 @@
 #include "paintlab/engine/montecarlo/monte_carlo.h"
 
+#include "first_flake.h"
 #include "flake_tile.h"
 #include "mc_engine.h"
 #include "mc_random.h"
@@ -66,6 +67,11 @@ struct ConeStats {
     }
 };
 
+void addElementwise(std::vector<double>& to, const std::vector<double>& from) {
+    if (to.size() < from.size()) to.resize(from.size(), 0.0);
+    for (std::size_t i = 0; i < from.size(); ++i) to[i] += from[i];
+}
+
 // Statistics of the paths of one chunk or batch per sample-vector entry
 // (mc_engine.h): mean and sum of squared deviations M2, merged by Chan et
 // al.'s pairwise update (each path's total contribution is one independent
@@ -79,11 +85,18 @@ struct Sums {
     double walk_cost = 0.0;        // free paths + tile intersections of the walks
     double nee_cost = 0.0;         // the next-event and flake-image connections' cost (the model's µs)
     double nee_attempts = 0.0;
+    // First-flake walks (first_flake.h), per proposal key: how many were drawn
+    // from it, and per key and cone the sum of (f P_G / A_G)^2, f the walk's
+    // estimate (JobRunner::learnFirstFlakeProposal).
+    std::vector<double> first_count;
+    std::vector<double> first_s2;  // [key * cones + k]
 
     explicit Sums(std::size_t entries = 0, std::size_t cone_count = 0)
         : mean(entries, 0.0), m2(entries, 0.0), cones(cone_count) {}
     void add(const Sums& other) {
         for (std::size_t k = 0; k < cones.size() && k < other.cones.size(); ++k) cones[k].add(other.cones[k]);
+        addElementwise(first_count, other.first_count);
+        addElementwise(first_s2, other.first_s2);
         walk_cost += other.walk_cost;
         nee_cost += other.nee_cost;
         nee_attempts += other.nee_attempts;
@@ -115,6 +128,19 @@ constexpr double kMinReverseRate = 1.0 / 256.0;
 // Delta-chain walks per path (the same bound).
 constexpr double kMaxDeltaRate = 4.0;
 constexpr double kMinDeltaRate = 1.0 / 64.0;
+// First-flake walks: the weight, in draws, of the mean over all keys in a key's learned weight.
+constexpr double kFirstFlakePrior = 64.0;
+
+// Whether a delta chain can begin other than at an explicit flake: an index
+// step inside the paint (an internal reflection of the beam) or a mirror-like
+// substrate. Otherwise the first-flake walks hold every delta chain and the
+// uniform delta-chain walks are not run.
+bool otherDeltaStarts(const PaintStack& stack) {
+    for (std::size_t j = 0; j + 1 < stack.slices.size(); ++j)
+        if (std::abs(stack.slices[j].n - stack.slices[j + 1].n) >= 1e-12) return true;
+    return stack.substrate == SubstrateKind::Metal || stack.substrate == SubstrateKind::Transparent;
+}
+
 // Bounds of the adaptive fractions: next-event rate (the share of paths up to
 // 1, beyond it the boost of every collision's chance), glint samples per path.
 constexpr double kMinFraction = 1.0 / 64.0;
@@ -248,6 +274,10 @@ public:
         m_glints_on = (settings.connection_parts & 2U) != 0U;
         m_delta = m_azimuths && settings.delta_walks && (settings.connection_parts & 8U) != 0U;
         m_delta_rate = std::clamp(settings.delta_rate, kMinDeltaRate, kMaxDeltaRate);
+        m_first_flake = m_delta && settings.first_flake_walks && !band.explicit_flakes.empty() &&
+                        std::any_of(band.explicit_flakes[0].begin(), band.explicit_flakes[0].end(),
+                                    [](const LayerFlakes& lf) { return lf.groups != nullptr; });
+        m_uniform_delta = m_delta && (!m_first_flake || otherDeltaStarts(stack));
         m_reverse_rate.assign(m_exits, std::clamp(settings.reverse_rate, kMinReverseRate, kMaxReverseRate));
         m_diagnostics = m_adaptive ? m_exits : 0;
         m_walk.max_events = settings.max_events;
@@ -437,12 +467,43 @@ public:
         }
     }
 
+    // One first-flake walk (first_flake.h) of a delta-chain sample: f_out is set
+    // to its estimate per cone; with adaptive fractions its group's statistics
+    // go into `sums` for the learned draw. Returns its cost (the model's µs).
+    double firstFlakeWalk(const PathContext& context, const FirstFlakeTable& table, const Vec3& v_in,
+                          PathRng& rng, std::vector<double>& f_out, Sums& sums) const {
+        const double u_group = rng.uniform();
+        const double u_flake = rng.uniform();
+        const double u1 = rng.uniform();
+        const double u2 = rng.uniform();
+        const double u3 = rng.uniform();
+        const FirstFlakeDraw draw =
+            drawFirstFlake(context.explicit_flakes, table, u_group, u_flake, u1, u2, u3);
+        std::fill(f_out.begin(), f_out.end(), 0.0);
+        const PathOutcome out = traceFromFirstFlake(context, v_in, m_entry_weight, draw, rng, f_out);
+        if (draw.key >= 0 && !sums.cones.empty()) {
+            const auto key = static_cast<std::size_t>(draw.key);
+            if (sums.first_count.size() <= key) sums.first_count.resize(key + 1, 0.0);
+            if (sums.first_s2.size() < (key + 1) * m_exits) sums.first_s2.resize((key + 1) * m_exits, 0.0);
+            sums.first_count[key] += 1.0;
+            for (std::size_t k = 0; k < m_exits; ++k) {
+                const double scaled = f_out[k] / draw.area_over_probability;  // f P_G / A_G
+                sums.first_s2[key * m_exits + k] += scaled * scaled;
+            }
+        }
+        return kCostPerPath + kCostPerWalkStep * static_cast<double>(out.events + out.rays);
+    }
+
     // The delta-chain walks of one chunk (delta_walks; mc_walk.h, traceDeltaChains):
-    // S = floor(rate paths + xi) forward walks without collisions (walk j from a
-    // point uniform on the tile at view first_path + j), their escapes of class
-    // Other into every cone added to path j paths / S with weight 1 / rate.
+    // S = floor(rate paths + xi) samples, each a forward walk without collisions
+    // from a point uniform on the tile at view first_path + j (only for the chains
+    // that do not begin at a flake when the first-flake walks run, and only if
+    // the paint has such chains: otherDeltaStarts) plus a first-flake walk;
+    // their escapes of class Other into every cone added to path j paths / S
+    // with weight 1 / rate.
     void chunkDelta(std::size_t batch, std::int64_t first_path, std::int64_t paths,
-                    std::vector<double>& added, std::vector<ConeStats>& cones) const {
+                    std::vector<double>& added, Sums& sums) const {
+        std::vector<ConeStats>& cones = sums.cones;
         if (!m_delta || paths <= 0) return;
         const std::span<const LayerFlakes> tiles = m_band.explicit_flakes[batch];
         const std::vector<View>& views = m_views[std::min(batch, m_views.size() - 1)];
@@ -453,19 +514,32 @@ public:
                           static_cast<std::uint64_t>(first_path));
         const auto count = static_cast<std::int64_t>(
             std::floor(m_delta_rate * static_cast<double>(paths) + count_rng.uniform()));
+        walk.skip_beam_flake_reflections = m_first_flake;
         std::vector<double> f(m_exits);
+        std::vector<double> f_first(m_exits);
+        std::vector<FirstFlakeTable> tables(m_first_flake ? m_view_count : 0);
         for (std::int64_t j = 0; j < count; ++j) {
             // Walk j of the chunk: index 4 first_path + j < 4 (first_path + paths), unique per job (rate <=
             // 4).
             PathRng rng(m_settings.seed ^ kDeltaStream ^ 0x5bd1e995ULL, m_band_key, m_incidence_key,
                         static_cast<std::uint64_t>(4 * first_path + j));
-            const View& view = views[static_cast<std::size_t>(first_path + j) % m_view_count];
+            const std::size_t view_index = static_cast<std::size_t>(first_path + j) % m_view_count;
+            const View& view = views[view_index];
             const double x = rng.uniform() * m_tile_side_um;
             const double y = rng.uniform() * m_tile_side_um;
             const PathContext context{m_band.stack, {}, view.bins, tiles, walk, nullptr, {}, {}, {}};
             std::fill(f.begin(), f.end(), 0.0);
-            const PathOutcome out = traceDeltaChains(context, view.v_in, m_entry_weight, x, y, rng, f);
-            const double cost = kCostPerPath + kCostPerWalkStep * static_cast<double>(out.events + out.rays);
+            double cost = 0.0;
+            if (m_uniform_delta) {
+                const PathOutcome out = traceDeltaChains(context, view.v_in, m_entry_weight, x, y, rng, f);
+                cost += kCostPerPath + kCostPerWalkStep * static_cast<double>(out.events + out.rays);
+            }
+            if (m_first_flake) {
+                FirstFlakeTable& table = tables[view_index];
+                if (table.cumulative.empty()) table = firstFlakeTable(tiles, view.v_in, m_first_proposal);
+                cost += firstFlakeWalk(context, table, view.v_in, rng, f_first, sums);
+                for (std::size_t k = 0; k < m_exits; ++k) f[k] += f_first[k];
+            }
             const auto path = static_cast<std::size_t>(
                 std::min<std::int64_t>(paths - 1, (2 * j + 1) * paths / (2 * count)));
             for (std::size_t k = 0; k < m_exits; ++k) {
@@ -493,7 +567,7 @@ public:
         std::vector<double> glints = chunkGlints(batch, first_path, paths, sums.cones);
         chunkReverse(batch, first_path, paths, glints, sums.cones);
         std::vector<double> delta(m_delta ? glints.size() : 0, 0.0);
-        chunkDelta(batch, first_path, paths, delta, sums.cones);
+        chunkDelta(batch, first_path, paths, delta, sums);
         std::vector<double> nee(m_azimuths ? m_exits : 0);
         std::vector<double> nee_weights(m_azimuths ? m_exits : 0);
         std::vector<double> nee_boost(m_azimuths ? m_exits : 0);
@@ -678,10 +752,41 @@ public:
                 }
             }
         }
+        if (m_first_flake) learnFirstFlakeProposal(total, f2);
         return true;
     }
 
 private:
+    // The first-flake walks' group weights from every walk so far (first_flake.h):
+    // P_G proportional to A_G rho_key is variance-optimal for the sum of the
+    // cones' relative variances (the flop cones, whose delta part is largest,
+    // weigh most) at rho_key^2 = E[sum_k (f_k P_G / A_G)^2 / f_k^2 | key]. A
+    // key holds few hits (a few hundred over hundreds of keys at the demo's
+    // flop), so its mean square is shrunk towards that of all keys with the
+    // weight of kFirstFlakePrior draws: unmeasured keys stay area-proportional.
+    // (Without the shrinkage the learned weights followed single hits, and
+    // the delta walks' variance at 780 nm rose 1.4x above the area-proportional draw.)
+    void learnFirstFlakeProposal(const Sums& total, const std::vector<double>& f2) {
+        const std::size_t keys = total.first_count.size();
+        std::vector<double> s(keys, 0.0);
+        double s_all = 0.0;
+        double n_all = 0.0;
+        for (std::size_t key = 0; key < keys; ++key) {
+            for (std::size_t k = 0; k < m_exits; ++k)
+                if (f2[k] > 0.0 && (key + 1) * m_exits <= total.first_s2.size())
+                    s[key] += total.first_s2[key * m_exits + k] / f2[k];
+            s_all += s[key];
+            n_all += total.first_count[key];
+        }
+        if (!(s_all > 0.0) || !(n_all > 0.0)) return;
+        const double mean_all = s_all / n_all;
+        m_first_proposal.h.assign(keys, 0.0);
+        for (std::size_t key = 0; key < keys; ++key)
+            m_first_proposal.h[key] = std::sqrt((s[key] + kFirstFlakePrior * mean_all) /
+                                                (total.first_count[key] + kFirstFlakePrior));
+        m_first_proposal.rho_default = std::sqrt(mean_all);
+    }
+
     const McEngine::Band& m_band;
     const McSettings& m_settings;
     double m_tile_side_um = 1.0;
@@ -714,6 +819,9 @@ private:
     bool m_glints_on = true;
     bool m_delta = false;  // delta_walks
     double m_delta_rate = 0.25;
+    bool m_first_flake = false;    // first_flake_walks: the delta chains that begin at a flake
+    bool m_uniform_delta = false;  // the uniform delta-chain walks (for the other chains)
+    FirstFlakeProposal m_first_proposal;
     std::vector<double> m_reverse_rate;  // per exit: reverse walks per path
     std::size_t m_diagnostics = 0;
     std::vector<double> m_nee_fraction;  // per exit: share of paths that run its next-event connections
@@ -818,6 +926,7 @@ McEngine::McEngine(const Recipe& recipe, const McSettings& settings, const std::
     m_tiles.resize(static_cast<std::size_t>(m_batches));
     for (auto& tiles : m_tiles) tiles.resize(layers);
     m_tilts.assign(static_cast<std::size_t>(m_batches), std::vector<TiltIndex>(layers));
+    m_groups.assign(static_cast<std::size_t>(m_batches), std::vector<FlakeGroups>(layers));
     std::atomic<bool> stop{false};
     const auto build_tiles = [&] {
         tbb::parallel_for(std::size_t{0}, m_tiles.size() * layers, [&](std::size_t index) {
@@ -830,7 +939,12 @@ McEngine::McEngine(const Recipe& recipe, const McSettings& settings, const std::
             m_tiles[k][l] = std::make_unique<FlakeTile>(
                 geometries[l], tops[l], tops[l] + recipe.layers[l].thickness_um, tile_seed,
                 settings.tile_flakes, settings.max_tile_flakes, settings.reject_overlaps, &stop);
-            if (settings.connections && settings.glint_azimuths) m_tilts[k][l] = tiltIndex(*m_tiles[k][l]);
+            if (settings.connections && settings.glint_azimuths) {
+                m_tilts[k][l] = tiltIndex(*m_tiles[k][l]);
+                if (settings.delta_walks && settings.first_flake_walks)
+                    m_groups[k][l] = flakeGroups(*m_tiles[k][l], m_tilts[k][l], tops[l],
+                                                 tops[l] + recipe.layers[l].thickness_um);
+            }
         });
     };
     if (keep_going) {
@@ -871,7 +985,9 @@ McEngine::Band McEngine::band(double wavelength_nm) const {
         std::vector<LayerFlakes> layers;
         for (std::size_t l = 0; l < m_tiles[b].size(); ++l) {
             const TiltIndex& tilts = m_tilts[b][l];
-            layers.push_back({m_tiles[b][l].get(), kinds[l], tilts.order.empty() ? nullptr : &tilts});
+            const FlakeGroups& groups = m_groups[b][l];
+            layers.push_back({m_tiles[b][l].get(), kinds[l], tilts.order.empty() ? nullptr : &tilts,
+                              groups.flakes.empty() ? nullptr : &groups});
         }
         band.explicit_flakes.push_back(std::move(layers));
     }

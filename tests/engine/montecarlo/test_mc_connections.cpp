@@ -21,6 +21,7 @@
 #include <cstdlib>
 #include <numbers>
 #include <string>
+#include <variant>
 
 namespace paintlab {
 namespace {
@@ -424,6 +425,35 @@ TEST(MonteCarloConnections, DeltaWalksMatchTheHistogramOnChainsFromTheBeam) {
     s.tile_flakes = 800;
     s.delta_rate = 1.0;  // the first round's (adaptive_fractions sets the later ones)
     expectPartMatchesHistogram(r, req, s, 8, 1, 600000, "delta walks");
+}
+
+TEST(MonteCarloConnections, FirstFlakeWalksMatchTheHistogramOnChainsFromAPearlFlake) {
+    // The first-flake walks (McSettings::first_flake_walks, first_flake.h) start
+    // the delta chains that begin with the beam's reflection off an explicit
+    // flake on that flake, drawn by groups with learned probabilities (here
+    // from the first round on: adaptive_fractions). Interference flakes as in
+    // the pearlescent demo, under a clear coat of the basecoat's own index, so
+    // every delta chain begins at a flake (no internal reflection, Lambertian
+    // base): the uniform delta-chain walks do not run, and the histogram's
+    // part 1 must be matched by the first-flake walks alone. Exits: the
+    // specular direction, the normal and the flop on the source's side, where
+    // the chains of two and three reflections are most of class Other. kZ = 4
+    // and the "resolved" check as in expectPartMatchesHistogram. The
+    // weights of the learned draw cannot bias it: learning replaced by an
+    // arbitrary P_G would change the errors only.
+    Recipe r = test::smallPearlescent(test::pigment(0.002, 4.0, 2.0, 0.2), 0.3);
+    r.layers[0].binder.refractive_index = Spectrum(1.5);
+    auto& pearl = std::get<InterferenceFlake>(r.layers[1].components[0]);
+    pearl.volume_fraction = 0.12;  // dense, so that chains of several reflections are a large part of f
+    pearl.orientation_spread_deg = 20.0;
+    const std::vector<mc::IncidenceRequest> req{
+        {directionFromAnglesDeg(45.0, 0.0),
+         {directionFromAnglesDeg(45.0, 180.0), directionFromAnglesDeg(0.0, 0.0),
+          directionFromAnglesDeg(50.0, 0.0)}}};
+    auto s = explicitSettings(100000, 10.0, 71);
+    s.tile_flakes = 800;
+    s.delta_rate = 1.0;
+    expectPartMatchesHistogram(r, req, s, 8, 1, 600000, "first-flake walks");
 }
 
 }  // namespace
