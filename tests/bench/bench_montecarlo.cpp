@@ -87,7 +87,8 @@ void estimatorOf20261201(mc::McSettings& s) {
 // flakes with a 5 degree cone and the default connections (mc_connection.h),
 // 2 explicit flakes, the histogram alone and one view per tile (the estimator
 // before 2026-12), 3 explicit flakes, the connections of 2026-12-01 (per-view
-// glint lists, one fraction for all cones, no split branches); geometries: the
+// glint lists, one fraction for all cones, no split branches), 4 the default
+// with the first-flake walks (McSettings::first_flake_walks); geometries: the
 // six multi-angle ones or the four near the specular direction (45as-15 to
 // 45as45). Stops every band at 1 % relative standard error of the albedo and
 // every f; 2 threads. Explicit flakes run for at most 60 s and report the time
@@ -110,6 +111,7 @@ void BM_McPearlescentOnePercent(benchmark::State& state) {
         s.split_branches = false;
     }
     if (state.range(1) == 3) estimatorOf20261201(s);
+    if (state.range(1) == 4) s.first_flake_walks = true;
     if (s.explicit_flakes) s.max_seconds = 60.0;
     s.seed = benchSeed();
     std::int64_t paths = 0;
@@ -140,9 +142,9 @@ void BM_McPearlescentOnePercent(benchmark::State& state) {
     state.counters["cpu_seconds"] = cpu;
     state.counters["cpu_seconds_to_1pct"] = cpu * to_1pct;
     state.counters["cpu_seconds_to_1pct_near"] = cpu * to_1pct_near;
-    static const char* const kLabels[] = {"continuum flakes, next-event", "explicit flakes, connections",
-                                          "explicit flakes, histogram only",
-                                          "explicit flakes, connections of 2026-12-01"};
+    static const char* const kLabels[] = {
+        "continuum flakes, next-event", "explicit flakes, connections", "explicit flakes, histogram only",
+        "explicit flakes, connections of 2026-12-01", "explicit flakes, connections with first-flake walks"};
     state.SetLabel(std::string(kLabels[state.range(1)]) + ", " + std::to_string(state.range(2)) +
                    " geometries");
 }
@@ -151,6 +153,7 @@ BENCHMARK(BM_McPearlescentOnePercent)
     ->Args({16, 0, 6})
     ->Args({8, 1, 6})
     ->Args({8, 1, 4})
+    ->Args({8, 4, 6})
     ->Args({8, 3, 6})
     ->Args({8, 3, 4})
     ->Args({8, 2, 6})

@@ -22,6 +22,11 @@
 // the uniform walk's 1 / L^2. A share of P_G (kDefensiveShare) stays
 // proportional to A_G, so a group the learning missed costs at most a
 // constant factor of variance, never bias.
+//
+// Measured on the demo (docs/PERFORMANCE.md): the delta walks' variance per
+// walk at 437 nm, 45as110, about halves and a walk costs ~30 % less, but the
+// stop rule's time to 1 % did not fall (20 seeds: mean 7.9 s with or
+// without them) and its tail grew; so they are off by default.
 
 #include "flake_tile.h"
 #include "mc_connection.h"
@@ -51,8 +56,11 @@ struct FlakeGroups {
 };
 FlakeGroups flakeGroups(const FlakeTile& tile, const TiltIndex& tilts, double top_um, double bottom_um);
 
-// Part of P_G that stays proportional to the group's area.
-constexpr double kDefensiveShare = 0.25;
+// Part of P_G that stays proportional to the group's area: a walk's weight is
+// then at most 1 / kDefensiveShare times the area-proportional one. 0.5: with
+// 0.25 two stop-rule runs in ten of the demo took over 10 s (heavier tails),
+// with 0.5 none in ten (docs/PERFORMANCE.md, "First-flake walks").
+constexpr double kDefensiveShare = 0.5;
 
 // Learned factors rho per (layer, tilt bin, azimuth bin relative to the beam,
 // depth bin): key(layer, group of a view) = layer * kGroups + the group with

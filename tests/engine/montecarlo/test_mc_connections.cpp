@@ -425,6 +425,12 @@ TEST(MonteCarloConnections, DeltaWalksMatchTheHistogramOnChainsFromTheBeam) {
     s.tile_flakes = 800;
     s.delta_rate = 1.0;  // the first round's (adaptive_fractions sets the later ones)
     expectPartMatchesHistogram(r, req, s, 8, 1, 600000, "delta walks");
+    // With the first-flake walks (first_flake.h), which then take the chains
+    // that begin at a flake while the uniform walks keep those that begin with
+    // an internal reflection at the index step. (The beam refracted into the
+    // flake layer wrongly, upwards, made them score nothing: z = -23.)
+    s.first_flake_walks = true;
+    expectPartMatchesHistogram(r, req, s, 8, 1, 600000, "delta walks with first-flake walks");
 }
 
 TEST(MonteCarloConnections, FirstFlakeWalksMatchTheHistogramOnChainsFromAPearlFlake) {
@@ -453,6 +459,7 @@ TEST(MonteCarloConnections, FirstFlakeWalksMatchTheHistogramOnChainsFromAPearlFl
     auto s = explicitSettings(100000, 10.0, 71);
     s.tile_flakes = 800;
     s.delta_rate = 1.0;
+    s.first_flake_walks = true;
     expectPartMatchesHistogram(r, req, s, 8, 1, 600000, "first-flake walks");
 }
 

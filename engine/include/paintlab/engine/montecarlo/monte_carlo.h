@@ -218,12 +218,14 @@ struct McSettings {
     // Delta-chain walks: the chains that begin with the beam's reflection off
     // an explicit flake start on that flake, drawn by groups (tilt, azimuth
     // relative to the beam, depth) with probabilities learned from the walks
-    // so far, a quarter kept proportional to the groups' areas (first_flake.h;
+    // so far, half kept proportional to the groups' areas (first_flake.h;
     // unbiased for any such probabilities). At the demo's flop three-flake
     // chains whose first flake leans towards the light were most of the
-    // delta walks' variance (docs/PERFORMANCE.md). false: every chain from
-    // a uniform entry point.
-    bool first_flake_walks = true;
+    // delta walks' variance. Off by default: on the demo they halve that
+    // variance per walk at 437 nm but did not shorten the stop rule's time
+    // (docs/PERFORMANCE.md, "First-flake walks"). false: every chain from a
+    // uniform entry point.
+    bool first_flake_walks = false;
     double delta_rate = 0.25;
     double delta_roulette_weight = 1e-3;
     // Diagnostics for error budgets: with connections and glint_azimuths, the parts that run (bit
