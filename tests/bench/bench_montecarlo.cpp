@@ -182,6 +182,7 @@ BENCHMARK(BM_McPearlescentOnePercent)
 //   14 / 15 as 11, only the paths whose first direction change was a delta /
 //     a smooth vertex (the reverse walks' part, McSettings::reverse_walks)
 //   16 the default without reverse walks (the estimator before 2026-12-02, third session)
+//   17 the default with the first-flake walks (McSettings::first_flake_walks)
 // The figures quoted in docs/PERFORMANCE.md: see there (each row names its
 // arguments). Prints f, its standard error and the relative error per band
 // and geometry (stdout) and reports the worst relative error, the time 1 %
@@ -195,7 +196,7 @@ void BM_McExplicitBudget(benchmark::State& state) {
     s.max_paths = state.range(1) * 1000;
     s.explicit_flakes = true;
     s.histogram_cone_deg = 5.0;
-    s.connections = (config >= 5 && config <= 9) || config == 16;
+    s.connections = (config >= 5 && config <= 9) || config == 16 || config == 17;
     if (config == 1 || config == 6) s.batches = 1;  // else the default (16; 8 before 2026-12-03)
     if (config >= 2 && config <= 4) s.histogram_classes = 1U << static_cast<unsigned>(config - 1);
     if (config >= 10 && config <= 15) {
@@ -208,6 +209,8 @@ void BM_McExplicitBudget(benchmark::State& state) {
     if (config == 8) s.split_branches = false;
     if (config == 9) s.adaptive_fractions = false;
     if (state.range(2) > 0) s.connection_fraction = 1.0 / static_cast<double>(state.range(2));
+    if (config == 17) s.first_flake_walks = true;
+    s.seed = benchSeed();
     double worst = 0.0;
     double seconds = 0.0;
     double cpu = 0.0;
@@ -261,7 +264,7 @@ BENCHMARK(BM_McExplicitBudget)
     ->Args({6, 800, 8})
     ->Args({3, 800, 1})
     ->ArgsProduct({{5, 7, 8, 9}, {150}, {8}})
-    ->ArgsProduct({{5, 7}, {1500}, {8}})
+    ->ArgsProduct({{5, 7, 17}, {1500}, {8}})
     ->ArgsProduct({{10, 11, 12, 13, 14, 15}, {1000}, {1}})
     ->ArgsProduct({{5, 16}, {1500}, {8}})
     ->Unit(benchmark::kSecond)

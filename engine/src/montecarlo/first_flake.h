@@ -26,7 +26,8 @@
 // Measured on the demo (docs/PERFORMANCE.md): the delta walks' variance per
 // walk at 437 nm, 45as110, about halves and a walk costs ~30 % less, but the
 // stop rule's time to 1 % did not fall (20 seeds: mean 7.9 s with or
-// without them) and its tail grew; so they are off by default.
+// without them) and it scattered twice as much between seeds (standard
+// deviation 1.7 s against 0.9 s); so they are off by default.
 
 #include "flake_tile.h"
 #include "mc_connection.h"
@@ -57,9 +58,10 @@ struct FlakeGroups {
 FlakeGroups flakeGroups(const FlakeTile& tile, const TiltIndex& tilts, double top_um, double bottom_um);
 
 // Part of P_G that stays proportional to the group's area: a walk's weight is
-// then at most 1 / kDefensiveShare times the area-proportional one. 0.5: with
-// 0.25 two stop-rule runs in ten of the demo took over 10 s (heavier tails),
-// with 0.5 none in ten (docs/PERFORMANCE.md, "First-flake walks").
+// then at most 1 / kDefensiveShare times the area-proportional one (2x). The
+// demo's stop rule took as long on average with 0.25 (10 seeds) and 0.5 (20
+// seeds), two runs over 10 s each (docs/PERFORMANCE.md, "First-flake walks");
+// 0.5 for the tighter bound on the weights.
 constexpr double kDefensiveShare = 0.5;
 
 // Learned factors rho per (layer, tilt bin, azimuth bin relative to the beam,
