@@ -77,6 +77,8 @@ FirstFlakeTable firstFlakeTable(std::span<const LayerFlakes> tiles, const Vec3& 
         FlakeGroups::kAzimuthBins;
     double area_total = 0.0;
     double h_total = 0.0;
+    std::vector<double> areas;
+    std::vector<double> learned_weights;  // A_G rho_key
     for (std::size_t l = 0; l < tiles.size(); ++l) {
         const FlakeGroups* groups = tiles[l].groups;
         if (groups == nullptr) continue;
@@ -91,7 +93,8 @@ FirstFlakeTable firstFlakeTable(std::span<const LayerFlakes> tiles, const Vec3& 
                     const double h = area * rho(proposal, key);
                     area_total += area;
                     h_total += h;
-                    table.cumulative.push_back(area);  // area now, probability below
+                    areas.push_back(area);
+                    learned_weights.push_back(h);
                     table.key.push_back(key);
                 }
     }
@@ -99,11 +102,10 @@ FirstFlakeTable firstFlakeTable(std::span<const LayerFlakes> tiles, const Vec3& 
     table.area_total = area_total;
     const double learned = h_total > 0.0 ? 1.0 - kDefensiveShare : 0.0;
     double running = 0.0;
-    for (std::size_t e = 0; e < table.cumulative.size(); ++e) {
-        const double area = table.cumulative[e];
-        const double h = area * rho(proposal, table.key[e]);
-        running += (1.0 - learned) * area / area_total + (h_total > 0.0 ? learned * h / h_total : 0.0);
-        table.cumulative[e] = running;
+    for (std::size_t e = 0; e < areas.size(); ++e) {
+        running += (1.0 - learned) * areas[e] / area_total +
+                   (h_total > 0.0 ? learned * learned_weights[e] / h_total : 0.0);
+        table.cumulative.push_back(running);
     }
     return table;
 }
@@ -117,14 +119,8 @@ FirstFlakeDraw drawFirstFlake(std::span<const LayerFlakes> tiles, const FirstFla
         std::min(static_cast<std::size_t>(it - table.cumulative.begin()), table.cumulative.size() - 1);
     const double probability = (table.cumulative[e] - (e > 0 ? table.cumulative[e - 1] : 0.0)) / total;
     if (!(probability > 0.0)) return {};
-    // Entries are layer-major over the layers that have groups, kGroups each.
-    std::size_t layer_entry = e / FlakeGroups::kGroups;
-    std::size_t l = 0;
-    for (; l < tiles.size(); ++l) {
-        if (tiles[l].groups == nullptr) continue;
-        if (layer_entry == 0) break;
-        --layer_entry;
-    }
+    // The key names the layer; entries run over each layer's groups in order.
+    const auto l = static_cast<std::size_t>(table.key[e] / FlakeGroups::kGroups);
     const FlakeGroups& groups = *tiles[l].groups;
     // The group's own index in the tile's frame (entries run over t, a, d as the groups do).
     const std::size_t g = e % FlakeGroups::kGroups;

@@ -88,7 +88,8 @@ TEST(FirstFlakeDraw, DrawsEachGroupWithTheProbabilityItReportsAndFromThatGroup) 
         const int tile_bin = std::min(static_cast<int>(phi / bin), mc::FlakeGroups::kAzimuthBins - 1);
         const bool azimuth_ok = tile_bin == (azimuth_bin + shift) % mc::FlakeGroups::kAzimuthBins;
         if (!depth_ok || !azimuth_ok || !tilt_ok) ++misplaced;
-        // The point is on the drawn flake's plane.
+        // The point is on the drawn flake's plane (pointOnFlake works in double:
+        // 1e-9 µm is rounding at the tile's ~100 µm coordinates).
         const mc::Vec3 r{d.point.x - f.centre.x, d.point.y - f.centre.y, d.point.z - f.centre.z};
         EXPECT_NEAR(mc::dot(r, f.normal), 0.0, 1e-9);
     }

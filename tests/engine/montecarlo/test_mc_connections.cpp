@@ -336,6 +336,15 @@ struct ClearCoat {
     double base_albedo;
 };
 
+// Incidence 45 deg with three exits: the specular direction, the normal, and
+// 50 deg on the source's side (where chains of several reflections are most of
+// class Other).
+std::vector<mc::IncidenceRequest> specularNormalAndBackscatter() {
+    return {{directionFromAnglesDeg(45.0, 0.0),
+             {directionFromAnglesDeg(45.0, 180.0), directionFromAnglesDeg(0.0, 0.0),
+              directionFromAnglesDeg(50.0, 0.0)}}};
+}
+
 // ... with a 12 µm flake layer (binder index 1.45) between them: 8 µm mirror
 // flakes of reflectance 0.9 at the given volume fraction and spread, and a pigment.
 Recipe mirrorFlakesUnderClearCoat(const ClearCoat& coat, double flake_fraction, double spread_deg,
@@ -394,10 +403,7 @@ TEST(MonteCarloConnections, FlakeImagesMatchTheHistogramOnTheirPathClass) {
     // independent seeds; the part resolved by the histogram, mean > 5 errors).
     const Recipe r =
         mirrorFlakesUnderClearCoat({1.55, 10.0, 0.5}, 0.12, 25.0, test::pigment(0.01, 5.0, 2.0, 0.2));
-    const std::vector<mc::IncidenceRequest> req{
-        {directionFromAnglesDeg(45.0, 0.0),
-         {directionFromAnglesDeg(45.0, 180.0), directionFromAnglesDeg(0.0, 0.0),
-          directionFromAnglesDeg(50.0, 0.0)}}};
+    const std::vector<mc::IncidenceRequest> req = specularNormalAndBackscatter();
     auto s = explicitSettings(60000, 10.0, 61);
     s.tile_flakes = 800;
     expectPartMatchesHistogram(r, req, s, 16, 32 | 64, 1500000, "flake images");
@@ -417,10 +423,7 @@ TEST(MonteCarloConnections, DeltaWalksMatchTheHistogramOnChainsFromTheBeam) {
     // histogram (mean > 5 errors).
     const Recipe r =
         mirrorFlakesUnderClearCoat({1.55, 10.0, 0.5}, 0.12, 25.0, test::pigment(0.01, 5.0, 2.0, 0.2));
-    const std::vector<mc::IncidenceRequest> req{
-        {directionFromAnglesDeg(45.0, 0.0),
-         {directionFromAnglesDeg(45.0, 180.0), directionFromAnglesDeg(0.0, 0.0),
-          directionFromAnglesDeg(50.0, 0.0)}}};
+    const std::vector<mc::IncidenceRequest> req = specularNormalAndBackscatter();
     auto s = explicitSettings(100000, 10.0, 45);
     s.tile_flakes = 800;
     s.delta_rate = 1.0;  // the first round's (adaptive_fractions sets the later ones)
@@ -444,18 +447,15 @@ TEST(MonteCarloConnections, FirstFlakeWalksMatchTheHistogramOnChainsFromAPearlFl
     // part 1 must be matched by the first-flake walks alone. Exits: the
     // specular direction, the normal and the flop on the source's side, where
     // the chains of two and three reflections are most of class Other. kZ = 4
-    // and the "resolved" check as in expectPartMatchesHistogram. The
-    // weights of the learned draw cannot bias it: learning replaced by an
-    // arbitrary P_G would change the errors only.
+    // and the "resolved" check as in expectPartMatchesHistogram. The mean is
+    // the same for any P_G > 0, so this checks the walk's weight whatever the
+    // learning sets.
     Recipe r = test::smallPearlescent(test::pigment(0.002, 4.0, 2.0, 0.2), 0.3);
     r.layers[0].binder.refractive_index = Spectrum(1.5);
     auto& pearl = std::get<InterferenceFlake>(r.layers[1].components[0]);
     pearl.volume_fraction = 0.12;  // dense, so that chains of several reflections are a large part of f
     pearl.orientation_spread_deg = 20.0;
-    const std::vector<mc::IncidenceRequest> req{
-        {directionFromAnglesDeg(45.0, 0.0),
-         {directionFromAnglesDeg(45.0, 180.0), directionFromAnglesDeg(0.0, 0.0),
-          directionFromAnglesDeg(50.0, 0.0)}}};
+    const std::vector<mc::IncidenceRequest> req = specularNormalAndBackscatter();
     auto s = explicitSettings(100000, 10.0, 71);
     s.tile_flakes = 800;
     s.delta_rate = 1.0;
