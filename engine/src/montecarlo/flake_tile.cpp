@@ -237,7 +237,7 @@ void flakeIntersect(const RTCIntersectFunctionNArguments* args) {
     if (!(t > ray->t_near) || !(t < ray->t_best)) return;
     const Vec3 q{ray->origin.x + t * ray->dir.x - p.centre.x, ray->origin.y + t * ray->dir.y - p.centre.y,
                  ray->origin.z + t * ray->dir.z - p.centre.z};
-    if (!insidePolygon(q, p.normal, p.radius_um, p.rotation)) return;
+    if (!insidePolygon(q, p.normal, p.radius_um, static_cast<double>(p.rotation))) return;
     ray->t_best = t;
     ray->best = &p;
     ray->geometry = args->geomID;
@@ -425,7 +425,7 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
             }
             // Rounded to float so that the primitive's copy of it is exact.
             const auto rotation_f = static_cast<float>(2.0 * std::numbers::pi * rng.uniform());
-            const double rotation = rotation_f;
+            const auto rotation = static_cast<double>(rotation_f);
             grid.add({centre, normal, radius, static_cast<int>(k), rotation}, m_placed.size());
             m_placed.push_back({centre, normal, radius, static_cast<int>(k), rotation});
             for (int dx = -1; dx <= 1; ++dx)
