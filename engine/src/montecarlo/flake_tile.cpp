@@ -123,13 +123,11 @@ struct alignas(64) FlakePrimitive {
 };
 static_assert(sizeof(FlakePrimitive) == 64);
 
-// Whether in-plane point (u, v) lies in the regular kSides-gon of
-// circumradius r whose first vertex is at angle `rotation`: inside the
-// inscribed circle always, outside the circumscribed never, and in the thin
-// ring between (3.8 % of the disk for 16 sides) against the edge of its
-// sector. This is exactly the polygon pointOnFlake samples and flakeAreaUm2 measures.
-bool insideRing(double u, double v, double r, double rotation) {
-    const double apothem = r * std::cos(std::numbers::pi / kSides);
+// For in-plane point (u, v) in the ring between the inscribed and the
+// circumscribed circle of the regular kSides-gon of circumradius r and
+// apothem a whose first vertex is at angle `rotation`: whether it lies
+// inside the edge of its sector.
+bool insideRing(double u, double v, double apothem, double rotation) {
     constexpr double kSector = 2.0 * std::numbers::pi / kSides;
     double phi = std::atan2(v, u) - rotation;
     phi -= 2.0 * std::numbers::pi * std::floor(phi / (2.0 * std::numbers::pi));
@@ -137,8 +135,12 @@ bool insideRing(double u, double v, double r, double rotation) {
     return u * std::cos(mid) + v * std::sin(mid) <= apothem;
 }
 
-// The same test for a point q - centre of the flake's plane given in 3-D: the
-// two circles need only its length, the ring its in-plane coordinates.
+// Whether the point q (relative to the centre, in the plane of `normal`)
+// lies in the flake's regular kSides-gon of circumradius r: inside the
+// inscribed circle always, outside the circumscribed never (both need only
+// |q|), and in the thin ring between (3.8 % of the disk for 16 sides)
+// against the edge of its sector, in the in-plane basis of planeBasis. This
+// is exactly the polygon pointOnFlake samples and flakeAreaUm2 measures.
 bool insidePolygon(const Vec3& q, const Vec3& normal, double r, double rotation) {
     const double rho2 = dot(q, q);
     if (rho2 > r * r) return false;
@@ -147,7 +149,7 @@ bool insidePolygon(const Vec3& q, const Vec3& normal, double r, double rotation)
     Vec3 b1;
     Vec3 b2;
     planeBasis(normal, b1, b2);
-    return insideRing(dot(q, b1), dot(q, b2), r, rotation);
+    return insideRing(dot(q, b1), dot(q, b2), apothem, rotation);
 }
 
 // Interleaves the low 16 bits of x and y (x in the even bits): a Morton code.
