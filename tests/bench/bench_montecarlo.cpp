@@ -88,7 +88,9 @@ void estimatorOf20261201(mc::McSettings& s) {
 // 2 explicit flakes, the histogram alone and one view per tile (the estimator
 // before 2026-12), 3 explicit flakes, the connections of 2026-12-01 (per-view
 // glint lists, one fraction for all cones, no split branches), 4 the default
-// with the first-flake walks (McSettings::first_flake_walks); geometries: the
+// with the first-flake walks (McSettings::first_flake_walks), 5 the default
+// without the delta walks' roulette by promise (McSettings::chain_promise,
+// the estimator before 2026-12-04, tenth session); geometries: the
 // six multi-angle ones or the four near the specular direction (45as-15 to
 // 45as45). Stops every band at 1 % relative standard error of the albedo and
 // every f; 2 threads. Explicit flakes run for at most 60 s and report the time
@@ -113,6 +115,7 @@ void BM_McPearlescentOnePercent(benchmark::State& state) {
     if (state.range(1) == 3) estimatorOf20261201(s);
     if (state.range(1) == 4) s.first_flake_walks = true;
     if (s.explicit_flakes) s.max_seconds = 60.0;
+    if (state.range(1) == 5) s.chain_promise = false;
     s.seed = benchSeed();
     std::int64_t paths = 0;
     double worst = 0.0;
@@ -154,6 +157,7 @@ BENCHMARK(BM_McPearlescentOnePercent)
     ->Args({8, 1, 6})
     ->Args({8, 1, 4})
     ->Args({8, 4, 6})
+    ->Args({8, 5, 6})
     ->Args({8, 3, 6})
     ->Args({8, 3, 4})
     ->Args({8, 2, 6})

@@ -11,6 +11,7 @@ are summarised with their standard error: the machine's drift then cancels.
 
     tools/bench_seeds/bench_seeds.py --seeds 1-20
     tools/bench_seeds/bench_seeds.py --seeds 1-14 --baseline /tmp/old/bench_montecarlo
+    tools/bench_seeds/bench_seeds.py --seeds 1-12 --baseline-benchmark BM_McPearlescentOnePercent/8/5/6
 """
 
 import argparse
@@ -62,14 +63,18 @@ def main():
     parser.add_argument("--binary", default=DEFAULT_BINARY)
     parser.add_argument("--baseline", help="a second bench_montecarlo to pair each seed with")
     parser.add_argument("--benchmark", default=DEFAULT_FILTER, help="one benchmark's full name")
+    parser.add_argument("--baseline-benchmark",
+                        help="pair with this benchmark (of --baseline, or of the same binary) instead")
     args = parser.parse_args()
+    baseline = args.baseline or (args.binary if args.baseline_benchmark else None)
+    baseline_benchmark = args.baseline_benchmark or args.benchmark
     times, ratios = [], []
     for seed in seed_range(args.seeds):
         seconds, paths = run(args.binary, args.benchmark, seed)
         times.append(seconds)
         line = f"seed {seed:3d}: {seconds:7.2f} s, {paths:10.0f} paths"
-        if args.baseline:
-            base_seconds, base_paths = run(args.baseline, args.benchmark, seed)
+        if baseline:
+            base_seconds, base_paths = run(baseline, baseline_benchmark, seed)
             ratios.append(seconds / base_seconds)
             same = "same paths" if base_paths == paths else f"baseline {base_paths:.0f} paths"
             line += f"; baseline {base_seconds:7.2f} s ({same}), ratio {ratios[-1]:.3f}"

@@ -102,6 +102,9 @@ struct Walker {
     // slices is applied as the weight e^(-sigma t) of the straight flight instead,
     // and a smooth vertex (the Lambertian substrate) ends it.
     bool delta_only = false;
+    double promise_weight = 0.0;  // promise_threshold times the start weight
+    double beam_x = 1.0;          // the beam's lateral travel direction (the promise's frame)
+    double beam_y = 0.0;
     int splits = 0;              // splits above this branch
     double escaped_extra = 0.0;  // what split-off branches carried out through the top
 
@@ -124,7 +127,7 @@ struct Walker {
         branch.image_calls = 0;
         branch.image_rays = 0;
         branch.reverse_score = 0.0;
-        const double escaped = branch.roulette() ? branch.run() : 0.0;
+        const double escaped = branch.roulette() && branch.promiseRoulette() ? branch.run() : 0.0;
         escaped_extra += escaped + branch.escaped_extra;
         transmitted += branch.transmitted;
         events += branch.events;
@@ -249,13 +252,13 @@ struct Walker {
             weight *= R;
             v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
             flakeReflection(layer);
-            return roulette();
+            return roulette() && promiseRoulette();
         }
         const double u = rng.uniform();
         if (u < R) {
             v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
             flakeReflection(layer);
-            return roulette();
+            return roulette() && promiseRoulette();
         }
         return u < R + f.T(c);
     }
@@ -389,6 +392,35 @@ struct Walker {
                          std::exp(-e * (s.bottom_um - depth) / mu) * c.down[j];
             brdf_out[k] += weight * value / (sigma * mu);
         }
+    }
+
+    // Whether the exit direction of upward v (in slice j) lies in a cone: n sin(theta) is kept up to the
+    // ambient.
+    bool headsIntoCone() const {
+        const double ratio = stack.slices[j].n / stack.ambient_n;
+        const double wx = v.x * ratio;
+        const double wy = v.y * ratio;
+        const double lateral = wx * wx + wy * wy;
+        if (!(lateral < 1.0)) return false;
+        const Vec3 w{wx, wy, std::sqrt(1.0 - lateral)};
+        return std::any_of(bins.begin(), bins.end(),
+                           [&w](const HistogramBin& bin) { return dot(w, bin.wo) >= bin.cos_cone; });
+    }
+
+    // Delta-chain walks: the roulette of a new branch by its promise
+    // (WalkSettings::chain_promise); the beam's own branches and those that
+    // head into a cone always go on. Returns false when the branch ends.
+    bool promiseRoulette() {
+        const ChainPromise* promise = settings.chain_promise;
+        if (promise == nullptr || !delta_only || path_class == kClassBeam || !(promise_weight > 0.0))
+            return true;
+        if (v.z > 0.0 && headsIntoCone()) return true;
+        const double q =
+            std::clamp(weight * promise->at(v, beam_x, beam_y) / promise_weight, settings.promise_floor, 1.0);
+        if (q >= 1.0) return true;
+        if (rng.uniform() >= q) return false;
+        weight /= q;
+        return true;
     }
 
     // Returns false when the path ends.
@@ -647,7 +679,7 @@ struct Walker {
                     weight *= F;
                     v.z = -v.z;
                     deltaChange(true);
-                    if (!roulette()) return 0.0;
+                    if (!roulette() || !promiseRoulette()) return 0.0;
                     continue;
                 }
                 if (j == 0) {
@@ -655,6 +687,7 @@ struct Walker {
                         escape();
                         return weight;
                     }
+                    if (!promiseRoulette()) return 0.0;  // reflected back down
                 } else if (crossInterface(s.n, stack.slices[j - 1].n, false)) {
                     --j;
                 }
@@ -741,6 +774,12 @@ PathOutcome traceDeltaChains(const PathContext& context, Vec3 v, double weight, 
                              PathRng& rng, std::span<double> f_out) {
     const WalkSettings settings = deltaChainSettings(context.settings);
     Walker walker = deltaWalker(context, settings, rng, f_out, v, weight, x, y, 0, 0.0, kClassBeam);
+    const double lateral = std::hypot(v.x, v.y);
+    if (lateral > 0.0) {
+        walker.beam_x = v.x / lateral;
+        walker.beam_y = v.y / lateral;
+    }
+    walker.promise_weight = settings.promise_threshold * weight;
     const double escaped = walker.run() + walker.escaped_extra;
     return {escaped, walker.transmitted, walker.events, walker.rays, 0, 0};
 }

@@ -1,6 +1,7 @@
 #pragma once
 // One Monte Carlo path through the paint at one wavelength (mc_walk.cpp).
 
+#include "chain_promise.h"
 #include "flake_tile.h"
 #include "mc_connection.h"
 #include "mc_random.h"
@@ -59,6 +60,13 @@ struct WalkSettings {
     // Delta-chain walks: the beam's reflections off explicit flakes end the
     // branch (the first-flake walks score those chains; McSettings::first_flake_walks).
     bool skip_beam_flake_reflections = false;
+    // Delta-chain walks: a branch's roulette by its promise (chain_promise.h;
+    // null: by weight alone). It survives with probability
+    // clamp(w promise / (promise_threshold w_0), promise_floor, 1), w_0 the
+    // walk's start weight, and then carries w / q.
+    const ChainPromise* chain_promise = nullptr;
+    double promise_threshold = 1.4e-4;
+    double promise_floor = 0.2;
 };
 
 // Projection of what escapes on the fast model's basis (mc_table.h): the

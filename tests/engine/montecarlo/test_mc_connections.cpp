@@ -434,6 +434,19 @@ TEST(MonteCarloConnections, DeltaWalksMatchTheHistogramOnChainsFromTheBeam) {
     // flake layer wrongly, upwards, made them score nothing: z = -23.)
     s.first_flake_walks = true;
     expectPartMatchesHistogram(r, req, s, 8, 1, 600000, "delta walks with first-flake walks");
+    // The roulette by promise (McSettings::chain_promise, chain_promise.h)
+    // stops a branch with probability 1 - q and weighs the survivors by 1 / q,
+    // so the mean is the same for any promise. At the default threshold it
+    // barely acts on these dense R = 0.9 mirrors (their branches keep high
+    // weights: at 0.05 a roulette without the 1 / q still passed); a threshold
+    // of the whole start weight (~7000 times the default) and a floor of 0.05
+    // make it stop most branches. A roulette that forgets the 1 / q fails here
+    // (checked by mutation: z = -6.0, -14.5, -12.9 at the three exits).
+    s.first_flake_walks = false;
+    s.seed = 47;
+    s.chain_promise_threshold = 1.0;
+    s.chain_promise_floor = 0.05;
+    expectPartMatchesHistogram(r, req, s, 8, 1, 600000, "delta walks, strong roulette by promise");
 }
 
 TEST(MonteCarloConnections, FirstFlakeWalksMatchTheHistogramOnChainsFromAPearlFlake) {

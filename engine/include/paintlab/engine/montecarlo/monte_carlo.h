@@ -228,6 +228,16 @@ struct McSettings {
     bool first_flake_walks = false;
     double delta_rate = 0.25;
     double delta_roulette_weight = 1e-3;
+    // Delta-chain walks: besides the roulette by weight, each new branch is
+    // kept with a probability set by its promise, how likely its next
+    // reflection or two turn it into a cone, weighted by the cones' relative
+    // error (the orientation law at the half-vector; chain_promise.h), and
+    // carries the inverse: unbiased, and most branches that cannot score stop
+    // early. From the first adaptation on (adaptive_fractions); false: by
+    // weight alone.
+    bool chain_promise = true;
+    double chain_promise_threshold = 1.4e-4;  // of the walk's start weight (mc_walk.h)
+    double chain_promise_floor = 0.2;         // the lowest survival probability
     // Diagnostics for error budgets: with connections and glint_azimuths, the parts that run (bit
     // mask): 1 next-event from smooth vertices, 2 the beam's single flake
     // reflections (glints), 4 the reverse walks. A part left out is not scored at
