@@ -145,9 +145,12 @@ void BM_McPearlescentOnePercent(benchmark::State& state) {
     state.counters["cpu_seconds"] = cpu;
     state.counters["cpu_seconds_to_1pct"] = cpu * to_1pct;
     state.counters["cpu_seconds_to_1pct_near"] = cpu * to_1pct_near;
-    static const char* const kLabels[] = {
-        "continuum flakes, next-event", "explicit flakes, connections", "explicit flakes, histogram only",
-        "explicit flakes, connections of 2026-12-01", "explicit flakes, connections with first-flake walks"};
+    static const char* const kLabels[] = {"continuum flakes, next-event",
+                                          "explicit flakes, connections",
+                                          "explicit flakes, histogram only",
+                                          "explicit flakes, connections of 2026-12-01",
+                                          "explicit flakes, connections with first-flake walks",
+                                          "explicit flakes, connections without the roulette by promise"};
     state.SetLabel(std::string(kLabels[state.range(1)]) + ", " + std::to_string(state.range(2)) +
                    " geometries");
 }
