@@ -1,5 +1,7 @@
 #include "chain_promise.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -12,9 +14,9 @@ constexpr double kPi = std::numbers::pi;
 
 // Normals of the flake that turns an upward branch down: a fixed midpoint
 // grid of the orientation law's inverse CDF (FlakeOrientation::sample),
-// 16 tilt quantiles x 8 azimuths. Coarse on purpose: the promise only steers
+// 8 tilt quantiles x 8 azimuths. Coarse on purpose: the promise only steers
 // the roulette.
-constexpr int kTiltSamples = 16;
+constexpr int kTiltSamples = 8;
 constexpr int kAzimuthSamples = 8;
 
 std::vector<Vec3> orientationSamples(double kappa) {
@@ -45,38 +47,55 @@ double peakRelativeD(const Vec3& down, const Vec3& up, double kappa) {
 
 }  // namespace
 
+namespace {
+
+// The direction at the centre of cell (ix, iy) of a bins x bins grid of
+// lateral components (outside the unit disk: its nearest point on the rim).
+Vec3 cellDirection(int ix, int iy, int bins, bool up) {
+    double x = -1.0 + (ix + 0.5) * 2.0 / bins;
+    double y = -1.0 + (iy + 0.5) * 2.0 / bins;
+    const double r = std::hypot(x, y);
+    if (r > 1.0) {
+        x /= r;
+        y /= r;
+    }
+    const double z = std::sqrt(std::max(0.0, 1.0 - x * x - y * y));
+    return {x, y, up ? z : -z};
+}
+
+// Upward d: the flakes it meets (|d.n| their share) turn it down, then D at the next flake.
+double upwardPromise(const Vec3& d, const Vec3& cone, const std::vector<Vec3>& normals, double kappa) {
+    double sum = 0.0;
+    double projected = 0.0;
+    for (const Vec3& n : normals) {
+        const double dn = dot(d, n);
+        projected += std::abs(dn);
+        const Vec3 reflected{d.x - 2.0 * dn * n.x, d.y - 2.0 * dn * n.y, d.z - 2.0 * dn * n.z};
+        if (reflected.z < 0.0) sum += std::abs(dn) * peakRelativeD(reflected, cone, kappa);
+    }
+    return projected > 0.0 ? sum / projected : 0.0;
+}
+
+constexpr std::size_t kDownCells =
+    static_cast<std::size_t>(ChainPromise::kDownBins) * ChainPromise::kDownBins;
+constexpr std::size_t kUpCells = static_cast<std::size_t>(ChainPromise::kUpBins) * ChainPromise::kUpBins;
+
+}  // namespace
+
 ChainPromise::ChainPromise(std::span<const Vec3> cones_in_film, double kappa, double reflectance) {
     const std::vector<Vec3> normals = orientationSamples(kappa);
-    const std::size_t cells = static_cast<std::size_t>(kCosBins) * kAzimuthBins;
-    m_per_cone.assign(cones_in_film.size(), std::vector<float>(cells, 0.0F));
-    for (int iz = 0; iz < kCosBins; ++iz) {
-        const double z = -1.0 + (iz + 0.5) * 2.0 / kCosBins;
-        const double s = std::sqrt(std::max(0.0, 1.0 - z * z));
-        for (int ia = 0; ia < kAzimuthBins; ++ia) {
-            const double phi = -kPi + (ia + 0.5) * 2.0 * kPi / kAzimuthBins;
-            const Vec3 d{s * std::cos(phi), s * std::sin(phi), z};
-            const std::size_t c = static_cast<std::size_t>(iz) * kAzimuthBins + static_cast<std::size_t>(ia);
-            for (std::size_t k = 0; k < cones_in_film.size(); ++k) {
-                const Vec3& u = cones_in_film[k];
-                double value = 0.0;
-                if (z < 0.0) {
-                    value = peakRelativeD(d, u, kappa);
-                } else {
-                    // Upward: the flakes it meets, |d.n| their share, turn it down, then D at C.
-                    double sum = 0.0;
-                    double projected = 0.0;
-                    for (const Vec3& n : normals) {
-                        const double dn = dot(d, n);
-                        projected += std::abs(dn);
-                        const Vec3 r{d.x - 2.0 * dn * n.x, d.y - 2.0 * dn * n.y, d.z - 2.0 * dn * n.z};
-                        if (r.z < 0.0) sum += std::abs(dn) * peakRelativeD(r, u, kappa);
-                    }
-                    value = projected > 0.0 ? reflectance * sum / projected : 0.0;
-                }
-                m_per_cone[k][c] = static_cast<float>(value);
-            }
+    m_per_cone.assign(cones_in_film.size(), std::vector<float>(kDownCells + kUpCells, 0.0F));
+    tbb::parallel_for(std::size_t{0}, kDownCells + kUpCells, [&](std::size_t c) {
+        const bool up = c >= kDownCells;
+        const int bins = up ? kUpBins : kDownBins;
+        const auto i = static_cast<int>(up ? c - kDownCells : c);
+        const Vec3 d = cellDirection(i % bins, i / bins, bins, up);
+        for (std::size_t k = 0; k < cones_in_film.size(); ++k) {
+            const double value = up ? reflectance * upwardPromise(d, cones_in_film[k], normals, kappa)
+                                    : peakRelativeD(d, cones_in_film[k], kappa);
+            m_per_cone[k][c] = static_cast<float>(value);
         }
-    }
+    });
 }
 
 void ChainPromise::setConeWeights(std::span<const double> weights) {
@@ -90,16 +109,14 @@ void ChainPromise::setConeWeights(std::span<const double> weights) {
             m_combined[c] += static_cast<float>(weights[k]) * m_per_cone[k][c];
 }
 
-std::size_t ChainPromise::cell(const Vec3& d, double bx, double by) const {
-    const int iz = std::clamp(static_cast<int>((d.z + 1.0) * 0.5 * kCosBins), 0, kCosBins - 1);
-    const double phi = std::atan2(d.y * bx - d.x * by, d.x * bx + d.y * by);
-    const int ia =
-        std::clamp(static_cast<int>((phi + kPi) / (2.0 * kPi) * kAzimuthBins), 0, kAzimuthBins - 1);
-    return static_cast<std::size_t>(iz) * kAzimuthBins + static_cast<std::size_t>(ia);
-}
-
 double ChainPromise::at(const Vec3& d, double bx, double by) const {
-    return static_cast<double>(m_combined[cell(d, bx, by)]);
+    const bool up = d.z > 0.0;
+    const int bins = up ? kUpBins : kDownBins;
+    const double half = 0.5 * bins;
+    const int ix = std::clamp(static_cast<int>((d.x * bx + d.y * by + 1.0) * half), 0, bins - 1);
+    const int iy = std::clamp(static_cast<int>((d.y * bx - d.x * by + 1.0) * half), 0, bins - 1);
+    const std::size_t cell = (up ? kDownCells : 0) + static_cast<std::size_t>(iy * bins + ix);
+    return static_cast<double>(m_combined[cell]);
 }
 
 }  // namespace paintlab::mc

@@ -414,10 +414,9 @@ struct Walker {
         const ChainPromise* promise = settings.chain_promise;
         if (promise == nullptr || !delta_only || path_class == kClassBeam || !(promise_weight > 0.0))
             return true;
-        if (v.z > 0.0 && headsIntoCone()) return true;
         const double q =
             std::clamp(weight * promise->at(v, beam_x, beam_y) / promise_weight, settings.promise_floor, 1.0);
-        if (q >= 1.0) return true;
+        if (q >= 1.0 || (v.z > 0.0 && headsIntoCone())) return true;
         if (rng.uniform() >= q) return false;
         weight /= q;
         return true;
