@@ -161,6 +161,9 @@ ordered_json settingsJson(const mc::McSettings& s, const mc::McResult& r) {
             {"delta_walks", s.explicit_flakes && s.connections && s.glint_azimuths && s.delta_walks},
             {"first_flake_walks",
              s.explicit_flakes && s.connections && s.glint_azimuths && s.delta_walks && s.first_flake_walks},
+            // The roulette by promise takes its cone weights from the adaptive model.
+            {"chain_promise", s.explicit_flakes && s.connections && s.glint_azimuths &&
+                                  s.adaptive_fractions && s.delta_walks && s.chain_promise},
             {"flake_images", s.explicit_flakes && s.connections && s.glint_azimuths && s.flake_images},
             {"max_paths", s.max_paths},
             {"target_rel_error", s.target_rel_error},

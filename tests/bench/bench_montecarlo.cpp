@@ -190,6 +190,7 @@ BENCHMARK(BM_McPearlescentOnePercent)
 //     a smooth vertex (the reverse walks' part, McSettings::reverse_walks)
 //   16 the default without reverse walks (the estimator before 2026-12-02, third session)
 //   17 the default with the first-flake walks (McSettings::first_flake_walks)
+//   18 the default without the delta walks' roulette by promise (McSettings::chain_promise)
 // The figures quoted in docs/PERFORMANCE.md: see there (each row names its
 // arguments). Prints f, its standard error and the relative error per band
 // and geometry (stdout) and reports the worst relative error, the time 1 %
@@ -203,7 +204,7 @@ void BM_McExplicitBudget(benchmark::State& state) {
     s.max_paths = state.range(1) * 1000;
     s.explicit_flakes = true;
     s.histogram_cone_deg = 5.0;
-    s.connections = (config >= 5 && config <= 9) || config == 16 || config == 17;
+    s.connections = (config >= 5 && config <= 9) || config >= 16;
     if (config == 1 || config == 6) s.batches = 1;  // else the default (16; 8 before 2026-12-03)
     if (config >= 2 && config <= 4) s.histogram_classes = 1U << static_cast<unsigned>(config - 1);
     if (config >= 10 && config <= 15) {
@@ -217,6 +218,7 @@ void BM_McExplicitBudget(benchmark::State& state) {
     if (config == 9) s.adaptive_fractions = false;
     if (state.range(2) > 0) s.connection_fraction = 1.0 / static_cast<double>(state.range(2));
     if (config == 17) s.first_flake_walks = true;
+    if (config == 18) s.chain_promise = false;
     s.seed = benchSeed();
     double worst = 0.0;
     double seconds = 0.0;
@@ -271,7 +273,7 @@ BENCHMARK(BM_McExplicitBudget)
     ->Args({6, 800, 8})
     ->Args({3, 800, 1})
     ->ArgsProduct({{5, 7, 8, 9}, {150}, {8}})
-    ->ArgsProduct({{5, 7, 17}, {1500}, {8}})
+    ->ArgsProduct({{5, 7, 17, 18}, {1500}, {8}})
     ->ArgsProduct({{10, 11, 12, 13, 14, 15}, {1000}, {1}})
     ->ArgsProduct({{5, 16}, {1500}, {8}})
     ->Unit(benchmark::kSecond)
