@@ -45,10 +45,6 @@ double peakRelativeD(const Vec3& down, const Vec3& up, double kappa) {
     return std::exp(-kappa * (1.0 - std::abs(h.z) / length));
 }
 
-}  // namespace
-
-namespace {
-
 // The direction at the centre of cell (ix, iy) of a bins x bins grid of
 // lateral components (outside the unit disk: its nearest point on the rim).
 Vec3 cellDirection(int ix, int iy, int bins, bool up) {

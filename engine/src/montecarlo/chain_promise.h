@@ -14,8 +14,10 @@
 // half-vector that mirrors it into cone k; upward and outside every cone,
 // R sum_k c_k E_B[D(h_k(reflect(d, n_B))) / D(1)] over the normal n_B of
 // the flake whose underside would turn it down (n_B from D weighted by
-// |d.n_B|); upward into a cone, no roulette. c_k = f_min / f_k weighs the
-// cones by their relative error (JobRunner::adapt). The branch survives with
+// |d.n_B|); upward into a cone, no roulette. The cone weights c_k =
+// (f_min / f_k) (v_k / v_max) weigh a chain by its share of f_k and the cone
+// by its need of the delta walks, v_k the relative variance they leave in it
+// (JobRunner::adapt, weighPromiseCones). The branch survives with
 // q = clamp(w promise / threshold, floor, 1) and carries w / q: unbiased for
 // any promise (weight-window roulette, e.g. Vorba and Krivanek 2016,
 // "Adjoint-driven Russian roulette and splitting"), so the tables may be

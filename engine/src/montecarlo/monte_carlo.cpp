@@ -307,7 +307,9 @@ public:
     // The delta walks' promise tables (chain_promise.h) in the frame of the
     // unturned beam (every view turns beam and cones together): the cones'
     // axes refracted into the first tiled layer's binder, the broadest
-    // orientation law of its flakes and their largest R near the normal.
+    // orientation law of its flakes and their largest R near the normal
+    // (a paint with several tiled layers gets the first's: the promise only
+    // steers the roulette, which stays unbiased).
     void buildChainPromise() {
         const PaintStack& stack = m_band.stack;
         const std::span<const LayerFlakes> layers = m_band.explicit_flakes.front();

@@ -230,8 +230,9 @@ struct McSettings {
     double delta_roulette_weight = 1e-3;
     // Delta-chain walks: besides the roulette by weight, each new branch is
     // kept with a probability set by its promise, how likely its next
-    // reflection or two turn it into a cone, weighted by the cones' relative
-    // error (the orientation law at the half-vector; chain_promise.h), and
+    // reflection or two turn it into a cone (the orientation law at the
+    // half-vector; chain_promise.h), the cones weighted by their relative
+    // error and their need of the delta walks, and
     // carries the inverse: unbiased, and most branches that cannot score stop
     // early. From the first adaptation on (adaptive_fractions); false: by
     // weight alone.
