@@ -48,6 +48,7 @@ struct McOptions {
     bool explicit_flakes = false;
     double cone_deg = 0.0;  // 0: next-event estimator (explicit flakes default to 5)
     bool reject_overlaps = false;
+    bool disk_flakes = false;     // explicit flakes: exact disks instead of 16-gons
     bool histogram_only = false;  // explicit flakes: no connections (the estimator before 2026-12)
     int tile_views = 32;          // explicit flakes: azimuths each tile is traced at
     int batches = mc::McSettings{}.batches;
@@ -77,6 +78,8 @@ mc::McSettings mcSettings(const McOptions& o) {
         throw InputError("<argument>", "--cone", std::to_string(o.cone_deg) + " must be in [0, 30] degrees");
     if (o.reject_overlaps && !o.explicit_flakes)
         throw InputError("<argument>", "--reject-overlaps", "needs --explicit-flakes");
+    if (o.disk_flakes && !o.explicit_flakes)
+        throw InputError("<argument>", "--disk-flakes", "needs --explicit-flakes");
     if (o.histogram_only && !o.explicit_flakes)
         throw InputError("<argument>", "--histogram-only", "needs --explicit-flakes");
     if (!(o.tile_views >= 1 && o.tile_views <= 1024))
@@ -88,6 +91,7 @@ mc::McSettings mcSettings(const McOptions& o) {
     s.seed = o.seed;
     s.explicit_flakes = o.explicit_flakes;
     s.reject_overlaps = o.reject_overlaps;
+    if (o.disk_flakes) s.flake_polygon_sides = 0;
     s.connections = !o.histogram_only;
     s.split_branches = !o.histogram_only;  // --histogram-only: the estimator before 2026-12, path for path
     s.tile_views = o.tile_views;
@@ -146,6 +150,8 @@ ordered_json settingsJson(const mc::McSettings& s, const mc::McResult& r) {
             {"explicit_flakes", s.explicit_flakes},
             {"histogram_cone_deg", s.histogram_cone_deg},
             {"reject_overlaps", s.reject_overlaps},
+            {"flake_shape", s.flake_polygon_sides == 0 ? std::string("disk")
+                                                       : std::to_string(s.flake_polygon_sides) + "-gon"},
             {"batches", s.batches},
             {"connections", s.explicit_flakes && s.connections},
             {"tile_views", s.explicit_flakes ? s.tile_views : 1},
@@ -443,6 +449,8 @@ void addStopOptions(CLI::App* command, McOptions& o) {
                         "--explicit-flakes); f is then the cone average");
     command->add_flag("--reject-overlaps", o.reject_overlaps,
                       "With --explicit-flakes: re-draw flakes that would intersect one already placed");
+    command->add_flag("--disk-flakes", o.disk_flakes,
+                      "With --explicit-flakes: exact disks instead of regular 16-gons of the disk's area");
     command->add_flag("--histogram-only", o.histogram_only,
                       "With --explicit-flakes: score f by the cone histogram alone, without the "
                       "connections through the tile or split branches (same mean, larger errors)");

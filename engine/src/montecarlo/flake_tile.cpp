@@ -20,9 +20,6 @@ namespace paintlab::mc {
 
 namespace {
 
-constexpr int kSides =
-    kFlakePolygonSides;  // a flake is a regular polygon with the disk's area (flake_polygon.h)
-
 void onEmbreeError(void* user, RTCError /*code*/, const char* message) {
     auto* text = static_cast<std::string*>(user);
     if (text->empty()) *text = message != nullptr ? message : "unknown Embree error";
@@ -124,11 +121,11 @@ struct alignas(64) FlakePrimitive {
 static_assert(sizeof(FlakePrimitive) == 64);
 
 // For in-plane point (u, v) in the ring between the inscribed and the
-// circumscribed circle of the regular kSides-gon of circumradius r and
+// circumscribed circle of the regular `sides`-gon of circumradius r and
 // apothem a whose first vertex is at angle `rotation`: whether it lies
 // inside the edge of its sector.
-bool insideRing(double u, double v, double apothem, double rotation) {
-    constexpr double kSector = 2.0 * std::numbers::pi / kSides;
+bool insideRing(double u, double v, double apothem, double rotation, int sides) {
+    const double kSector = 2.0 * std::numbers::pi / sides;
     double phi = std::atan2(v, u) - rotation;
     phi -= 2.0 * std::numbers::pi * std::floor(phi / (2.0 * std::numbers::pi));
     const double mid = rotation + (std::floor(phi / kSector) + 0.5) * kSector;
@@ -136,20 +133,22 @@ bool insideRing(double u, double v, double apothem, double rotation) {
 }
 
 // Whether the point q (relative to the centre, in the plane of `normal`)
-// lies in the flake's regular kSides-gon of circumradius r: inside the
+// lies in the flake's regular `sides`-gon of circumradius r (sides 0: the
+// disk of radius r, |q| alone): inside the
 // inscribed circle always, outside the circumscribed never (both need only
 // |q|), and in the thin ring between (3.8 % of the disk for 16 sides)
 // against the edge of its sector, in the in-plane basis of planeBasis. This
 // is exactly the polygon pointOnFlake samples and flakeAreaUm2 measures.
-bool insidePolygon(const Vec3& q, const Vec3& normal, double r, double rotation) {
+bool insidePolygon(const Vec3& q, const Vec3& normal, double r, double rotation, int sides) {
     const double rho2 = dot(q, q);
     if (rho2 > r * r) return false;
-    const double apothem = r * std::cos(std::numbers::pi / kSides);
+    if (sides == 0) return true;
+    const double apothem = r * std::cos(std::numbers::pi / sides);
     if (rho2 <= apothem * apothem) return true;
     Vec3 b1;
     Vec3 b2;
     planeBasis(normal, b1, b2);
-    return insideRing(dot(q, b1), dot(q, b2), apothem, rotation);
+    return insideRing(dot(q, b1), dot(q, b2), apothem, rotation, sides);
 }
 
 // Interleaves the low 16 bits of x and y (x in the even bits): a Morton code.
@@ -188,8 +187,14 @@ void sortAlongZOrderCurve(std::vector<FlakePrimitive>& primitives, double side_u
     primitives = std::move(sorted);
 }
 
+// One kind's primitives and the flakes' shape: Embree's user data of its geometry.
+struct KindPrimitives {
+    std::vector<FlakePrimitive> primitives;
+    int sides = kFlakePolygonSides;  // 0: disks
+};
+
 void flakeBounds(const RTCBoundsFunctionArguments* args) {
-    const auto& p = static_cast<const std::vector<FlakePrimitive>*>(args->geometryUserPtr)->at(args->primID);
+    const auto& p = static_cast<const KindPrimitives*>(args->geometryUserPtr)->primitives.at(args->primID);
     // A disk's extent along axis i is r sqrt(1 - n_i^2), rounded outwards to
     // float and padded by a few float ulps of the coordinates, since Embree
     // walks the BVH with the ray rounded to float (DoubleRay).
@@ -228,7 +233,8 @@ struct DoubleRay {
 };
 
 void flakeIntersect(const RTCIntersectFunctionNArguments* args) {
-    const auto& p = (*static_cast<const std::vector<FlakePrimitive>*>(args->geometryUserPtr))[args->primID];
+    const auto& kind = *static_cast<const KindPrimitives*>(args->geometryUserPtr);
+    const FlakePrimitive& p = kind.primitives[args->primID];
     auto* ray = reinterpret_cast<DoubleRay*>(args->context);  // NOLINT: Embree's documented context extension
     // FlakeTile::intersect traces single rays (rtcIntersect1: N = 1).
     if (args->N != 1 || args->valid[0] == 0) return;
@@ -239,7 +245,7 @@ void flakeIntersect(const RTCIntersectFunctionNArguments* args) {
     if (!(t > ray->t_near) || !(t < ray->t_best)) return;
     const Vec3 q{ray->origin.x + t * ray->dir.x - p.centre.x, ray->origin.y + t * ray->dir.y - p.centre.y,
                  ray->origin.z + t * ray->dir.z - p.centre.z};
-    if (!insidePolygon(q, p.normal, p.radius_um, static_cast<double>(p.rotation))) return;
+    if (!insidePolygon(q, p.normal, p.radius_um, static_cast<double>(p.rotation), kind.sides)) return;
     ray->t_best = t;
     ray->best = &p;
     ray->geometry = args->geomID;
@@ -327,7 +333,7 @@ struct FlakeTile::Impl {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
     std::vector<int> kind_of_geometry;
-    std::vector<std::vector<FlakePrimitive>> primitives;  // [geometry][primitive], stable once committed
+    std::vector<KindPrimitives> primitives;  // [geometry], stable once committed
     std::string error;
     ~Impl() {
         if (scene != nullptr) rtcReleaseScene(scene);
@@ -340,8 +346,11 @@ struct FlakeTile::Impl {
 
 FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, double bottom_um,
                      std::uint64_t seed, int target_flakes, int max_flakes, bool reject_overlaps,
-                     const std::atomic<bool>* stop)
-    : m_impl(std::make_unique<Impl>()) {
+                     const std::atomic<bool>* stop, int polygon_sides)
+    : m_impl(std::make_unique<Impl>()), m_sides(polygon_sides) {
+    if (polygon_sides != 0 && polygon_sides < 3)
+        throw InputError("settings", "flake_polygon_sides",
+                         "must be 0 (disks) or at least 3, got " + std::to_string(polygon_sides));
     const auto stopped = [stop] { return stop != nullptr && stop->load(std::memory_order_relaxed); };
     const double height = bottom_um - top_um;
     double per_area = 0.0;  // flakes per µm^2 of surface
@@ -353,7 +362,7 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
     }
     m_side_um = per_area > 0.0 ? std::max(2.0 * d_max, std::sqrt(target_flakes / per_area)) : 1.0;
     const double L = m_side_um;
-    const double circumradius_factor = flakeCircumradiusFactor();
+    const double circumradius_factor = flakeCircumradiusFactor(m_sides);
     LateralGrid grid(L, std::max(0.5 * d_max * circumradius_factor, 1e-6));
 
     // No "threads=N" in the configuration: with it Embree's TBB tasking installs a
@@ -388,7 +397,9 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
         if (count <= 0) continue;
         const double radius = 0.5 * kind.diameter_um * circumradius_factor;
         const FlakeOrientation orientation(kind.spread_deg);
-        std::vector<FlakePrimitive>& primitives = m_impl->primitives.emplace_back();
+        KindPrimitives& kind_primitives = m_impl->primitives.emplace_back();
+        kind_primitives.sides = m_sides;
+        std::vector<FlakePrimitive>& primitives = kind_primitives.primitives;
         // Depths first, in order from the top: the normals are then assigned
         // from a Halton sequence (bases 2, 3) in that order, so that the flakes
         // of any depth range (a ray mostly meets the upper ones) represent D
@@ -450,7 +461,7 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
         // build is that much shorter and a ray's traversal shallower.
         RTCGeometry geometry = rtcNewGeometry(m_impl->device, RTC_GEOMETRY_TYPE_USER);
         rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(primitives.size()));
-        rtcSetGeometryUserData(geometry, &primitives);
+        rtcSetGeometryUserData(geometry, &kind_primitives);
         rtcSetGeometryBoundsFunction(geometry, flakeBounds, nullptr);
         rtcSetGeometryIntersectFunction(geometry, flakeIntersect);
         m_impl->check("user geometry");
@@ -471,12 +482,13 @@ FlakeTile& FlakeTile::operator=(FlakeTile&&) noexcept = default;
 
 double FlakeTile::flakeAreaUm2(std::size_t i) const {
     const double r = m_placed[i].radius_um;
-    return 0.5 * kSides * r * r * std::sin(2.0 * std::numbers::pi / kSides);
+    if (m_sides == 0) return std::numbers::pi * r * r;
+    return 0.5 * m_sides * r * r * std::sin(2.0 * std::numbers::pi / m_sides);
 }
 
 bool FlakeTile::onFlake(std::size_t i, const Vec3& relative) const {
     const PlacedFlake& f = m_placed[i];
-    return insidePolygon(relative, f.normal, f.radius_um, f.rotation);
+    return insidePolygon(relative, f.normal, f.radius_um, f.rotation, m_sides);
 }
 
 Vec3 FlakeTile::pointOnFlake(std::size_t i, double u1, double u2, double u3) const {
@@ -484,11 +496,20 @@ Vec3 FlakeTile::pointOnFlake(std::size_t i, double u1, double u2, double u3) con
     Vec3 b1;
     Vec3 b2;
     planeBasis(f.normal, b1, b2);
+    if (m_sides == 0) {
+        // The disk: uniform over its area for the radius r sqrt(u2).
+        const double rho = f.radius_um * std::sqrt(std::clamp(u2, 0.0, 1.0));
+        const double phi = 2.0 * std::numbers::pi * u1;
+        const double cu = rho * std::cos(phi);
+        const double cv = rho * std::sin(phi);
+        return {f.centre.x + cu * b1.x + cv * b2.x, f.centre.y + cu * b1.y + cv * b2.y,
+                f.centre.z + cu * b1.z + cv * b2.z};
+    }
     // The polygon as a fan of equal triangles (centre, vertex s, vertex s + 1).
-    const double scaled = std::clamp(u1, 0.0, 1.0) * kSides;
-    const int s = std::min(static_cast<int>(scaled), kSides - 1);
-    const double phi0 = f.rotation + 2.0 * std::numbers::pi * s / kSides;
-    const double phi1 = f.rotation + 2.0 * std::numbers::pi * (s + 1) / kSides;
+    const double scaled = std::clamp(u1, 0.0, 1.0) * m_sides;
+    const int s = std::min(static_cast<int>(scaled), m_sides - 1);
+    const double phi0 = f.rotation + 2.0 * std::numbers::pi * s / m_sides;
+    const double phi1 = f.rotation + 2.0 * std::numbers::pi * (s + 1) / m_sides;
     // Uniform in the triangle: sqrt(u2) along the median, u3 across (e.g. pbrt-v4, SampleUniformTriangle).
     const double a = std::sqrt(u2);
     const double w0 = a * (1.0 - u3) * f.radius_um;

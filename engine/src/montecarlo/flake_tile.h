@@ -1,6 +1,7 @@
 #pragma once
 // Explicit flakes of one layer: a laterally periodic tile of side L (µm)
-// filled with flat polygons (regular 16-gons of the flake's area) with
+// filled with flat polygons (regular 16-gons of the flake's area by default,
+// or exact disks) with
 // sampled position (uniform laterally, depth from the concentration profile)
 // and normal (FlakeOrientation), intersected with Embree (user geometry: one
 // primitive per flake, the plane and polygon tested in double). Flakes that cross
@@ -8,6 +9,7 @@
 // sees everything it can hit there; the walk wraps rays at the sides.
 // The only file of the engine that includes Embree (with flake_tile.cpp).
 
+#include "flake_polygon.h"
 #include "mc_stack.h"
 
 #include <atomic>
@@ -67,10 +69,12 @@ public:
     // place in 1000 draws (the concentration is too high for flat flakes).
     // `stop`, if given, is polled between flake kinds and by Embree's BVH
     // build (most of the time): once it is true the constructor throws
-    // Error "cancelled" within a fraction of the build.
+    // Error "cancelled" within a fraction of the build. polygon_sides: the
+    // flakes' shape, regular polygons of the disk's area with this many
+    // sides (at least 3), or 0 for exact disks; InputError otherwise.
     FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, double bottom_um, std::uint64_t seed,
               int target_flakes, int max_flakes, bool reject_overlaps = false,
-              const std::atomic<bool>* stop = nullptr);
+              const std::atomic<bool>* stop = nullptr, int polygon_sides = kFlakePolygonSides);
     ~FlakeTile();
     FlakeTile(const FlakeTile&) = delete;
     FlakeTile& operator=(const FlakeTile&) = delete;
@@ -78,13 +82,15 @@ public:
     FlakeTile& operator=(FlakeTile&&) noexcept;
 
     double sideUm() const { return m_side_um; }
+    int polygonSides() const { return m_sides; }  // 0: disks
     std::int64_t flakeCount() const { return m_flakes; }
     // Every flake once (centres inside the tile; the copies over its sides are not listed).
     const std::vector<PlacedFlake>& flakes() const { return m_placed; }
-    // Area of flake i's polygon (µm^2; the disk's area of its diameter).
+    // Area of flake i's polygon or disk (µm^2; the disk's area of its diameter).
     double flakeAreaUm2(std::size_t i) const;
     // A point of flake i's polygon, uniform over its area for u1, u2, u3
-    // uniform in [0, 1) (a triangle of the fan, then a point in it).
+    // uniform in [0, 1) (a triangle of the fan, then a point in it; a disk:
+    // the azimuth from u1, the radius from u2).
     Vec3 pointOnFlake(std::size_t i, double u1, double u2, double u3) const;
     // Whether a point of flake i's plane, given relative to its centre (or to
     // that of a periodic copy), lies on its polygon.
@@ -96,6 +102,7 @@ private:
     struct Impl;
     std::unique_ptr<Impl> m_impl;
     double m_side_um = 0.0;
+    int m_sides = kFlakePolygonSides;
     std::int64_t m_flakes = 0;
     std::vector<PlacedFlake> m_placed;
 };

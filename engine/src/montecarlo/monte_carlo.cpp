@@ -1006,9 +1006,10 @@ McEngine::McEngine(const Recipe& recipe, const McSettings& settings, const std::
             // Batch 0 keeps the single tile's seed of earlier versions.
             const std::uint64_t tile_seed =
                 settings.seed ^ (0x9e3779b97f4a7c15ULL * (l + 1)) ^ (0xd1b54a32d192ed03ULL * k);
-            m_tiles[k][l] = std::make_unique<FlakeTile>(
-                geometries[l], tops[l], tops[l] + recipe.layers[l].thickness_um, tile_seed,
-                settings.tile_flakes, settings.max_tile_flakes, settings.reject_overlaps, &stop);
+            m_tiles[k][l] =
+                std::make_unique<FlakeTile>(geometries[l], tops[l], tops[l] + recipe.layers[l].thickness_um,
+                                            tile_seed, settings.tile_flakes, settings.max_tile_flakes,
+                                            settings.reject_overlaps, &stop, settings.flake_polygon_sides);
             if (settings.connections && settings.glint_azimuths) {
                 m_tilts[k][l] = tiltIndex(*m_tiles[k][l]);
                 if (settings.delta_walks && settings.first_flake_walks)

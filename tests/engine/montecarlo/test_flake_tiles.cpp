@@ -22,6 +22,9 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 mc::Vec3 sub(const mc::Vec3& a, const mc::Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+mc::Vec3 cross(const mc::Vec3& a, const mc::Vec3& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
 
 // Independent of disksIntersect: two non-coplanar disks meet iff the boundary
 // circle of one crosses the other disk (the ends of their common chord lie on
@@ -198,9 +201,10 @@ TEST(FlakeTileHits, NameTheirFlakeAndLieOnItsPlaneInALargeTile) {
 // intersection callback's data layout and the primitives' memory order must
 // not change (docs/PERFORMANCE.md, "Where the time goes"). Distances agree
 // to 1e-9 µm (double rounding on µm-sized segments; the float BVH only culls).
-TEST(FlakeTileHits, AreTheNearestOfABruteForceSearch) {
+// For the default 16-gons and for exact disks (McSettings::flake_polygon_sides).
+void expectNearestOfABruteForceSearch(int sides) {
     const std::vector<mc::FlakeGeometry> basecoat{{0.06 / 0.6, 18.0, 10.0, nullptr}};
-    const mc::FlakeTile tile(basecoat, 40.0, 55.0, 11, 1500, 1000000);
+    const mc::FlakeTile tile(basecoat, 40.0, 55.0, 11, 1500, 1000000, false, nullptr, sides);
     const double L = tile.sideUm();
     const auto& flakes = tile.flakes();
     mc::PathRng rng(8, 9, 10, 11);
@@ -238,11 +242,74 @@ TEST(FlakeTileHits, AreTheNearestOfABruteForceSearch) {
         ++hits;
         EXPECT_NEAR(hit.t, best_t, 1e-9) << "ray " << i;
     }
-    std::printf("  nearest hits: %d of %d rays hit a flake, every one the brute-force nearest\n", hits, rays);
+    std::printf("  nearest hits (%d sides): %d of %d rays hit a flake, every one the brute-force nearest\n",
+                sides, hits, rays);
     // ~1.5 flakes per vertical column of the 15 µm film: about half of the
     // segments (up to 40 µm, many leaving the film sooner) cross one (1325
     // of 3000 here); fewer than a third would mean the search finds nothing.
     EXPECT_GT(hits, rays / 3);
+}
+
+TEST(FlakeTileHits, AreTheNearestOfABruteForceSearch) {
+    expectNearestOfABruteForceSearch(mc::kFlakePolygonSides);
+    expectNearestOfABruteForceSearch(0);
+}
+
+// The two shapes (McSettings::flake_polygon_sides): both have the disk's area
+// (the tile's flake count and the fast model's area density assume it); the
+// disk's edge is its radius in every direction, the 16-gon's reaches its
+// circumradius only towards a vertex (the apothem is cos(pi/16) = 0.981 of
+// it); points drawn on a disk are uniform over its area (E[rho^2] = r^2 / 2;
+// 20,000 draws: standard error 0.002 r^2, tolerance 4 of them).
+TEST(FlakeTileShapes, DisksAndPolygonsHaveTheDisksAreaAndTheirOwnEdge) {
+    const std::vector<mc::FlakeGeometry> kinds{{0.06 / 0.6, 18.0, 10.0, nullptr}};
+    const mc::FlakeTile disks(kinds, 40.0, 55.0, 5, 300, 100000, false, nullptr, 0);
+    const mc::FlakeTile polygons(kinds, 40.0, 55.0, 5, 300, 100000);
+    const double area = 0.25 * kPi * 18.0 * 18.0;
+    mc::PathRng rng(12, 13, 14, 15);
+    for (std::size_t i = 0; i < 20; ++i) {
+        EXPECT_NEAR(disks.flakeAreaUm2(i), area, 1e-9 * area);
+        EXPECT_NEAR(polygons.flakeAreaUm2(i), area, 1e-9 * area);
+        const mc::PlacedFlake& d = disks.flakes()[i];
+        EXPECT_DOUBLE_EQ(d.radius_um, 9.0);
+        // In-plane unit vectors of the disk's plane.
+        const mc::Vec3 a = std::abs(d.normal.z) < 0.9 ? mc::Vec3{0.0, 0.0, 1.0} : mc::Vec3{1.0, 0.0, 0.0};
+        mc::Vec3 e1 = cross(d.normal, a);
+        const double n1 = std::sqrt(mc::dot(e1, e1));
+        e1 = {e1.x / n1, e1.y / n1, e1.z / n1};
+        const mc::Vec3 e2 = cross(d.normal, e1);
+        for (int k = 0; k < 50; ++k) {
+            const double phi = 2.0 * kPi * rng.uniform();
+            const mc::Vec3 e{std::cos(phi) * e1.x + std::sin(phi) * e2.x,
+                             std::cos(phi) * e1.y + std::sin(phi) * e2.y,
+                             std::cos(phi) * e1.z + std::sin(phi) * e2.z};
+            EXPECT_TRUE(disks.onFlake(i, {0.999 * 9.0 * e.x, 0.999 * 9.0 * e.y, 0.999 * 9.0 * e.z}));
+            EXPECT_FALSE(disks.onFlake(i, {1.001 * 9.0 * e.x, 1.001 * 9.0 * e.y, 1.001 * 9.0 * e.z}));
+        }
+        // The polygon: towards a vertex (a point drawn at the fan's outer corner) inside up to
+        // the circumradius, towards an edge's middle outside beyond the apothem.
+        const mc::PlacedFlake& p = polygons.flakes()[i];
+        const mc::Vec3 vertex = sub(polygons.pointOnFlake(i, 0.0, 1.0, 0.0), p.centre);
+        const mc::Vec3 next = sub(polygons.pointOnFlake(i, 0.0, 1.0, 1.0), p.centre);
+        EXPECT_NEAR(std::sqrt(mc::dot(vertex, vertex)), p.radius_um, 1e-9);
+        EXPECT_TRUE(polygons.onFlake(i, {0.999 * vertex.x, 0.999 * vertex.y, 0.999 * vertex.z}));
+        const mc::Vec3 mid{0.5 * (vertex.x + next.x), 0.5 * (vertex.y + next.y), 0.5 * (vertex.z + next.z)};
+        const double to_mid = std::sqrt(mc::dot(mid, mid));
+        EXPECT_NEAR(to_mid, p.radius_um * std::cos(kPi / mc::kFlakePolygonSides), 1e-9);
+        const double beyond = 1.01 * p.radius_um * std::cos(kPi / mc::kFlakePolygonSides) / to_mid;
+        EXPECT_FALSE(polygons.onFlake(i, {beyond * mid.x, beyond * mid.y, beyond * mid.z}));
+    }
+    double mean_rho2 = 0.0;
+    constexpr int kDraws = 20000;
+    for (int k = 0; k < kDraws; ++k) {
+        const mc::Vec3 q =
+            sub(disks.pointOnFlake(3, rng.uniform(), rng.uniform(), rng.uniform()), disks.flakes()[3].centre);
+        ASSERT_LT(std::abs(mc::dot(q, disks.flakes()[3].normal)), 1e-9);
+        ASSERT_LE(mc::dot(q, q), 81.0 * (1.0 + 1e-12));
+        mean_rho2 += mc::dot(q, q) / 81.0 / kDraws;
+    }
+    EXPECT_NEAR(mean_rho2, 0.5, 4.0 * 0.002);
+    EXPECT_THROW(mc::FlakeTile(kinds, 40.0, 55.0, 5, 300, 100000, false, nullptr, 2), InputError);
 }
 
 // The spread of independent runs (different seeds: different tiles and paths)

@@ -63,11 +63,10 @@
 // Known limits: the tile is periodic (its side is set by tile_flakes, at
 // least two flake diameters), so arrangements longer-ranged than the tile are
 // not represented; its geometry is float (Embree); flakes are thickness-less
-// 16-gons and overlap unless reject_overlaps. What the connections and the
-// reverse / delta-chain walks leave to the histogram (a flake reflection
-// followed by a top reflection or more flakes before a pigment vertex, then
-// a flake) sets the cost of explicit flakes at the flop (docs/PERFORMANCE.md).
-// Settings.threads sets TBB's process-wide parallelism for the duration of the call.
+// 16-gons (or exact disks: flake_polygon_sides) and overlap unless reject_overlaps. What the connections and
+// the reverse / delta-chain walks leave to the histogram (a flake reflection followed by a top reflection or
+// more flakes before a pigment vertex, then a flake) sets the cost of explicit flakes at the flop
+// (docs/PERFORMANCE.md). Settings.threads sets TBB's process-wide parallelism for the duration of the call.
 
 #include "paintlab/engine/brdf.h"
 #include "paintlab/engine/layered_brdf.h"
@@ -105,6 +104,10 @@ struct McSettings {
     // Explicit flakes: a flake that intersects one already placed (thickness-less
     // disks, periodic images included) is moved elsewhere (flake_tile.h).
     bool reject_overlaps = false;
+    // Explicit flakes' shape: regular polygons of the disk's area with this many
+    // sides (16 by default; the polygon's edge is ~1 % of its radius from the
+    // disk's), or 0 for exact disks (flake_tile.h).
+    int flake_polygon_sides = 16;
     // The paths of each (band, incidence) are split by chunk into this many
     // batches (chunk c into batch c mod batches). With explicit flakes every
     // batch traces its own tile realisation (own seed), and the standard errors
