@@ -154,6 +154,21 @@ const ParameterDecl kMirrorDiameter{.key = "diameter_um",
                                     .typicalMin = 5.0,
                                     .typicalMax = 50.0,
                                     .help = "Mean flake diameter"};
+// A flake pigment's size distribution (mirror and interference flakes): the
+// full model draws each explicit flake's diameter from a lognormal with the
+// mean diameter and this standard deviation (flake_tile.cpp).
+const ParameterDecl kFlakeDiameterSd{
+    .key = "diameter_sd_um",
+    .label = "Flake diameter spread",
+    .unit = "µm",
+    .min = 0.0,
+    .max = 200.0,
+    .minExclusive = false,
+    .required = false,
+    .defaultValue = 0.0,
+    .typicalMin = 0.0,
+    .typicalMax = 25.0,
+    .help = "Standard deviation of the flake diameter (0: every flake the mean size)"};
 const ParameterDecl kMirrorThickness{.key = "thickness_um",
                                      .label = "Flake thickness",
                                      .unit = "µm",
@@ -380,7 +395,7 @@ namespace paintlab {
 
 std::span<const ParameterDecl* const> allParameters() {
     using namespace params;
-    static const std::array<const ParameterDecl*, 31> all{&kAmbientIndex,
+    static const std::array<const ParameterDecl*, 32> all{&kAmbientIndex,
                                                           &kLayerThickness,
                                                           &kBinderIndex,
                                                           &kBinderAbsorption,
@@ -392,6 +407,7 @@ std::span<const ParameterDecl* const> allParameters() {
                                                           &kPigmentDiameter,
                                                           &kMirrorVolumeFraction,
                                                           &kMirrorDiameter,
+                                                          &kFlakeDiameterSd,
                                                           &kMirrorThickness,
                                                           &kMirrorReflectance,
                                                           &kMetalN,

@@ -50,6 +50,9 @@ Recipe withIngredient(const Recipe& recipe, int layer, const db::Ingredient& ing
                                      "no room is left in the layer (its volume fractions add up to 1)");
                 T component = data;
                 component.name = ingredient.name;
+                // The size distribution is kept on the ingredient (its own column).
+                if constexpr (std::is_same_v<T, MirrorFlake> || std::is_same_v<T, InterferenceFlake>)
+                    component.diameter_sd_um = ingredient.diameter_sd_um;
                 if (component.source.empty()) component.source = ingredient.source;
                 component.volume_fraction = fraction;
                 target.components.emplace_back(std::move(component));

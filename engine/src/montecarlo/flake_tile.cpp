@@ -25,6 +25,46 @@ void onEmbreeError(void* user, RTCError /*code*/, const char* message) {
     if (text->empty()) *text = message != nullptr ? message : "unknown Embree error";
 }
 
+// A kind's flake diameters (FlakeGeometry::diameter_sd_um): a lognormal with
+// the mean diameter and that standard deviation, cut at 5 of its log-space
+// standard deviations above the log mean (3e-7 of the draws: a cut at mean +
+// 4 sd removed 0.3-0.5 % of them at coefficients of variation 1/3-1/2, the
+// largest, and with them 2-5 % of the flakes' area), or every flake the mean
+// size. Drawn from their own stream, so that a spread of 0 leaves every other
+// draw of the tile as it was.
+class DiameterLaw {
+public:
+    explicit DiameterLaw(const FlakeGeometry& kind) : m_mean(kind.diameter_um), m_cap(kind.diameter_um) {
+        const double sd = std::max(0.0, kind.diameter_sd_um);
+        if (sd > 0.0 && m_mean > 0.0) {
+            m_log_variance = std::log1p((sd / m_mean) * (sd / m_mean));
+            m_log_mean = std::log(m_mean) - 0.5 * m_log_variance;
+            m_cap = std::exp(m_log_mean + 5.0 * std::sqrt(m_log_variance));
+        }
+        // E[d^2] = mean^2 + sd^2 (the cut's share is below the flake count's rounding).
+        m_mean_area = 0.25 * std::numbers::pi * (m_mean * m_mean + sd * sd);
+    }
+    double meanAreaUm2() const { return m_mean_area; }
+    double largestUm() const { return m_cap; }
+    double sample(PathRng& rng) const {
+        if (!(m_log_variance > 0.0)) return m_mean;
+        for (;;) {
+            // Box-Muller; 1 - u keeps the logarithm finite.
+            const double z = std::sqrt(-2.0 * std::log(1.0 - rng.uniform())) *
+                             std::cos(2.0 * std::numbers::pi * rng.uniform());
+            const double d = std::exp(m_log_mean + std::sqrt(m_log_variance) * z);
+            if (d <= m_cap) return d;
+        }
+    }
+
+private:
+    double m_mean;
+    double m_cap;
+    double m_log_mean = 0.0;
+    double m_log_variance = 0.0;
+    double m_mean_area = 0.0;
+};
+
 // Relative depth in [0, 1] drawn from a piecewise-linear profile by rejection.
 double sampleDepth(const DepthProfile* profile, PathRng& rng) {
     if (profile == nullptr) return rng.uniform();
@@ -313,7 +353,7 @@ std::vector<FlakeGeometry> layerFlakeGeometries(const Layer& layer) {
                 m->volume_fraction * meanRelativeConcentration(m->depth_profile, 0.0, 1.0) / m->thickness_um;
             if (density > 0.0)
                 mirrors.push_back({density, m->diameter_um, m->orientation_spread_deg,
-                                   m->depth_profile ? &*m->depth_profile : nullptr});
+                                   m->depth_profile ? &*m->depth_profile : nullptr, m->diameter_sd_um});
         } else if (const auto* p = std::get_if<InterferenceFlake>(&component)) {
             const double thickness_um = (p->mica_thickness_nm + 2.0 * p->tio2_thickness_nm) * 1e-3;
             const double density =
@@ -322,7 +362,7 @@ std::vector<FlakeGeometry> layerFlakeGeometries(const Layer& layer) {
                                    : 0.0;
             if (density > 0.0)
                 pearls.push_back({density, p->diameter_um, p->orientation_spread_deg,
-                                  p->depth_profile ? &*p->depth_profile : nullptr});
+                                  p->depth_profile ? &*p->depth_profile : nullptr, p->diameter_sd_um});
         }
     }
     mirrors.insert(mirrors.end(), pearls.begin(), pearls.end());
@@ -356,9 +396,9 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
     double per_area = 0.0;  // flakes per µm^2 of surface
     double d_max = 0.0;
     for (const auto& k : kinds) {
-        const double area = 0.25 * std::numbers::pi * k.diameter_um * k.diameter_um;
-        if (area > 0.0) per_area += k.area_density_per_um * height / area;
-        d_max = std::max(d_max, k.diameter_um);
+        const DiameterLaw sizes(k);
+        if (sizes.meanAreaUm2() > 0.0) per_area += k.area_density_per_um * height / sizes.meanAreaUm2();
+        d_max = std::max(d_max, sizes.largestUm());
     }
     m_side_um = per_area > 0.0 ? std::max(2.0 * d_max, std::sqrt(target_flakes / per_area)) : 1.0;
     const double L = m_side_um;
@@ -390,12 +430,13 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
     for (std::size_t k = 0; k < kinds.size(); ++k) {
         if (stopped()) throw Error("flake tile: cancelled");
         const FlakeGeometry& kind = kinds[k];
-        const double area = 0.25 * std::numbers::pi * kind.diameter_um * kind.diameter_um;
+        const DiameterLaw sizes(kind);
+        const double area = sizes.meanAreaUm2();
         if (!(area > 0.0) || !(kind.area_density_per_um > 0.0)) continue;
         const auto wanted = std::llround(kind.area_density_per_um * height * L * L / area);
         const auto count = std::min<long long>(wanted, max_flakes);
         if (count <= 0) continue;
-        const double radius = 0.5 * kind.diameter_um * circumradius_factor;
+        PathRng size_rng(seed, 0x73697a65ULL, k, 0);  // "size"
         const FlakeOrientation orientation(kind.spread_deg);
         KindPrimitives& kind_primitives = m_impl->primitives.emplace_back();
         kind_primitives.sides = m_sides;
@@ -415,6 +456,7 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
             const FlakeNormal n = orientation.sample(std::fmod(radicalInverse(index, 2) + shift1, 1.0),
                                                      std::fmod(radicalInverse(index, 3) + shift2, 1.0));
             const Vec3 normal{n.x, n.y, n.z};
+            const double radius = 0.5 * sizes.sample(size_rng) * circumradius_factor;
             // Keep the flake inside the film where it fits (a real flake cannot poke out).
             const double half_height = radius * std::sqrt(std::max(0.0, 1.0 - n.z * n.z));
             double z_rel = depths[static_cast<std::size_t>(f)];

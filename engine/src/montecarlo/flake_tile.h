@@ -2,7 +2,8 @@
 // Explicit flakes of one layer: a laterally periodic tile of side L (µm)
 // filled with flat polygons (regular 16-gons of the flake's area by default,
 // or exact disks) with
-// sampled position (uniform laterally, depth from the concentration profile)
+// sampled diameter (a lognormal about the mean when the recipe gives a
+// spread), position (uniform laterally, depth from the concentration profile)
 // and normal (FlakeOrientation), intersected with Embree (user geometry: one
 // primitive per flake, the plane and polygon tested in double). Flakes that cross
 // the tile's sides are repeated one period over, so a ray inside the tile
@@ -25,9 +26,13 @@ constexpr double kTileEpsilonUm = 1e-3;
 // What the tile needs of one kind of flake (the optics come from FlakeKind per wavelength).
 struct FlakeGeometry {
     double area_density_per_um = 0.0;  // mean over the layer
-    double diameter_um = 0.0;
+    double diameter_um = 0.0;          // mean
     double spread_deg = 0.0;
     const DepthProfile* profile = nullptr;  // null: uniform in depth
+    // Standard deviation of the diameter (µm): each flake's diameter is drawn
+    // from a lognormal with mean diameter_um and this sd (cut where 3e-7 of it
+    // lies beyond); 0: every flake diameter_um across.
+    double diameter_sd_um = 0.0;
 };
 
 // The flake kinds of a layer in the order of layerFlakeKinds (mc_stack.h):

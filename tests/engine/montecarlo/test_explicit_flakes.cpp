@@ -171,6 +171,21 @@ TEST(MonteCarloExplicitFlakes, HorizontalMirrorsTwoStreamObliqueAndRetracedColum
                                    " sides");
         }
     }
+    // A size distribution (diameter_sd_um): at normal incidence the covered
+    // share of a Poisson field of disks is 1 - exp(-A X) whatever their sizes
+    // (A the projected area per volume, which the tile keeps by drawing
+    // E[pi d^2 / 4] per flake), so the retraced-column value holds as it is.
+    // (Oblique, the hiding allowance was derived for equal disks: not checked.)
+    MirrorFlake spread = mirror(c, t_um, 2.0, 0.0, rho_f);
+    spread.diameter_sd_um = 1.0;
+    const Recipe r_spread = flakeLayer(1.0, X, BlackSubstrate{}, spread);
+    const std::vector<mc::IncidenceRequest> normal{{directionFromAnglesDeg(0.0, 0.0), {}}};
+    const auto result =
+        mc::runMonteCarlo(r_spread, std::vector<double>{550.0}, normal, explicitSettings(40000, 5.0));
+    const double expected = mirrorFlakeReflectanceFromNormal(1.0, rho_f) * (1.0 - std::exp(-A * X));
+    const auto& e = result.bands[0][0].albedo;
+    test::expectWithin(e.mean, e.std_error, expected, 0.0, -1e-3, 1e-3,
+                       "albedo at normal incidence, sd 1 um");
 }
 
 // The fast model's f averaged over the histogram's cone like the estimator:

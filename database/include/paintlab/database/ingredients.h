@@ -54,7 +54,10 @@ struct Ingredient {
     std::string density_source;
     std::vector<std::string> tags;  // stored sorted, without duplicates (case-insensitive)
     TechnologicalLimits limits;
-    double diameter_sd_um = 0.0;  // flakes: standard deviation of the diameter distribution
+    // Flakes: standard deviation of the diameter distribution. Adding the
+    // ingredient to a recipe copies it into the component (MirrorFlake /
+    // InterferenceFlake::diameter_sd_um; gui/src/recipe_ingredient.cpp).
+    double diameter_sd_um = 0.0;
     // Binders as bought (schema 2), for production sheets: the non-volatile
     // (solids) mass fraction of the resin solution or dispersion (unset: weighed
     // as 100 % solids) and the density of its volatile part (solvent, water),

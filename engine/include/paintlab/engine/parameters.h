@@ -53,6 +53,7 @@ extern const ParameterDecl kPigmentDiameter;
 // Mirror flake.
 extern const ParameterDecl kMirrorVolumeFraction;
 extern const ParameterDecl kMirrorDiameter;
+extern const ParameterDecl kFlakeDiameterSd;  // both flake kinds
 extern const ParameterDecl kMirrorThickness;
 extern const ParameterDecl kMirrorReflectance;
 extern const ParameterDecl kMetalN;

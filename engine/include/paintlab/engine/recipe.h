@@ -67,6 +67,7 @@ struct MirrorFlake {
     std::string source;
     double volume_fraction = 0.0;
     double diameter_um = 0.0;
+    double diameter_sd_um = 0.0;  // size distribution (the full model's tiles draw it)
     double thickness_um = 0.3;
     double orientation_spread_deg = 0.0;
     std::optional<Spectrum> reflectance;
@@ -77,6 +78,7 @@ struct MirrorFlake {
     template <class Self, class Visitor> static void traverse(Self& self, Visitor& v) {
         v.scalar(params::kMirrorVolumeFraction, self.volume_fraction);
         v.scalar(params::kMirrorDiameter, self.diameter_um);
+        v.scalar(params::kFlakeDiameterSd, self.diameter_sd_um);
         v.scalar(params::kMirrorThickness, self.thickness_um);
         v.scalar(params::kOrientationSpread, self.orientation_spread_deg);
         v.optionalSpectrum(params::kMirrorReflectance, self.reflectance);
@@ -93,6 +95,7 @@ struct InterferenceFlake {
     std::string source;
     double volume_fraction = 0.0;
     double diameter_um = 0.0;
+    double diameter_sd_um = 0.0;  // size distribution (the full model's tiles draw it)
     double orientation_spread_deg = 0.0;
     double mica_thickness_nm = 0.0;
     double mica_thickness_spread_nm = 0.0;
@@ -105,6 +108,7 @@ struct InterferenceFlake {
     template <class Self, class Visitor> static void traverse(Self& self, Visitor& v) {
         v.scalar(params::kInterferenceVolumeFraction, self.volume_fraction);
         v.scalar(params::kInterferenceDiameter, self.diameter_um);
+        v.scalar(params::kFlakeDiameterSd, self.diameter_sd_um);
         v.scalar(params::kOrientationSpread, self.orientation_spread_deg);
         v.scalar(params::kMicaThickness, self.mica_thickness_nm);
         v.scalar(params::kMicaThicknessSpread, self.mica_thickness_spread_nm);
