@@ -106,4 +106,20 @@ inline double hidingAllowance(double value, double area_density_per_um, double d
     return value * (std::exp(dtau) - 1.0);
 }
 
+// Albedo of horizontal mirror flakes (reflectance R_f at the beam's cosine,
+// area density A per µm) in an index-matched layer X µm thick over black:
+// at normal incidence a reflected ray retraces its own column, so the
+// covered share of a Poisson field of flakes, R_f (1 - exp(-A X)), whatever
+// their sizes; oblique, the flakes a ray meets are independent and the
+// albedo is the two-stream (Kubelka-Munk) value with S = A R_f, K = A (1 - R_f).
+inline double horizontalMirrorAlbedo(bool normal_incidence, double R_f, double area_density_per_um,
+                                     double thickness_um) {
+    const double A = area_density_per_um;
+    const double X = thickness_um;
+    if (normal_incidence) return R_f * (1.0 - std::exp(-A * X));
+    const double S = A * R_f, K = A * (1.0 - R_f);
+    const double ka = (S + K) / S, kb = std::sqrt(ka * ka - 1.0);
+    return std::sinh(kb * S * X) / (ka * std::sinh(kb * S * X) + kb * std::cosh(kb * S * X));
+}
+
 }  // namespace paintlab::test

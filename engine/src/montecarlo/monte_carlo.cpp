@@ -279,7 +279,8 @@ public:
                         std::any_of(band.explicit_flakes[0].begin(), band.explicit_flakes[0].end(),
                                     [](const LayerFlakes& lf) { return lf.groups != nullptr; });
         m_uniform_delta = m_delta && (!m_first_flake || otherDeltaStarts(stack));
-        if (m_delta && settings.chain_promise) buildChainPromise();
+        // The cone weights come from the adaptive model; without it the tables would stay unused.
+        if (m_delta && m_adaptive && settings.chain_promise) buildChainPromise();
         m_reverse_rate.assign(m_exits, std::clamp(settings.reverse_rate, kMinReverseRate, kMaxReverseRate));
         m_diagnostics = m_adaptive ? m_exits : 0;
         m_walk.max_events = settings.max_events;

@@ -153,12 +153,7 @@ TEST(MonteCarloExplicitFlakes, HorizontalMirrorsTwoStreamObliqueAndRetracedColum
         for (std::size_t i = 0; i < req.size(); ++i) {
             const double mu = req[i].wi.z;
             const double R_f = mirrorFlakeReflectanceFromNormal(mu, rho_f);
-            double expected = R_f * (1.0 - std::exp(-A * X));
-            if (i > 0) {
-                const double S = A * R_f, K = A * (1.0 - R_f);
-                const double ka = (S + K) / S, kb = std::sqrt(ka * ka - 1.0);
-                expected = std::sinh(kb * S * X) / (ka * std::sinh(kb * S * X) + kb * std::cosh(kb * S * X));
-            }
+            const double expected = test::horizontalMirrorAlbedo(i == 0, R_f, A, X);
             const auto& e = result.bands[0][i].albedo;
             // Finite tile: the flake count is rounded (relative 1/(2N), N ~ 2000) and the
             // float geometry; +-1e-3 absolute covers both. Oblique: the hiding effect,
@@ -182,7 +177,8 @@ TEST(MonteCarloExplicitFlakes, HorizontalMirrorsTwoStreamObliqueAndRetracedColum
     const std::vector<mc::IncidenceRequest> normal{{directionFromAnglesDeg(0.0, 0.0), {}}};
     const auto result =
         mc::runMonteCarlo(r_spread, std::vector<double>{550.0}, normal, explicitSettings(40000, 5.0));
-    const double expected = mirrorFlakeReflectanceFromNormal(1.0, rho_f) * (1.0 - std::exp(-A * X));
+    const double expected =
+        test::horizontalMirrorAlbedo(true, mirrorFlakeReflectanceFromNormal(1.0, rho_f), A, X);
     const auto& e = result.bands[0][0].albedo;
     test::expectWithin(e.mean, e.std_error, expected, 0.0, -1e-3, 1e-3,
                        "albedo at normal incidence, sd 1 um");
