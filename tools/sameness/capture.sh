@@ -21,10 +21,12 @@ out=$(cd "$out" && pwd)
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 
-# Keys whose values are wall-clock measurements, not results.
+# Keys whose values are wall-clock measurements, timestamps or scratch paths, not results.
 untimed() {
-  jq -S 'walk(if type == "object" then with_entries(select(.key | test("(^|_)(seconds|secs|time|times|elapsed|ms|wall|cpu|per_second|rate)($|_)"; "i") | not)) else . end)'
+  jq -S 'walk(if type == "object" then with_entries(select(.key | test("(^|_)(seconds|secs|time|times|elapsed|ms|wall|cpu|per_second|rate|at)$|^database$"; "i") | not)) else . end)'
 }
+# An EXR's pixels, not its header (which may carry a date): OpenImageIO's SHA-1 of the data.
+pixelHash() { oiiotool --hash "$1" | grep SHA-1 | sed 's/.*SHA-1: //'; }
 
 step() { printf '[sameness] %s\n' "$*" >&2; }
 
@@ -36,12 +38,14 @@ for r in "$recipes"/*.json; do
     "$cli" multiangle "$r" --preset "$preset" --json | untimed > "$out/$name.multiangle.$preset.json"
   done
   "$cli" eval "$r" --wi 45,0 --wo 30,180 --json | untimed > "$out/$name.eval.json"
-  "$cli" brdf "$r" --preset preview --step 15 --out "$out/$name.brdf.json"
-  "$cli" brdf "$r" --preset preview --step 15 --out "$out/$name.brdf.csv"
+  "$cli" brdf "$r" --preset preview --step 15 --out "$scratch/brdf.json" >/dev/null
+  untimed < "$scratch/brdf.json" > "$out/$name.brdf.json"
+  "$cli" brdf "$r" --preset preview --step 15 --out "$out/$name.brdf.csv" >/dev/null
   step "$name: mc (fixed seed)"
   "$cli" mc "$r" --samples 4000 --seed 7 --bands 4 --json | untimed > "$out/$name.mc.json"
   "$cli" mc "$r" --samples 2000 --seed 3 --bands 4 --table --preset preview --step 15 \
-    --out "$out/$name.mc-table.json"
+    --out "$scratch/mc-table.json" >/dev/null
+  untimed < "$scratch/mc-table.json" > "$out/$name.mc-table.json"
   "$cli" plan "$scenes/car_body_sky.json" "$r" --json | untimed > "$out/$name.plan.json"
 done
 
@@ -58,15 +62,17 @@ step "slab"
 
 step "ray map and relights"
 "$cli" raymap build "$scenes/car_body_sky.json" --out "$scratch/car.prm" --width 160 --height 90 >/dev/null
-cp "$scratch/car.prm" "$out/car.prm"
+# (The .prm file itself is not compared: its chunk order depends on thread timing.)
 for name in pearlescent-two-layer silver-metallic solid-red three-layer; do
   "$cli" relight "$scratch/car.prm" --recipe "$recipes/$name.json" --preset preview \
-    --out "$out/relight-$name.exr" >/dev/null
+    --out "$scratch/relight.exr" >/dev/null
+  pixelHash "$scratch/relight.exr" > "$out/relight-$name.exr.sha1"
   "$cli" relight "$scratch/car.prm" --recipe "$recipes/$name.json" --preset preview \
     --out "$out/relight-$name.png" >/dev/null
 done
 "$cli" relight "$scratch/car.prm" --recipe "$recipes/silver-metallic.json" --preset preview --sparkle on \
-  --out "$out/relight-sparkle.exr" >/dev/null
+  --out "$scratch/relight.exr" >/dev/null
+pixelHash "$scratch/relight.exr" > "$out/relight-sparkle.exr.sha1"
 
 step "database: exports and production sheets"
 db="$scratch/p.db"
@@ -75,7 +81,6 @@ db="$scratch/p.db"
 "$cli" db export --all --kind pigment --out "$out/pigments.json" --db "$db" >/dev/null
 "$cli" db export --all --kind pigment --out "$out/pigments.csv" --db "$db" >/dev/null
 "$cli" db export --all --kind spectra --out "$out/spectra.csv" --db "$db" >/dev/null || true
-"$cli" db export --all --kind spectra --out "$out/spectra.cgats" --db "$db" >/dev/null || true
 first=$("$cli" db list --db "$db" --json | jq -r '.. | objects | select(has("recipes")) | .recipes[0].name' 2>/dev/null | head -1)
 for n in "Solid red (iron oxide)" "$first"; do
   [[ -z $n || $n == null ]] && continue
