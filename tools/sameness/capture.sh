@@ -92,4 +92,6 @@ for n in "Solid red (iron oxide)" "$first"; do
   done
 done
 "$cli" db show "Solid red (iron oxide)" --json --db "$db" | untimed > "$out/db-show-red.json" || true
+# Recipe and scene paths are echoed in some outputs: name the checkout <repo> so two checkouts compare.
+grep -rlF "$root" "$out" | xargs -r sed -i "s|$root|<repo>|g"
 step "done: $out"
