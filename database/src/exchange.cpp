@@ -345,26 +345,4 @@ std::string exportMeasurement(Database& db, std::string_view name, FileFormat fo
     throw InputError("<argument>", "--format", "measurements are exported as JSON or CSV");
 }
 
-void writeTextFile(const std::filesystem::path& file, std::string_view text) {
-    std::filesystem::path temp = file;
-    temp += ".tmp";
-    {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        if (!out) throw Error(file.string() + ": cannot write (temporary file " + temp.string() + ")");
-        out.write(text.data(), static_cast<std::streamsize>(text.size()));
-        out.flush();
-        if (!out) {
-            std::error_code ignored;
-            std::filesystem::remove(temp, ignored);
-            throw Error(file.string() + ": writing failed (disk full?)");
-        }
-    }
-    std::error_code error;
-    std::filesystem::rename(temp, file, error);
-    if (error) {
-        std::filesystem::remove(temp, error);
-        throw Error(file.string() + ": cannot replace the file: " + error.message());
-    }
-}
-
 }  // namespace paintlab::db

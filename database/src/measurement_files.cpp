@@ -3,11 +3,11 @@
 
 #include "paintlab/database/measurement_files.h"
 
-#include "csv.h"
 #include "json_fields.h"
 #include "measurement_json.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/csv.h"
 
 #include <algorithm>
 #include <charconv>
@@ -123,8 +123,8 @@ void readMeasurementJson(const nlohmann::json& json, bool with_description, Meas
 
 namespace {
 
-using detail::CsvRecord;
-using detail::CsvTable;
+using io::CsvRecord;
+using io::CsvTable;
 
 std::optional<double> wavelengthColumn(const std::string& column) {
     std::string_view text = column;
@@ -250,21 +250,21 @@ std::string measurementToJson(const Measurement& measurement) {
 std::string measurementToCsv(const Measurement& m) {
     std::string out;
     if (m.kind == MeasurementKind::MultiAngle) {
-        out = detail::csvLine({"illumination_deg", "aspecular_deg", "L", "a", "b"});
+        out = io::csvLine({"illumination_deg", "aspecular_deg", "L", "a", "b"});
         for (const auto& r : m.readings)
-            out += detail::csvLine({detail::csvNumber(r.illumination_deg), detail::csvNumber(r.aspecular_deg),
-                                    detail::csvNumber(r.L), detail::csvNumber(r.a), detail::csvNumber(r.b)});
+            out += io::csvLine({io::csvNumber(r.illumination_deg), io::csvNumber(r.aspecular_deg),
+                                io::csvNumber(r.L), io::csvNumber(r.a), io::csvNumber(r.b)});
         return out;
     }
     std::vector<std::string> header{"theta_i_deg", "phi_i_deg", "theta_o_deg", "phi_o_deg"};
     for (const auto& c : m.channels) header.push_back(c);
-    for (const double w : m.wavelengths_nm) header.push_back(detail::csvNumber(w) + "nm");
-    out = detail::csvLine(header);
+    for (const double w : m.wavelengths_nm) header.push_back(io::csvNumber(w) + "nm");
+    out = io::csvLine(header);
     for (const auto& s : m.samples) {
-        std::vector<std::string> fields{detail::csvNumber(s.theta_i_deg), detail::csvNumber(s.phi_i_deg),
-                                        detail::csvNumber(s.theta_o_deg), detail::csvNumber(s.phi_o_deg)};
-        for (const double v : s.values) fields.push_back(detail::csvNumber(v));
-        out += detail::csvLine(fields);
+        std::vector<std::string> fields{io::csvNumber(s.theta_i_deg), io::csvNumber(s.phi_i_deg),
+                                        io::csvNumber(s.theta_o_deg), io::csvNumber(s.phi_o_deg)};
+        for (const double v : s.values) fields.push_back(io::csvNumber(v));
+        out += io::csvLine(fields);
     }
     return out;
 }

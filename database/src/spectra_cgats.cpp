@@ -11,6 +11,7 @@
 #include "spectrum_checks.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/number_format.h"
 
 #include <lcms2.h>
 
@@ -21,18 +22,13 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <type_traits>
 
 namespace paintlab::db {
 
 namespace {
 
-std::string formatNumber(double value) {
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
+using io::formatNumber;
 
 std::string upper(std::string_view text) {
     std::string out(text);
@@ -227,11 +223,7 @@ std::string spectraToCgats(const std::vector<NamedSpectrum>& spectra) {
                                  "(export as CSV or JSON instead)");
     }
     const auto quoted = [](const std::string& text) { return "\"" + text + "\""; };
-    const auto number = [](double value) {
-        char buffer[64];
-        const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-        return std::string(buffer, result.ptr);
-    };
+    const auto number = [](double value) { return formatNumber(value, io::NumberFormat::Shortest); };
     std::string out = "CGATS.17\n";
     out += "ORIGINATOR " + quoted("PaintLab") + "\n";
     out += "DESCRIPTOR " + quoted(first.quantity + " spectra") + "\n";

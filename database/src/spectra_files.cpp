@@ -2,32 +2,28 @@
 
 #include "paintlab/database/spectra_files.h"
 
-#include "csv.h"
 #include "spectra_common.h"
 #include "spectrum_checks.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/csv.h"
+#include "paintlab/engine/io/number_format.h"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <iterator>
 #include <map>
-#include <sstream>
 
 namespace paintlab::db {
 
 namespace {
 
-using detail::CsvRecord;
-using detail::CsvTable;
+using io::CsvRecord;
+using io::CsvTable;
 using Json = nlohmann::json;
 
-std::string formatNumber(double value) {
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
+using io::formatNumber;
 
 const Json& member(const Json& object, const std::string& key, const std::string& source,
                    const std::string& field) {
@@ -210,13 +206,12 @@ std::string spectraToJson(const std::vector<NamedSpectrum>& spectra) {
 }
 
 std::string spectraToCsv(const std::vector<NamedSpectrum>& spectra) {
-    std::string out =
-        detail::csvLine({"name", "quantity", "unit", "source", "date", "wavelength_nm", "value"});
+    std::string out = io::csvLine({"name", "quantity", "unit", "source", "date", "wavelength_nm", "value"});
     for (const auto& s : spectra)
         for (std::size_t i = 0; i < s.spectrum.values().size(); ++i)
-            out += detail::csvLine({s.name, s.quantity, s.info.unit, s.info.source, s.info.date,
-                                    detail::csvNumber(s.spectrum.wavelengthsNm()[i]),
-                                    detail::csvNumber(s.spectrum.values()[i])});
+            out += io::csvLine({s.name, s.quantity, s.info.unit, s.info.source, s.info.date,
+                                io::csvNumber(s.spectrum.wavelengthsNm()[i]),
+                                io::csvNumber(s.spectrum.values()[i])});
     return out;
 }
 

@@ -1,6 +1,7 @@
 #include "paintlab/engine/recipe_json.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/atomic_file.h"
 #include "paintlab/engine/json_reader.h"
 #include "paintlab/engine/recipe_validation.h"
 
@@ -8,7 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <stdexcept>
 #include <system_error>
 
@@ -293,26 +293,7 @@ std::string recipeToJson(const Recipe& recipe) {
 }
 
 void saveRecipeFile(const Recipe& recipe, const std::filesystem::path& path) {
-    const std::string text = recipeToJson(recipe);
-    std::filesystem::path temp = path;
-    temp += ".tmp";
-    {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        if (!out) throw Error(path.string() + ": cannot write (temporary file " + temp.string() + ")");
-        out.write(text.data(), static_cast<std::streamsize>(text.size()));
-        out.flush();
-        if (!out) {
-            std::error_code ignored;
-            std::filesystem::remove(temp, ignored);
-            throw Error(path.string() + ": writing failed (disk full?)");
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(temp, path, ec);
-    if (ec) {
-        std::filesystem::remove(temp, ec);
-        throw Error(path.string() + ": cannot replace file: " + ec.message());
-    }
+    io::writeFileAtomically(path, recipeToJson(recipe));
 }
 
 }  // namespace paintlab
