@@ -268,7 +268,7 @@ std::vector<BadFile> badFiles() {
         {"json out of range",
          "bad.json",
          goodIngredientsJson(R"("unit": "1/µm", "value": -5)"),
-         {"ingredients[1] pigment 'j'", "sigma_a_per_um", "outside the allowed range"}},
+         {"ingredients[1] pigment 'j'", "sigma_a_per_um", "is below the minimum 0"}},
         {"spectra csv duplicate name",
          "bad.csv",
          "name,quantity,unit,wavelength_nm,value\ns,reflectance,1,400,0.1\nt,reflectance,1,400,0.1\n"
