@@ -1,8 +1,8 @@
 #include "paintlab/engine/recipe_json.h"
 
+#include "json_reader.h"
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/io/atomic_file.h"
-#include "paintlab/engine/json_reader.h"
 #include "paintlab/engine/recipe_validation.h"
 
 #include <nlohmann/json.hpp>
@@ -89,13 +89,6 @@ template <class T> T readComponentFields(ObjectReader& reader, const std::string
     return component;
 }
 
-std::string componentLabel(std::size_t index, const json& value) {
-    std::string label = "component " + std::to_string(index + 1);
-    if (value.is_object() && value.contains("name") && value["name"].is_string())
-        label += " '" + value["name"].get<std::string>() + "'";
-    return label;
-}
-
 Component readComponent(const json& value, const std::string& path, const std::string& source) {
     ObjectReader reader(value, path, source);
     const std::string kind = reader.string("kind", true);
@@ -130,8 +123,8 @@ Layer readLayer(const json& value, const std::string& path, const std::string& s
         if (!components->is_array())
             reader.fail("components", "expected an array, found " + typeName(*components));
         for (std::size_t i = 0; i < components->size(); ++i)
-            layer.components.push_back(readComponent(
-                (*components)[i], reader.fieldPath(componentLabel(i, (*components)[i])), source));
+            layer.components.push_back(
+                readComponent((*components)[i], reader.elementPath("components", i), source));
     }
     reader.finish();
     return layer;
@@ -259,12 +252,8 @@ Recipe parseRecipeJson(std::string_view text, const std::string& source) {
     }
     const json& layers = reader.require("layers", "the layers, top first");
     if (!layers.is_array()) reader.fail("layers", "expected an array of layers, found " + typeName(layers));
-    for (std::size_t i = 0; i < layers.size(); ++i) {
-        std::string label = "layer " + std::to_string(i + 1);
-        if (layers[i].is_object() && layers[i].contains("name") && layers[i]["name"].is_string())
-            label += " '" + layers[i]["name"].get<std::string>() + "'";
-        recipe.layers.push_back(readLayer(layers[i], label, source));
-    }
+    for (std::size_t i = 0; i < layers.size(); ++i)
+        recipe.layers.push_back(readLayer(layers[i], reader.elementPath("layers", i), source));
     recipe.substrate = readSubstrate(reader.require("substrate", "what the paint is applied on"), source);
     reader.finish();
     return recipe;
