@@ -121,7 +121,7 @@ std::vector<NamedSpectrum> parseSpectraCgats(std::string_view text, const std::s
         std::vector<double> wavelengths;
         std::vector<double> values;
         for (const auto& [column, wavelength] : spectral) {
-            const std::string text_value = cell(column);
+            const std::string& text_value = cell(column);
             const auto value = finiteNumber(text_value);
             if (!value)
                 throw InputError(source, label + "." + names[static_cast<std::size_t>(column)],

@@ -49,7 +49,7 @@ std::vector<Ingredient> allIngredients(Database& db) {
 }
 
 std::filesystem::path write(const TempDir& dir, const std::string& name, const std::string& text) {
-    const auto path = dir / name;
+    auto path = dir / name;
     test::writeBytes(path, text);
     return path;
 }

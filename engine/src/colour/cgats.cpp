@@ -141,12 +141,19 @@ SpectralTable readSpectralTable(const std::filesystem::path& file, std::size_t e
     for (std::size_t set = 0; set < sets; ++set)
         for (std::size_t k = 0; k < fields; ++k) {
             const std::string& cell = parsed.rows[set][k];
-            const std::string where = "data set " + std::to_string(set + 1) + ", " + parsed.columns[k];
             double value = 0.0;
-            if (!parseDouble(cell, value) || !std::isfinite(value))
-                fail(file, where + ": '" + cell + "' is not a finite number");
-            if (value < 0.0) fail(file, where + ": negative value " + cell + " in a spectral table");
-            table.sets[set][k] = value;
+            const bool finite = parseDouble(cell, value) && std::isfinite(value);
+            if (finite && value >= 0.0) {
+                table.sets[set][k] = value;
+                continue;
+            }
+            std::string message = "data set ";
+            message.append(std::to_string(set + 1)).append(", ").append(parsed.columns[k]);
+            if (finite)
+                message.append(": negative value ").append(cell).append(" in a spectral table");
+            else
+                message.append(": '").append(cell).append("' is not a finite number");
+            fail(file, message);
         }
     return table;
 }
