@@ -1,9 +1,6 @@
 #pragma once
-// The tabulated-BRDF file of `brdf --out` and `mc --table --out`: a regular
-// grid of incidence and exit angles 0..85 deg and azimuth differences
-// 0..180 deg, f (1/sr, mirror term excluded) per band; JSON (with the
-// settings and the top interface's mirror reflectance) or CSV (one row per
-// direction pair). Both commands write through here, so the format is one.
+// The CLI's side of the tabulated-BRDF file (the format itself is the
+// engine's, fast_model/brdf_table_io.h) and of writing --out files.
 
 #include "paintlab/engine/layered_brdf.h"
 
@@ -14,12 +11,7 @@
 
 namespace paintlab::cli {
 
-// The file's text. `csv` selects CSV; `settings` is stored as the JSON's
-// "settings" object (CSV has none). With `batches` (a Monte Carlo table's
-// per-batch tables, mc_table.h) every value also gets its standard error
-// from their spread: JSON "brdf_std_error_per_sr" of the same shape, CSV
-// columns se_<nm>nm_per_sr after the values. Throws InputError if step_deg
-// is not in [0.5, 45] (field --step).
+// The engine's brdfTableText with the settings given as a JSON object.
 std::string brdfTableText(const LayeredBrdf& brdf, const std::string& recipe_path,
                           const nlohmann::ordered_json& settings, double step_deg, bool csv,
                           const std::vector<LayeredBrdf>* batches = nullptr);
@@ -27,7 +19,8 @@ std::string brdfTableText(const LayeredBrdf& brdf, const std::string& recipe_pat
 // Whether the output path asks for CSV (ends in .csv).
 bool isCsvPath(const std::string& path);
 
-// Writes text to path; InputError (field `option`) if it cannot be opened, Error if writing fails.
+// Writes text to path atomically (io/atomic_file.h); InputError (field
+// `option`) if it cannot be created, Error if writing fails.
 void writeTextFile(const std::string& path, const std::string& text, const std::string& option);
 
 }  // namespace paintlab::cli

@@ -10,6 +10,7 @@
 #include "paintlab/database/production.h"
 #include "paintlab/database/recipes.h"
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/atomic_file.h"
 #include "paintlab/engine/recipe_json.h"
 
 #include <nlohmann/json.hpp>
@@ -143,7 +144,7 @@ int runExport(const ExchangeOptions& options) {
         throw InputError("<argument>", "--kind",
                          "recipes are exported with `db recipe-export NAME --out FILE.json`");
     }
-    db::writeTextFile(options.file, text);
+    io::writeFileAtomically(options.file, text);
     std::cout << "exported "
               << (options.all ? "all " + kind : kind + " " + std::to_string(options.names.size())) << " to "
               << options.file << '\n';
@@ -155,7 +156,7 @@ int runRecipeExport(const ExchangeOptions& options) {
     const auto stored = db::loadRecipeVersion(
         database, options.name, options.version > 0 ? std::optional(options.version) : std::nullopt);
     // The canonical JSON is what the checksum is of: the file hashes to the version's SHA-256.
-    db::writeTextFile(options.file, recipeToJson(stored.recipe));
+    io::writeFileAtomically(options.file, recipeToJson(stored.recipe));
     if (options.json)
         std::cout << ordered_json{{"recipe", stored.info.recipe_name},
                                   {"version", stored.info.version},
@@ -185,7 +186,7 @@ int runProduction(const ExchangeOptions& options) {
     const std::string text = format == db::FileFormat::Csv    ? db::productionCsv(sheet)
                              : format == db::FileFormat::Json ? db::productionJson(sheet)
                                                               : db::productionHtml(sheet);
-    db::writeTextFile(options.file, text);
+    io::writeFileAtomically(options.file, text);
     for (const auto& layer : sheet.layers)
         for (const auto& warning : layer.warnings) std::cerr << "warning: " << warning << '\n';
     if (options.json) {

@@ -1,17 +1,14 @@
 #include "recipe_text.h"
 
-#include <cstdio>
+#include "paintlab/engine/io/number_format.h"
+
 #include <sstream>
 
 namespace paintlab::cli {
 
 namespace {
 
-std::string number(double value) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.4g", value);
-    return buffer;
-}
+std::string number(double value) { return io::formatNumber(value, io::NumberFormat::Brief); }
 
 std::string withUnit(double value, std::string_view unit) {
     return unit == "1" ? number(value) : number(value) + " " + std::string(unit);

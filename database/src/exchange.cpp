@@ -12,21 +12,20 @@
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/recipe_json.h"
 
+#include "json_reader.h"
 #include "sqlite.h"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
-#include <sstream>
 
 namespace paintlab::db {
 
 namespace {
 
 // Far above any ingredient library or instrument export; refused before reading.
-constexpr std::uintmax_t kMaxImportBytes = std::uintmax_t{64} << 20;
+constexpr std::size_t kMaxImportBytes = std::size_t{64} << 20;
 
 std::string lowerAscii(std::string_view text) {
     std::string out(text);
@@ -34,37 +33,12 @@ std::string lowerAscii(std::string_view text) {
     return out;
 }
 
-std::string readImportFile(const std::filesystem::path& file) {
-    const std::string name = file.string();
-    std::error_code error;
-    const auto status = std::filesystem::status(file, error);
-    if (error || !std::filesystem::exists(status)) throw InputError(name, "", "no such file");
-    if (!std::filesystem::is_regular_file(status)) throw InputError(name, "", "not a regular file");
-    const auto size = std::filesystem::file_size(file, error);
-    if (error) throw InputError(name, "", "cannot read: " + error.message());
-    if (size > kMaxImportBytes)
-        throw InputError(name, "",
-                         std::to_string(size) + " bytes is more than the 64 MiB an import may have");
-    if (size == 0) throw InputError(name, "", "the file is empty");
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw InputError(name, "", "cannot open for reading");
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw InputError(name, "", "read error");
-    return text.str();
-}
-
 // What a file holds, when --kind does not say: JSON by its "format" member,
 // CSV by its header, CGATS is always spectra.
 ContentKind detectKind(const std::string& text, FileFormat format, const std::string& source) {
     if (format == FileFormat::Cgats) return ContentKind::Spectra;
     if (format == FileFormat::Json) {
-        nlohmann::json document;
-        try {
-            document = nlohmann::json::parse(text);
-        } catch (const nlohmann::json::parse_error& e) {
-            throw InputError(source, "", std::string("not valid JSON: ") + e.what());
-        }
+        const nlohmann::json document = jsonio::parseUntrustedJson(text, source);
         if (document.is_object() && document.contains("format") && document["format"].is_string()) {
             const std::string f = document["format"].get<std::string>();
             if (f == "paintlab-ingredients") return ContentKind::Ingredients;
@@ -277,7 +251,7 @@ ContentKind parseContentKind(std::string_view name) {
 ImportResult importFile(Database& db, const std::filesystem::path& file, const ImportOptions& options) {
     const std::string source = file.string();
     const FileFormat format = options.format ? *options.format : formatOfFile(file);
-    const std::string text = readImportFile(file);
+    const std::string text = jsonio::readBoundedTextFile(file, kMaxImportBytes);
     const ContentKind kind = options.kind ? *options.kind : detectKind(text, format, source);
     switch (kind) {
     case ContentKind::Ingredients:
@@ -343,28 +317,6 @@ std::string exportMeasurement(Database& db, std::string_view name, FileFormat fo
     if (format == FileFormat::Json) return measurementToJson(*m);
     if (format == FileFormat::Csv) return measurementToCsv(*m);
     throw InputError("<argument>", "--format", "measurements are exported as JSON or CSV");
-}
-
-void writeTextFile(const std::filesystem::path& file, std::string_view text) {
-    std::filesystem::path temp = file;
-    temp += ".tmp";
-    {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        if (!out) throw Error(file.string() + ": cannot write (temporary file " + temp.string() + ")");
-        out.write(text.data(), static_cast<std::streamsize>(text.size()));
-        out.flush();
-        if (!out) {
-            std::error_code ignored;
-            std::filesystem::remove(temp, ignored);
-            throw Error(file.string() + ": writing failed (disk full?)");
-        }
-    }
-    std::error_code error;
-    std::filesystem::rename(temp, file, error);
-    if (error) {
-        std::filesystem::remove(temp, error);
-        throw Error(file.string() + ": cannot replace the file: " + error.message());
-    }
 }
 
 }  // namespace paintlab::db

@@ -4,23 +4,23 @@
 
 #include "paintlab/database/ingredient_csv.h"
 
-#include "csv.h"
 #include "ingredient_json_detail.h"
 #include "spectrum_checks.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/csv.h"
+#include "paintlab/engine/io/number_format.h"
 
 #include <algorithm>
 #include <iterator>
 #include <map>
-#include <sstream>
 
 namespace paintlab::db {
 
 namespace {
 
-using detail::CsvRecord;
-using detail::CsvTable;
+using io::CsvRecord;
+using io::CsvTable;
 using Json = nlohmann::json;
 
 // The ingredient's own fields, in file order: text columns, then numbers.
@@ -65,11 +65,7 @@ bool isLimit(std::string_view column) {
     return false;
 }
 
-std::string formatNumber(double value) {
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
+using io::formatNumber;
 
 struct SpectrumRecords {
     std::string key;
@@ -227,7 +223,7 @@ std::vector<Ingredient> parseIngredientsCsv(std::string_view text, const std::st
 std::string ingredientsToCsv(const std::vector<Ingredient>& ingredients) {
     const auto columns = allColumns();
     std::vector<std::string> header(columns.begin(), columns.end());
-    std::string out = detail::csvLine(header);
+    std::string out = io::csvLine(header);
     for (const auto& ingredient : ingredients) {
         const nlohmann::ordered_json json = detail::ingredientToJson(ingredient);
         // The ingredient's own fields, the same on each of its records.
@@ -249,7 +245,7 @@ std::string ingredientsToCsv(const std::vector<Ingredient>& ingredients) {
         for (const auto column : kNumberColumns) {
             const auto& from = isLimit(column) ? json.at("limits") : json;
             if (from.contains(column))
-                own[column] = detail::csvNumber(from.at(std::string(column)).get<double>());
+                own[column] = io::csvNumber(from.at(std::string(column)).get<double>());
         }
         const auto record = [&](const std::vector<std::string>& spectrum_fields) {
             std::vector<std::string> fields;
@@ -258,7 +254,7 @@ std::string ingredientsToCsv(const std::vector<Ingredient>& ingredients) {
                 fields.push_back(found != own.end() ? found->second : std::string());
             }
             std::copy(spectrum_fields.begin(), spectrum_fields.end(), fields.end() - 6);
-            out += detail::csvLine(fields);
+            out += io::csvLine(fields);
         };
         const auto& spectra = json.at("spectra");
         if (spectra.empty()) record({"", "", "", "", "", ""});
@@ -272,8 +268,8 @@ std::string ingredientsToCsv(const std::vector<Ingredient>& ingredients) {
                 // A constant spectrum is written without its (ignored) wavelength.
                 const bool constant =
                     values.size() == 1 && wavelengths[0] == Spectrum(0.0).wavelengthsNm()[0];
-                record({key, unit, spectrum_source, date, constant ? "" : detail::csvNumber(wavelengths[i]),
-                        detail::csvNumber(values[i])});
+                record({key, unit, spectrum_source, date, constant ? "" : io::csvNumber(wavelengths[i]),
+                        io::csvNumber(values[i])});
             }
         }
     }

@@ -4,10 +4,11 @@
 #include "paintlab/database/ingredient_json.h"
 
 #include "ingredient_json_detail.h"
-#include "json_fields.h"
 #include "spectrum_checks.h"
 
 #include "paintlab/engine/error.h"
+
+#include "json_reader.h"
 
 namespace paintlab::db {
 
@@ -15,25 +16,27 @@ namespace {
 
 using Json = nlohmann::json;
 
-using detail::JsonFields;
+using jsonio::ObjectReader;
 
 // Reads spectra.<key> into the ingredient's provenance map and returns the spectrum.
 class SpectraReader {
 public:
-    SpectraReader(JsonFields& parent, Ingredient& ingredient, const std::string& source)
-        : m_reader(parent.get("spectra"), parent.fieldOf("spectra"), source), m_ingredient(ingredient),
-          m_source(source) {}
+    SpectraReader(ObjectReader& parent, Ingredient& ingredient, const std::string& source)
+        : m_reader(parent.require("spectra", "the ingredient's spectra"), parent.fieldPath("spectra"),
+                   source),
+          m_ingredient(ingredient), m_source(source) {}
 
-    bool has(std::string_view key) const { return m_reader.has(std::string(key)); }
+    bool has(std::string_view key) const { return m_reader.has(key); }
 
     Spectrum take(std::string_view key_view) {
         const std::string key(key_view);
-        JsonFields spectrum(m_reader.get(key), m_reader.fieldOf(key), m_source);
-        SpectrumInfo info{spectrum.text("unit"), spectrum.text("source"), spectrum.optionalText("date")};
+        ObjectReader spectrum(m_reader.require(key, "a spectrum"), m_reader.fieldPath(key), m_source);
+        SpectrumInfo info{spectrum.string("unit", true), spectrum.string("source", true),
+                          spectrum.string("date", false)};
         Spectrum out;
         try {
             if (spectrum.has("value")) {
-                out = Spectrum(spectrum.number("value"));
+                out = Spectrum(spectrum.number("value", "a number"));
             } else {
                 auto wavelengths = spectrum.numbers("wavelengths_nm", 1);
                 auto values = spectrum.numbers("values", 1);
@@ -55,7 +58,7 @@ public:
     void finish() const { m_reader.finish(); }
 
 private:
-    JsonFields m_reader;
+    ObjectReader m_reader;
     Ingredient& m_ingredient;
     const std::string& m_source;
 };
@@ -64,20 +67,20 @@ private:
 
 Ingredient detail::ingredientFromJson(const nlohmann::json& json, const std::string& field,
                                       const std::string& source) {
-    JsonFields r(json, field, source);
+    ObjectReader r(json, field, source);
     Ingredient ing;
-    const std::string kind_text = r.text("kind");
+    const std::string kind_text = r.string("kind", true);
     const auto kind = parseIngredientKind(kind_text);
     if (!kind)
         r.fail("kind", "unknown kind '" + kind_text +
                            "' (binder, pigment, mirror_flake, interference_flake or substrate)");
-    ing.name = r.text("name");
-    ing.description = r.optionalText("description");
-    ing.source = r.optionalText("source");
+    ing.name = r.string("name", true);
+    ing.description = r.string("description", false);
+    ing.source = r.string("source", false);
     ing.density_g_cm3 = r.optionalNumber("density_g_cm3");
-    ing.density_source = r.optionalText("density_source");
+    ing.density_source = r.string("density_source", false);
     if (r.has("tags")) {
-        const Json& tags = r.get("tags");
+        const Json& tags = r.require("tags", "tags");
         if (!tags.is_array()) r.fail("tags", "expected an array of strings");
         for (const auto& tag : tags) {
             if (!tag.is_string()) r.fail("tags", "expected an array of strings");
@@ -85,7 +88,7 @@ Ingredient detail::ingredientFromJson(const nlohmann::json& json, const std::str
         }
     }
     if (r.has("limits")) {
-        JsonFields limits(r.get("limits"), r.fieldOf("limits"), source);
+        ObjectReader limits(r.require("limits", "limits"), r.fieldPath("limits"), source);
         ing.limits = {limits.optionalNumber("max_volume_fraction"), limits.optionalNumber("min_thickness_um"),
                       limits.optionalNumber("max_thickness_um")};
         limits.finish();
@@ -106,8 +109,8 @@ Ingredient detail::ingredientFromJson(const nlohmann::json& json, const std::str
         Pigment data;
         data.name = ing.name;
         data.source = ing.source;
-        data.hg_g = r.number("hg_g");
-        data.particle_diameter_um = r.number("particle_diameter_um");
+        data.hg_g = r.number("hg_g", "a number");
+        data.particle_diameter_um = r.number("particle_diameter_um", "a number");
         data.sigma_a_per_um = spectra.take(params::kPigmentSigmaA.key);
         data.sigma_s_per_um = spectra.take(params::kPigmentSigmaS.key);
         ing.data = std::move(data);
@@ -117,10 +120,10 @@ Ingredient detail::ingredientFromJson(const nlohmann::json& json, const std::str
         MirrorFlake data;
         data.name = ing.name;
         data.source = ing.source;
-        data.diameter_um = r.number("diameter_um");
+        data.diameter_um = r.number("diameter_um", "a number");
         ing.diameter_sd_um = r.optionalNumber("diameter_sd_um").value_or(0.0);
-        data.thickness_um = r.number("thickness_um");
-        data.orientation_spread_deg = r.number("orientation_spread_deg");
+        data.thickness_um = r.number("thickness_um", "a number");
+        data.orientation_spread_deg = r.number("orientation_spread_deg", "a number");
         data.reflectance = spectra.takeOptional(params::kMirrorReflectance.key);
         data.metal_n = spectra.takeOptional(params::kMetalN.key);
         data.metal_k = spectra.takeOptional(params::kMetalK.key);
@@ -131,20 +134,20 @@ Ingredient detail::ingredientFromJson(const nlohmann::json& json, const std::str
         InterferenceFlake data;
         data.name = ing.name;
         data.source = ing.source;
-        data.diameter_um = r.number("diameter_um");
+        data.diameter_um = r.number("diameter_um", "a number");
         ing.diameter_sd_um = r.optionalNumber("diameter_sd_um").value_or(0.0);
-        data.orientation_spread_deg = r.number("orientation_spread_deg");
-        data.mica_thickness_nm = r.number("mica_thickness_nm");
-        data.mica_thickness_spread_nm = r.number("mica_thickness_spread_nm");
-        data.tio2_thickness_nm = r.number("tio2_thickness_nm");
-        data.tio2_thickness_spread_nm = r.number("tio2_thickness_spread_nm");
+        data.orientation_spread_deg = r.number("orientation_spread_deg", "a number");
+        data.mica_thickness_nm = r.number("mica_thickness_nm", "a number");
+        data.mica_thickness_spread_nm = r.number("mica_thickness_spread_nm", "a number");
+        data.tio2_thickness_nm = r.number("tio2_thickness_nm", "a number");
+        data.tio2_thickness_spread_nm = r.number("tio2_thickness_spread_nm", "a number");
         data.mica_refractive_index = spectra.take(params::kMicaIndex.key);
         data.tio2_refractive_index = spectra.take(params::kTio2Index.key);
         ing.data = std::move(data);
         break;
     }
     case IngredientKind::Substrate: {
-        const std::string substrate_kind = r.text("substrate_kind");
+        const std::string substrate_kind = r.string("substrate_kind", true);
         if (substrate_kind == LambertianSubstrate::kKind)
             ing.data = Substrate{LambertianSubstrate{spectra.take(params::kSubstrateAlbedo.key)}};
         else if (substrate_kind == MetalSubstrate::kKind)
@@ -153,7 +156,7 @@ Ingredient detail::ingredientFromJson(const nlohmann::json& json, const std::str
         else if (substrate_kind == BlackSubstrate::kKind)
             ing.data = Substrate{BlackSubstrate{}};
         else if (substrate_kind == TransparentSubstrate::kKind)
-            ing.data = Substrate{TransparentSubstrate{r.number("refractive_index")}};
+            ing.data = Substrate{TransparentSubstrate{r.number("refractive_index", "a number")}};
         else
             r.fail("substrate_kind", "unknown substrate kind '" + substrate_kind +
                                          "' (lambertian, metal, black or transparent)");
@@ -250,24 +253,18 @@ std::string ingredientsToJson(const std::vector<Ingredient>& ingredients) {
 }
 
 std::vector<Ingredient> parseIngredientsJson(std::string_view text, const std::string& source) {
-    Json document;
-    try {
-        document = Json::parse(text);
-    } catch (const Json::parse_error& e) {
-        throw InputError(source, "", std::string("not valid JSON: ") + e.what());
-    }
-    JsonFields r(document, "", source);
-    if (r.text("format") != "paintlab-ingredients") r.fail("format", "expected \"paintlab-ingredients\"");
-    const double version = r.number("format_version");
+    const Json document = jsonio::parseUntrustedJson(text, source);
+    ObjectReader r(document, "", source);
+    if (r.string("format", true) != "paintlab-ingredients")
+        r.fail("format", "expected \"paintlab-ingredients\"");
+    const double version = r.number("format_version", "the format's version");
     if (version != 1.0) r.fail("format_version", "only version 1 is known to this build");
-    r.optionalText("generated_by");
-    const Json& list = r.get("ingredients");
+    r.string("generated_by", false);
+    const Json& list = r.require("ingredients", "the ingredients");
     if (!list.is_array()) r.fail("ingredients", "expected an array");
     std::vector<Ingredient> out;
     for (std::size_t i = 0; i < list.size(); ++i) {
-        std::string field = "ingredients[" + std::to_string(i) + "]";
-        if (list[i].is_object() && list[i].contains("name") && list[i]["name"].is_string())
-            field.append(" '").append(list[i]["name"].get<std::string>()).append("'");
+        const std::string field = r.elementPath("ingredients", i);
         out.push_back(detail::ingredientFromJson(list[i], field, source));
         detail::normaliseIngredientSpectra(out.back(), source, field);
     }

@@ -3,6 +3,8 @@
 // from there. Every write runs in one transaction.
 
 #include "paintlab/database/ingredients.h"
+#include "paintlab/engine/io/number_format.h"
+#include "paintlab/engine/recipe_validation.h"
 
 #include "spectrum_rows.h"
 #include "sqlite.h"
@@ -12,7 +14,6 @@
 #include <algorithm>
 #include <cctype>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 namespace paintlab::db {
@@ -39,62 +40,28 @@ std::string fieldOf(const Ingredient& ingredient, std::string_view field) {
     return out;
 }
 
-std::string formatNumber(double value) {
-    std::ostringstream out;
-    out << value;
-    return out.str();
+using io::formatNumber;
+
+// The engine's checks of one material (recipe_validation.h): the declared
+// ranges and a mirror flake's reflectance-or-n,k rule; the first error is thrown.
+void checkMaterialFields(const std::string& file, const Ingredient& ingredient) {
+    const std::vector<RecipeProblem> problems = std::visit(
+        [](const auto& data) {
+            using T = std::decay_t<decltype(data)>;
+            if constexpr (std::is_same_v<T, Binder> || std::is_same_v<T, Substrate>)
+                return checkMaterial(data);
+            else
+                return checkMaterial(Component(data));
+        },
+        ingredient.data);
+    for (const auto& problem : problems)
+        if (problem.severity == Severity::Error)
+            throw InputError(file, fieldOf(ingredient, problem.field), problem.message);
 }
-
-// Checks every numeric field of the engine struct against its declaration
-// (parameters.h), except the recipe's own volume fraction.
-class RangeCheck {
-public:
-    RangeCheck(const std::string& file, const Ingredient& ingredient)
-        : m_file(file), m_ingredient(ingredient) {}
-
-    void scalar(const ParameterDecl& decl, const double& value) const {
-        if (decl.key == "volume_fraction") return;
-        check(decl, value, std::string(decl.key));
-    }
-    void spectrum(const ParameterDecl& decl, const Spectrum& spectrum) const {
-        for (std::size_t i = 0; i < spectrum.values().size(); ++i)
-            check(decl, spectrum.values()[i], std::string(decl.key) + "[" + std::to_string(i) + "]");
-    }
-    void optionalSpectrum(const ParameterDecl& decl, const std::optional<Spectrum>& spectrum) const {
-        if (spectrum) this->spectrum(decl, *spectrum);
-    }
-
-private:
-    void check(const ParameterDecl& decl, double value, const std::string& field) const {
-        if (decl.allows(value)) return;
-        throw InputError(m_file, fieldOf(m_ingredient, field),
-                         formatNumber(value) + " is outside the allowed range " + formatNumber(decl.min) +
-                             (decl.minExclusive ? " (exclusive)" : "") + " to " + formatNumber(decl.max) +
-                             " " + std::string(decl.unit));
-    }
-    const std::string& m_file;
-    const Ingredient& m_ingredient;
-};
 
 void validate(const std::string& file, const Ingredient& ingredient) {
     if (ingredient.name.empty()) throw InputError(file, "ingredient.name", "the name is empty");
-    const RangeCheck check(file, ingredient);
-    std::visit(
-        [&](const auto& data) {
-            using T = std::decay_t<decltype(data)>;
-            if constexpr (std::is_same_v<T, Substrate>)
-                std::visit([&](const auto& s) { std::decay_t<decltype(s)>::traverse(s, check); }, data);
-            else
-                T::traverse(data, check);
-            if constexpr (std::is_same_v<T, MirrorFlake>) {
-                const bool by_reflectance = data.reflectance.has_value();
-                const bool by_index = data.metal_n.has_value() && data.metal_k.has_value();
-                if (by_reflectance == by_index || (!by_index && (data.metal_n || data.metal_k)))
-                    throw InputError(file, fieldOf(ingredient, "reflectance"),
-                                     "give either a reflectance spectrum or the metal's n and k, not both");
-            }
-        },
-        ingredient.data);
+    checkMaterialFields(file, ingredient);
     if (ingredient.density_g_cm3 && !(*ingredient.density_g_cm3 > 0.0 && *ingredient.density_g_cm3 < 30.0))
         throw InputError(file, fieldOf(ingredient, "density_g_cm3"),
                          formatNumber(*ingredient.density_g_cm3) + " g/cm3 is outside 0 (exclusive) to 30");

@@ -3,11 +3,12 @@
 
 #include "paintlab/database/measurement_files.h"
 
-#include "csv.h"
-#include "json_fields.h"
 #include "measurement_json.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/csv.h"
+
+#include "json_reader.h"
 
 #include <algorithm>
 #include <charconv>
@@ -21,7 +22,7 @@ namespace {
 
 using Json = nlohmann::json;
 
-using Fields = JsonFields;
+using Fields = jsonio::ObjectReader;
 
 }  // namespace
 
@@ -66,39 +67,41 @@ void readMeasurementJson(const nlohmann::json& json, bool with_description, Meas
                          const std::string& source) {
     Fields f(json, "", source);
     if (with_description) {
-        if (f.text("format") != "paintlab-measurement") f.fail("format", "expected \"paintlab-measurement\"");
-        if (f.number("format_version") != 1.0)
+        if (f.string("format", true) != "paintlab-measurement")
+            f.fail("format", "expected \"paintlab-measurement\"");
+        if (f.number("format_version", "a number") != 1.0)
             f.fail("format_version", "only version 1 is known to this build");
-        m.name = f.text("name");
-        const std::string kind = f.text("kind");
+        m.name = f.string("name", true);
+        const std::string kind = f.string("kind", true);
         const auto parsed = parseMeasurementKind(kind);
         if (!parsed) f.fail("kind", "unknown kind '" + kind + "' (multiangle or brdf)");
         m.kind = *parsed;
-        m.instrument = f.optionalText("instrument");
-        m.geometry = f.optionalText("geometry");
-        m.sample = f.optionalText("sample");
-        m.measured_at = f.optionalText("measured_at");
-        m.source = f.optionalText("source");
+        m.instrument = f.string("instrument", false);
+        m.geometry = f.string("geometry", false);
+        m.sample = f.string("sample", false);
+        m.measured_at = f.string("measured_at", false);
+        m.source = f.string("source", false);
     }
     if (m.kind == MeasurementKind::MultiAngle) {
-        if (f.has("illuminant")) m.illuminant = f.text("illuminant");
-        if (f.has("observer")) m.observer = f.text("observer");
-        const Json& readings = f.get("readings");
+        if (f.has("illuminant")) m.illuminant = f.string("illuminant", true);
+        if (f.has("observer")) m.observer = f.string("observer", true);
+        const Json& readings = f.require("readings", "the readings");
         if (!readings.is_array()) f.fail("readings", "expected an array");
         for (std::size_t i = 0; i < readings.size(); ++i) {
-            Fields r(readings[i], f.fieldOf("readings[" + std::to_string(i) + "]"), source);
+            Fields r(readings[i], f.elementPath("readings", i), source);
             MultiAngleReading reading;
-            if (r.has("illumination_deg")) reading.illumination_deg = r.number("illumination_deg");
-            reading.aspecular_deg = r.number("aspecular_deg");
-            reading.L = r.number("L");
-            reading.a = r.number("a");
-            reading.b = r.number("b");
+            if (r.has("illumination_deg"))
+                reading.illumination_deg = r.number("illumination_deg", "a number");
+            reading.aspecular_deg = r.number("aspecular_deg", "a number");
+            reading.L = r.number("L", "a number");
+            reading.a = r.number("a", "a number");
+            reading.b = r.number("b", "a number");
             r.finish();
             m.readings.push_back(reading);
         }
     } else {
         if (f.has("channels")) {
-            const Json& channels = f.get("channels");
+            const Json& channels = f.require("channels", "channel names");
             if (!channels.is_array()) f.fail("channels", "expected an array of strings");
             for (const auto& c : channels) {
                 if (!c.is_string()) f.fail("channels", "expected an array of strings");
@@ -106,12 +109,13 @@ void readMeasurementJson(const nlohmann::json& json, bool with_description, Meas
             }
         }
         if (f.has("wavelengths_nm")) m.wavelengths_nm = f.numbers("wavelengths_nm");
-        const Json& samples = f.get("samples");
+        const Json& samples = f.require("samples", "the samples");
         if (!samples.is_array()) f.fail("samples", "expected an array");
         for (std::size_t i = 0; i < samples.size(); ++i) {
-            Fields s(samples[i], f.fieldOf("samples[" + std::to_string(i) + "]"), source);
-            BrdfSample sample{s.number("theta_i_deg"), s.number("phi_i_deg"), s.number("theta_o_deg"),
-                              s.number("phi_o_deg"), s.numbers("values")};
+            Fields s(samples[i], f.elementPath("samples", i), source);
+            BrdfSample sample{s.number("theta_i_deg", "a number"), s.number("phi_i_deg", "a number"),
+                              s.number("theta_o_deg", "a number"), s.number("phi_o_deg", "a number"),
+                              s.numbers("values")};
             s.finish();
             m.samples.push_back(std::move(sample));
         }
@@ -123,8 +127,8 @@ void readMeasurementJson(const nlohmann::json& json, bool with_description, Meas
 
 namespace {
 
-using detail::CsvRecord;
-using detail::CsvTable;
+using io::CsvRecord;
+using io::CsvTable;
 
 std::optional<double> wavelengthColumn(const std::string& column) {
     std::string_view text = column;
@@ -158,12 +162,7 @@ std::string firstColumn(const CsvTable& table, std::initializer_list<std::string
 }  // namespace
 
 Measurement parseMeasurementJson(std::string_view text, const std::string& source) {
-    nlohmann::json document;
-    try {
-        document = nlohmann::json::parse(text);
-    } catch (const nlohmann::json::parse_error& e) {
-        throw InputError(source, "", std::string("not valid JSON: ") + e.what());
-    }
+    const nlohmann::json document = jsonio::parseUntrustedJson(text, source);
     Measurement m;
     detail::readMeasurementJson(document, true, m, source);
     validateMeasurement(m, source);
@@ -250,21 +249,21 @@ std::string measurementToJson(const Measurement& measurement) {
 std::string measurementToCsv(const Measurement& m) {
     std::string out;
     if (m.kind == MeasurementKind::MultiAngle) {
-        out = detail::csvLine({"illumination_deg", "aspecular_deg", "L", "a", "b"});
+        out = io::csvLine({"illumination_deg", "aspecular_deg", "L", "a", "b"});
         for (const auto& r : m.readings)
-            out += detail::csvLine({detail::csvNumber(r.illumination_deg), detail::csvNumber(r.aspecular_deg),
-                                    detail::csvNumber(r.L), detail::csvNumber(r.a), detail::csvNumber(r.b)});
+            out += io::csvLine({io::csvNumber(r.illumination_deg), io::csvNumber(r.aspecular_deg),
+                                io::csvNumber(r.L), io::csvNumber(r.a), io::csvNumber(r.b)});
         return out;
     }
     std::vector<std::string> header{"theta_i_deg", "phi_i_deg", "theta_o_deg", "phi_o_deg"};
     for (const auto& c : m.channels) header.push_back(c);
-    for (const double w : m.wavelengths_nm) header.push_back(detail::csvNumber(w) + "nm");
-    out = detail::csvLine(header);
+    for (const double w : m.wavelengths_nm) header.push_back(io::csvNumber(w) + "nm");
+    out = io::csvLine(header);
     for (const auto& s : m.samples) {
-        std::vector<std::string> fields{detail::csvNumber(s.theta_i_deg), detail::csvNumber(s.phi_i_deg),
-                                        detail::csvNumber(s.theta_o_deg), detail::csvNumber(s.phi_o_deg)};
-        for (const double v : s.values) fields.push_back(detail::csvNumber(v));
-        out += detail::csvLine(fields);
+        std::vector<std::string> fields{io::csvNumber(s.theta_i_deg), io::csvNumber(s.phi_i_deg),
+                                        io::csvNumber(s.theta_o_deg), io::csvNumber(s.phi_o_deg)};
+        for (const double v : s.values) fields.push_back(io::csvNumber(v));
+        out += io::csvLine(fields);
     }
     return out;
 }

@@ -7,9 +7,9 @@
 #include "sqlite.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/number_format.h"
 
 #include <cmath>
-#include <sstream>
 
 namespace paintlab::db {
 
@@ -19,11 +19,7 @@ using detail::Connection;
 using detail::Statement;
 using detail::Transaction;
 
-std::string formatNumber(double value) {
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
+using io::formatNumber;
 
 void requireFinite(double value, const std::string& source, const std::string& field) {
     if (!std::isfinite(value)) throw InputError(source, field, "not a finite number");

@@ -5,19 +5,15 @@
 
 #include "paintlab/database/ingredients.h"
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/number_format.h"
 
 #include <cmath>
-#include <sstream>
 
 namespace paintlab::db {
 
 namespace {
 
-std::string formatNumber(double value) {
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
+using io::formatNumber;
 
 std::string layerLabel(std::size_t index, const std::string& name) {
     return "layer " + std::to_string(index + 1) + " '" + name + "'";

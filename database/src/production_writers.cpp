@@ -1,12 +1,10 @@
 // Production sheets as CSV, JSON and printable HTML (production.h).
 
 #include "paintlab/database/production.h"
-
-#include "csv.h"
+#include "paintlab/engine/io/csv.h"
+#include "paintlab/engine/io/number_format.h"
 
 #include <nlohmann/json.hpp>
-
-#include <cstdio>
 
 namespace paintlab::db {
 
@@ -19,11 +17,7 @@ ordered_json optionalJson(const std::optional<double>& value) {
 }
 
 // Fixed decimals for people (the JSON and CSV carry full precision).
-std::string fixed(double value, int decimals) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
-    return buffer;
-}
+std::string fixed(double value, int decimals) { return io::formatFixed(value, decimals); }
 
 std::string fixed(const std::optional<double>& value, int decimals) {
     return value ? fixed(*value, decimals) : std::string("n/a");
@@ -65,8 +59,8 @@ std::string basis(const ProductionSheet& sheet) {
 }  // namespace
 
 std::string productionCsv(const ProductionSheet& sheet) {
-    using detail::csvLine;
-    using detail::csvNumber;
+    using io::csvLine;
+    using io::csvNumber;
     std::string out =
         csvLine({"recipe", "version", "checksum_sha256", "layer_position", "layer", "dry_film_thickness_um",
                  "wet_film_thickness_um", "pigment_volume_concentration", "solids_mass_fraction",

@@ -1,9 +1,8 @@
-// CGATS.17 / IT8.7 spectra (spectra_files.h). Reading goes through liblcms2's
-// cmsIT8 parser, which accepts the keywords and data-format names of any
-// instrument (it is not built with CMS_STRICT_CGATS); its error messages,
-// with the line, arrive through the context's log handler and are rethrown
-// as InputError naming the file. Writing is plain text: one table with the
-// keywords PaintLab reads back.
+// CGATS.17 / IT8.7 spectra (spectra_files.h). Reading goes through the
+// engine's CGATS reader (io/cgats.h, liblcms2's cmsIT8 parser, which accepts
+// the keywords and data-format names of any instrument); here the table is
+// read as spectra. Writing is plain text: one table with the keywords
+// PaintLab reads back.
 
 #include "paintlab/database/spectra_files.h"
 
@@ -11,8 +10,8 @@
 #include "spectrum_checks.h"
 
 #include "paintlab/engine/error.h"
-
-#include <lcms2.h>
+#include "paintlab/engine/io/cgats.h"
+#include "paintlab/engine/io/number_format.h"
 
 #include <algorithm>
 #include <cctype>
@@ -21,18 +20,13 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <type_traits>
 
 namespace paintlab::db {
 
 namespace {
 
-std::string formatNumber(double value) {
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
+using io::formatNumber;
 
 std::string upper(std::string_view text) {
     std::string out(text);
@@ -65,68 +59,18 @@ std::optional<double> spectralWavelength(std::string_view column) {
     return std::nullopt;
 }
 
-// The messages lcms2 logs while parsing, for the exception.
-struct Log {
-    std::string messages;
-};
-
-// lcms2 writes "<file name>: Line 9, <message>\n"; the file name is empty
-// when parsing from memory, and the caller names the file.
-void logHandler(cmsContext context, cmsUInt32Number /*code*/, const char* text) {
-    auto* log = static_cast<Log*>(cmsGetContextUserData(context));
-    if (log == nullptr || text == nullptr) return;
-    std::string_view message = text;
-    if (message.starts_with(": ")) message.remove_prefix(2);
-    if (!log->messages.empty()) log->messages.append("; ");
-    if (message.starts_with("Line ")) {
-        log->messages.append("line ");
-        message.remove_prefix(5);
-    }
-    while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back())) != 0)
-        message.remove_suffix(1);
-    log->messages.append(message);
-}
-
-struct ContextDeleter {
-    void operator()(cmsContext context) const { cmsDeleteContext(context); }
-};
-struct It8Deleter {
-    void operator()(void* handle) const { cmsIT8Free(handle); }
-};
-
-std::string property(cmsHANDLE it8, const char* key) {
-    const char* value = cmsIT8GetProperty(it8, key);
-    return value != nullptr ? value : "";
-}
-
 }  // namespace
 
 std::vector<NamedSpectrum> parseSpectraCgats(std::string_view text, const std::string& source,
                                              const CgatsOptions& options) {
-    Log log;
-    const std::unique_ptr<std::remove_pointer_t<cmsContext>, ContextDeleter> context(
-        cmsCreateContext(nullptr, &log));
-    if (!context) throw Error("liblcms2: cannot create a context");
-    cmsSetLogErrorHandlerTHR(context.get(), logHandler);
-    if (text.size() > 0xffffffffU) throw InputError(source, "", "too large for a CGATS file");
-    const std::unique_ptr<void, It8Deleter> it8(
-        cmsIT8LoadFromMem(context.get(), text.data(), static_cast<cmsUInt32Number>(text.size())));
-    if (!it8)
-        throw InputError(source, "",
-                         "not a readable CGATS/IT8 file: " +
-                             (log.messages.empty() ? std::string("no CGATS structure") : log.messages));
-    if (cmsIT8TableCount(it8.get()) != 1)
-        throw InputError(source, "",
-                         "has " + std::to_string(cmsIT8TableCount(it8.get())) +
-                             " tables; one table of spectra is expected");
-
-    char** names = nullptr;
-    const int columns = cmsIT8EnumDataFormat(it8.get(), &names);
+    const io::CgatsTable table = io::parseCgats(text, source);
+    const auto& names = table.columns;
+    const int columns = static_cast<int>(names.size());
     std::vector<std::pair<int, double>> spectral;  // column, wavelength
     std::optional<int> name_column;
     std::optional<int> id_column;
     for (int c = 0; c < columns; ++c) {
-        const std::string column = names[c] != nullptr ? names[c] : "";
+        const std::string& column = names[static_cast<std::size_t>(c)];
         if (upper(column) == "SAMPLE_NAME") name_column = c;
         if (upper(column) == "SAMPLE_ID") id_column = c;
         if (const auto wavelength = spectralWavelength(column)) spectral.emplace_back(c, *wavelength);
@@ -138,27 +82,26 @@ std::vector<NamedSpectrum> parseSpectraCgats(std::string_view text, const std::s
               [](const auto& a, const auto& b) { return a.second < b.second; });
     for (std::size_t i = 1; i < spectral.size(); ++i)
         if (spectral[i].second == spectral[i - 1].second)
-            throw InputError(source, std::string("DATA_FORMAT.") + names[spectral[i].first],
+            throw InputError(source, "DATA_FORMAT." + names[static_cast<std::size_t>(spectral[i].first)],
                              "a second column for the same wavelength");
 
-    const double sets = cmsIT8GetPropertyDbl(it8.get(), "NUMBER_OF_SETS");
-    if (!(sets >= 1.0)) throw InputError(source, "NUMBER_OF_SETS", "the file holds no data set");
-    const int rows = static_cast<int>(sets);
+    if (table.rows.empty()) throw InputError(source, "NUMBER_OF_SETS", "the file holds no data set");
+    const int rows = static_cast<int>(table.rows.size());
 
-    std::string quantity = property(it8.get(), "PAINTLAB_QUANTITY");
+    std::string quantity = table.property("PAINTLAB_QUANTITY");
     if (quantity.empty()) quantity = options.quantity;
-    std::string unit = options.unit.empty() ? property(it8.get(), "PAINTLAB_UNIT") : options.unit;
+    std::string unit = options.unit.empty() ? table.property("PAINTLAB_UNIT") : options.unit;
     const bool unit_given = !unit.empty();
     if (!unit_given) unit = "1";
     std::string spectrum_source = options.source;
-    if (spectrum_source.empty()) spectrum_source = property(it8.get(), "PAINTLAB_SOURCE");
+    if (spectrum_source.empty()) spectrum_source = table.property("PAINTLAB_SOURCE");
     if (spectrum_source.empty()) {
         spectrum_source = "CGATS file " + std::filesystem::path(source).filename().string();
         for (const char* key : {"INSTRUMENTATION", "ORIGINATOR", "DESCRIPTOR"})
-            if (const std::string value = property(it8.get(), key); !value.empty())
+            if (const std::string value = table.property(key); !value.empty())
                 spectrum_source.append(", ").append(key).append(" ").append(value);
     }
-    const std::string date = property(it8.get(), "CREATED");
+    const std::string date = table.property("CREATED");
     const std::string stem = std::filesystem::path(source).stem().string();
 
     std::vector<NamedSpectrum> out;
@@ -168,9 +111,8 @@ std::vector<NamedSpectrum> parseSpectraCgats(std::string_view text, const std::s
     for (int row = 0; row < rows; ++row) {
         std::string label = "data set " + std::to_string(row + 1);
         NamedSpectrum s;
-        const auto cell = [&](int column) -> std::string {
-            const char* value = cmsIT8GetDataRowCol(it8.get(), row, column);
-            return value != nullptr ? value : "";
+        const auto cell = [&](int column) -> const std::string& {
+            return table.rows[static_cast<std::size_t>(row)][static_cast<std::size_t>(column)];
         };
         if (name_column) s.name = cell(*name_column);
         if (s.name.empty() && id_column) s.name = cell(*id_column);
@@ -179,15 +121,15 @@ std::vector<NamedSpectrum> parseSpectraCgats(std::string_view text, const std::s
         std::vector<double> wavelengths;
         std::vector<double> values;
         for (const auto& [column, wavelength] : spectral) {
-            const std::string text_value = cell(column);
+            const std::string& text_value = cell(column);
             const auto value = finiteNumber(text_value);
             if (!value)
-                throw InputError(source, label + "." + names[column],
+                throw InputError(source, label + "." + names[static_cast<std::size_t>(column)],
                                  text_value.empty() ? std::string("missing (truncated file?)")
                                                     : "'" + text_value + "' is not a finite number");
             if (*value > largest) {
                 largest = *value;
-                largest_at = label + "." + names[column];
+                largest_at = label + "." + names[static_cast<std::size_t>(column)];
             }
             wavelengths.push_back(wavelength);
             values.push_back(*value);
@@ -227,11 +169,7 @@ std::string spectraToCgats(const std::vector<NamedSpectrum>& spectra) {
                                  "(export as CSV or JSON instead)");
     }
     const auto quoted = [](const std::string& text) { return "\"" + text + "\""; };
-    const auto number = [](double value) {
-        char buffer[64];
-        const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-        return std::string(buffer, result.ptr);
-    };
+    const auto number = [](double value) { return formatNumber(value, io::NumberFormat::Shortest); };
     std::string out = "CGATS.17\n";
     out += "ORIGINATOR " + quoted("PaintLab") + "\n";
     out += "DESCRIPTOR " + quoted(first.quantity + " spectra") + "\n";

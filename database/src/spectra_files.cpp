@@ -2,62 +2,30 @@
 
 #include "paintlab/database/spectra_files.h"
 
-#include "csv.h"
 #include "spectra_common.h"
 #include "spectrum_checks.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/csv.h"
+#include "paintlab/engine/io/number_format.h"
+
+#include "json_reader.h"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <iterator>
 #include <map>
-#include <sstream>
 
 namespace paintlab::db {
 
 namespace {
 
-using detail::CsvRecord;
-using detail::CsvTable;
+using io::CsvRecord;
+using io::CsvTable;
 using Json = nlohmann::json;
 
-std::string formatNumber(double value) {
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
-
-const Json& member(const Json& object, const std::string& key, const std::string& source,
-                   const std::string& field) {
-    if (!object.contains(key)) throw InputError(source, field + "." + key, "missing");
-    return object.at(key);
-}
-
-std::string text(const Json& object, const std::string& key, const std::string& source,
-                 const std::string& field, bool required = true) {
-    if (!required && !object.contains(key)) return {};
-    const Json& value = member(object, key, source, field);
-    if (!value.is_string()) throw InputError(source, field + "." + key, "expected a string");
-    return value.get<std::string>();
-}
-
-std::vector<double> numbers(const Json& object, const std::string& key, const std::string& source,
-                            const std::string& field) {
-    const Json& value = member(object, key, source, field);
-    if (!value.is_array()) throw InputError(source, field + "." + key, "expected an array of numbers");
-    std::vector<double> out;
-    for (std::size_t i = 0; i < value.size(); ++i) {
-        if (!value[i].is_number()) {
-            std::string at = field;
-            at.append(".").append(key).append("[").append(std::to_string(i)).append("]");
-            throw InputError(source, at, "expected a number");
-        }
-        out.push_back(value[i].get<double>());
-    }
-    return out;
-}
+using io::formatNumber;
 
 }  // namespace
 
@@ -91,44 +59,28 @@ void finishNamedSpectra(std::vector<NamedSpectrum>& spectra, const std::vector<s
 }  // namespace detail
 
 std::vector<NamedSpectrum> parseSpectraJson(std::string_view text_in, const std::string& source) {
-    Json document;
-    try {
-        document = Json::parse(text_in);
-    } catch (const Json::parse_error& e) {
-        throw InputError(source, "", std::string("not valid JSON: ") + e.what());
-    }
-    if (!document.is_object()) throw InputError(source, "", "expected a JSON object");
-    if (text(document, "format", source, "") != "paintlab-spectra")
-        throw InputError(source, "format", "expected \"paintlab-spectra\"");
-    const Json& version = member(document, "format_version", source, "");
-    if (!version.is_number() || version.get<double>() != 1.0)
-        throw InputError(source, "format_version", "only version 1 is known to this build");
-    const Json& list = member(document, "spectra", source, "");
-    if (!list.is_array()) throw InputError(source, "spectra", "expected an array");
-    for (const auto& item : document.items())
-        if (item.key() != "format" && item.key() != "format_version" && item.key() != "spectra" &&
-            item.key() != "generated_by")
-            throw InputError(source, item.key(), "unknown field");
+    const Json document = jsonio::parseUntrustedJson(text_in, source);
+    jsonio::ObjectReader r(document, "", source);
+    if (r.string("format", true) != "paintlab-spectra") r.fail("format", "expected \"paintlab-spectra\"");
+    if (r.number("format_version", "the format's version") != 1.0)
+        r.fail("format_version", "only version 1 is known to this build");
+    r.string("generated_by", false);
+    const Json& list = r.require("spectra", "the spectra");
+    if (!list.is_array()) r.fail("spectra", "expected an array");
+    r.finish();
     std::vector<NamedSpectrum> out;
     std::vector<std::string> labels;
     for (std::size_t i = 0; i < list.size(); ++i) {
-        std::string field = "spectra[" + std::to_string(i) + "]";
-        const Json& item = list[i];
-        if (!item.is_object()) throw InputError(source, field, "expected an object");
-        for (const auto& entry : item.items()) {
-            static const char* kKnown[] = {"name", "quantity",       "unit",  "source",
-                                           "date", "wavelengths_nm", "values"};
-            if (std::find(std::begin(kKnown), std::end(kKnown), entry.key()) == std::end(kKnown))
-                throw InputError(source, field + "." + entry.key(), "unknown field");
-        }
+        const std::string field = r.elementPath("spectra", i);
+        jsonio::ObjectReader item(list[i], field, source);
         NamedSpectrum s;
-        s.name = text(item, "name", source, field);
-        field += " '" + s.name + "'";
-        s.quantity = text(item, "quantity", source, field);
-        s.info = {text(item, "unit", source, field), text(item, "source", source, field, false),
-                  text(item, "date", source, field, false)};
-        s.spectrum = detail::checkedSpectrum(source, field, numbers(item, "wavelengths_nm", source, field),
-                                             numbers(item, "values", source, field));
+        s.name = item.string("name", true);
+        s.quantity = item.string("quantity", true);
+        s.info = {item.string("unit", true), item.string("source", false), item.string("date", false)};
+        auto wavelengths = item.numbers("wavelengths_nm");
+        auto values = item.numbers("values");
+        item.finish();
+        s.spectrum = detail::checkedSpectrum(source, field, std::move(wavelengths), std::move(values));
         out.push_back(std::move(s));
         labels.push_back(field);
     }
@@ -210,13 +162,12 @@ std::string spectraToJson(const std::vector<NamedSpectrum>& spectra) {
 }
 
 std::string spectraToCsv(const std::vector<NamedSpectrum>& spectra) {
-    std::string out =
-        detail::csvLine({"name", "quantity", "unit", "source", "date", "wavelength_nm", "value"});
+    std::string out = io::csvLine({"name", "quantity", "unit", "source", "date", "wavelength_nm", "value"});
     for (const auto& s : spectra)
         for (std::size_t i = 0; i < s.spectrum.values().size(); ++i)
-            out += detail::csvLine({s.name, s.quantity, s.info.unit, s.info.source, s.info.date,
-                                    detail::csvNumber(s.spectrum.wavelengthsNm()[i]),
-                                    detail::csvNumber(s.spectrum.values()[i])});
+            out += io::csvLine({s.name, s.quantity, s.info.unit, s.info.source, s.info.date,
+                                io::csvNumber(s.spectrum.wavelengthsNm()[i]),
+                                io::csvNumber(s.spectrum.values()[i])});
     return out;
 }
 

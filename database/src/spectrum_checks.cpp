@@ -3,19 +3,15 @@
 #include "spectrum_checks.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/number_format.h"
 
 #include <cmath>
-#include <sstream>
 
 namespace paintlab::db::detail {
 
 namespace {
 
-std::string formatNumber(double value) {
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
+using io::formatNumber;
 
 // Visits every spectrum of an engine struct with its declaration, mutably.
 template <class F> struct SpectrumVisitor {

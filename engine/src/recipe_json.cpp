@@ -1,14 +1,14 @@
 #include "paintlab/engine/recipe_json.h"
 
+#include "json_reader.h"
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/json_reader.h"
+#include "paintlab/engine/io/atomic_file.h"
 #include "paintlab/engine/recipe_validation.h"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <stdexcept>
 #include <system_error>
 
@@ -89,13 +89,6 @@ template <class T> T readComponentFields(ObjectReader& reader, const std::string
     return component;
 }
 
-std::string componentLabel(std::size_t index, const json& value) {
-    std::string label = "component " + std::to_string(index + 1);
-    if (value.is_object() && value.contains("name") && value["name"].is_string())
-        label += " '" + value["name"].get<std::string>() + "'";
-    return label;
-}
-
 Component readComponent(const json& value, const std::string& path, const std::string& source) {
     ObjectReader reader(value, path, source);
     const std::string kind = reader.string("kind", true);
@@ -130,8 +123,8 @@ Layer readLayer(const json& value, const std::string& path, const std::string& s
         if (!components->is_array())
             reader.fail("components", "expected an array, found " + typeName(*components));
         for (std::size_t i = 0; i < components->size(); ++i)
-            layer.components.push_back(readComponent(
-                (*components)[i], reader.fieldPath(componentLabel(i, (*components)[i])), source));
+            layer.components.push_back(
+                readComponent((*components)[i], reader.elementPath("components", i), source));
     }
     reader.finish();
     return layer;
@@ -259,12 +252,8 @@ Recipe parseRecipeJson(std::string_view text, const std::string& source) {
     }
     const json& layers = reader.require("layers", "the layers, top first");
     if (!layers.is_array()) reader.fail("layers", "expected an array of layers, found " + typeName(layers));
-    for (std::size_t i = 0; i < layers.size(); ++i) {
-        std::string label = "layer " + std::to_string(i + 1);
-        if (layers[i].is_object() && layers[i].contains("name") && layers[i]["name"].is_string())
-            label += " '" + layers[i]["name"].get<std::string>() + "'";
-        recipe.layers.push_back(readLayer(layers[i], label, source));
-    }
+    for (std::size_t i = 0; i < layers.size(); ++i)
+        recipe.layers.push_back(readLayer(layers[i], reader.elementPath("layers", i), source));
     recipe.substrate = readSubstrate(reader.require("substrate", "what the paint is applied on"), source);
     reader.finish();
     return recipe;
@@ -293,26 +282,7 @@ std::string recipeToJson(const Recipe& recipe) {
 }
 
 void saveRecipeFile(const Recipe& recipe, const std::filesystem::path& path) {
-    const std::string text = recipeToJson(recipe);
-    std::filesystem::path temp = path;
-    temp += ".tmp";
-    {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        if (!out) throw Error(path.string() + ": cannot write (temporary file " + temp.string() + ")");
-        out.write(text.data(), static_cast<std::streamsize>(text.size()));
-        out.flush();
-        if (!out) {
-            std::error_code ignored;
-            std::filesystem::remove(temp, ignored);
-            throw Error(path.string() + ": writing failed (disk full?)");
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(temp, path, ec);
-    if (ec) {
-        std::filesystem::remove(temp, ec);
-        throw Error(path.string() + ": cannot replace file: " + ec.message());
-    }
+    io::writeFileAtomically(path, recipeToJson(recipe));
 }
 
 }  // namespace paintlab

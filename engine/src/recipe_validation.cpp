@@ -1,21 +1,17 @@
 #include "paintlab/engine/recipe_validation.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/number_format.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <set>
 
 namespace paintlab {
 
 namespace {
 
-std::string formatNumber(double value) {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.6g", value);
-    return buffer;
-}
+using io::formatNumber;
 
 std::string rangeText(const ParameterDecl& decl) {
     // Built with append: GCC 12 warns falsely (-Wrestrict) on chained operator+ here.
@@ -25,13 +21,26 @@ std::string rangeText(const ParameterDecl& decl) {
     return text;
 }
 
+// The path of a field inside `path` ("" for the top level).
+std::string childField(const std::string& path, std::string_view key) {
+    return path.empty() ? std::string(key) : path + " > " + std::string(key);
+}
+
 // The visitor that checks every declared field against its declaration.
+// Without a volume fraction: a material as the database stores it, before a
+// recipe gives it an amount.
+enum class VolumeFraction { Check, Skip };
+
 class FieldChecker {
 public:
-    FieldChecker(std::vector<RecipeProblem>& problems, std::string path)
-        : m_problems(problems), m_path(std::move(path)) {}
+    FieldChecker(std::vector<RecipeProblem>& problems, std::string path,
+                 VolumeFraction volume_fraction = VolumeFraction::Check)
+        : m_problems(problems), m_path(std::move(path)), m_volume_fraction(volume_fraction) {}
 
-    void scalar(const ParameterDecl& decl, double value) { checkValue(decl, value, field(decl), ""); }
+    void scalar(const ParameterDecl& decl, double value) {
+        if (m_volume_fraction == VolumeFraction::Skip && decl.key == "volume_fraction") return;
+        checkValue(decl, value, field(decl), "");
+    }
 
     void spectrum(const ParameterDecl& decl, const Spectrum& s) {
         const std::string where = field(decl);
@@ -52,9 +61,7 @@ public:
     }
 
 private:
-    std::string field(const ParameterDecl& decl) const {
-        return m_path.empty() ? std::string(decl.key) : m_path + " > " + std::string(decl.key);
-    }
+    std::string field(const ParameterDecl& decl) const { return childField(m_path, decl.key); }
 
     void add(Severity severity, const std::string& where, std::string message) {
         m_problems.push_back({severity, where, std::move(message)});
@@ -85,6 +92,7 @@ private:
 
     std::vector<RecipeProblem>& m_problems;
     std::string m_path;
+    VolumeFraction m_volume_fraction;
 };
 
 void checkDepthProfile(const DepthProfile& profile, const std::string& path, double volume_fraction,
@@ -132,21 +140,29 @@ double peakTotalVolumeFraction(const Layer& layer) {
     return peak;
 }
 
-template <class T>
-void checkComponent(const T& c, const std::string& path, std::vector<RecipeProblem>& problems) {
-    if (c.name.empty()) problems.push_back({Severity::Error, path + " > name", "the component needs a name"});
-    FieldChecker checker(problems, path);
+// A material's declared fields and the rules within one material (a mirror
+// flake's reflectance or the metal's n and k).
+template <class T> void checkMaterialFields(const T& c, const std::string& path,
+                                            VolumeFraction volume_fraction,
+                                            std::vector<RecipeProblem>& problems) {
+    FieldChecker checker(problems, path, volume_fraction);
     T::traverse(c, checker);
     if constexpr (std::is_same_v<T, MirrorFlake>) {
         const bool has_nk = c.metal_n.has_value() || c.metal_k.has_value();
         if (c.reflectance.has_value() == has_nk)
             problems.push_back(
-                {Severity::Error, path + " > reflectance",
+                {Severity::Error, childField(path, "reflectance"),
                  "give either 'reflectance' or the metal's 'n' and 'k', exactly one of the two"});
         else if (has_nk && (!c.metal_n || !c.metal_k))
-            problems.push_back({Severity::Error, path + (c.metal_n ? " > k" : " > n"),
+            problems.push_back({Severity::Error, childField(path, c.metal_n ? "k" : "n"),
                                 "a metal's complex index needs both 'n' and 'k'"});
     }
+}
+
+template <class T>
+void checkComponent(const T& c, const std::string& path, std::vector<RecipeProblem>& problems) {
+    if (c.name.empty()) problems.push_back({Severity::Error, path + " > name", "the component needs a name"});
+    checkMaterialFields(c, path, VolumeFraction::Check, problems);
     if constexpr (requires { c.depth_profile; }) {
         if (c.depth_profile) {
             const ParameterDecl& decl = std::is_same_v<T, Pigment> ? params::kPigmentVolumeFraction
@@ -201,6 +217,24 @@ std::vector<RecipeProblem> checkRecipe(const Recipe& recipe) {
             std::decay_t<decltype(s)>::traverse(s, checker);
         },
         recipe.substrate);
+    return problems;
+}
+
+std::vector<RecipeProblem> checkMaterial(const Binder& binder) {
+    std::vector<RecipeProblem> problems;
+    checkMaterialFields(binder, "", VolumeFraction::Skip, problems);
+    return problems;
+}
+
+std::vector<RecipeProblem> checkMaterial(const Component& component) {
+    std::vector<RecipeProblem> problems;
+    std::visit([&](const auto& c) { checkMaterialFields(c, "", VolumeFraction::Skip, problems); }, component);
+    return problems;
+}
+
+std::vector<RecipeProblem> checkMaterial(const Substrate& substrate) {
+    std::vector<RecipeProblem> problems;
+    std::visit([&](const auto& s) { checkMaterialFields(s, "", VolumeFraction::Skip, problems); }, substrate);
     return problems;
 }
 

@@ -2,13 +2,18 @@
 
 #include "plot_render_thread.h"
 
+#include "paintlab/engine/error.h"
+#include "paintlab/engine/io/atomic_file.h"
+#include "paintlab/engine/io/csv.h"
+#include "paintlab/engine/io/number_format.h"
+
+#include <QBuffer>
+#include <QByteArray>
 #include <QElapsedTimer>
 #include <QOffscreenSurface>
 #include <QOpenGLContext>
 #include <QOpenGLFramebufferObject>
 #include <QPainter>
-#include <QSaveFile>
-#include <QTextStream>
 
 #include <vtkAxis.h>
 #include <vtkChartXY.h>
@@ -21,6 +26,9 @@
 #include <vtkTextProperty.h>
 
 #include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace paintlab::gui {
 
@@ -223,40 +231,48 @@ void PlotWidget::showChart(vtkContextView* view, vtkChartXY* chart) const {
     useReadableFont(chart);
 }
 
+namespace {
+
+// Bytes to a file through the one atomic writer (io/atomic_file.h); false on any failure.
+bool writeFile(const QString& path, std::string_view bytes) {
+    try {
+        io::writeFileAtomically(std::filesystem::path(path.toStdString()), bytes);
+        return true;
+    } catch (const Error&) {
+        return false;
+    }
+}
+
+}  // namespace
+
 bool PlotWidget::exportPng(const QString& path) {
     const QImage image = renderImage();
     if (image.isNull()) return false;
-    QSaveFile file(path);
-    if (!file.open(QIODevice::WriteOnly)) return false;
-    if (!image.save(&file, "PNG")) {
-        file.cancelWriting();
-        return false;
-    }
-    return file.commit();
+    QByteArray png;
+    QBuffer buffer(&png);
+    if (!buffer.open(QIODevice::WriteOnly) || !image.save(&buffer, "PNG")) return false;
+    return writeFile(path, std::string_view(png.constData(), static_cast<std::size_t>(png.size())));
 }
 
 bool PlotWidget::writeCsv(const QString& path, const QStringList& header,
                           const std::vector<QStringList>& rows) {
-    QSaveFile file(path);  // atomic: the old file stays until the new one is complete
-    if (!file.open(QIODevice::WriteOnly | QIODevice::Text)) return false;
-    QTextStream out(&file);
-    out << header.join(',') << '\n';
-    for (const QStringList& row : rows) out << row.join(',') << '\n';
-    out.flush();
-    if (out.status() != QTextStream::Ok) {
-        file.cancelWriting();
-        return false;
-    }
-    return file.commit();
+    const auto line = [](const QStringList& cells) {
+        std::vector<std::string> fields;
+        fields.reserve(static_cast<std::size_t>(cells.size()));
+        for (const QString& cell : cells) fields.push_back(cell.toStdString());
+        return io::csvJoin(fields);
+    };
+    std::string text = line(header);
+    for (const QStringList& row : rows) text += line(row);
+    return writeFile(path, text);
 }
 
-QString PlotWidget::csvNumber(double value) { return QString::number(value, 'g', 17); }
+QString PlotWidget::csvNumber(double value) {
+    return QString::fromStdString(io::formatNumber(value, io::NumberFormat::Digits17));
+}
 
 QString PlotWidget::csvText(const QString& text) {
-    if (!text.contains(',') && !text.contains('"') && !text.contains('\n')) return text;
-    QString quoted = text;
-    quoted.replace('"', QStringLiteral("\"\""));
-    return '"' + quoted + '"';
+    return QString::fromStdString(io::csvField(text.toStdString()));
 }
 
 }  // namespace paintlab::gui

@@ -7,6 +7,7 @@
 
 #include "paintlab/database/exchange.h"
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/atomic_file.h"
 
 #include <QComboBox>
 #include <QFileDialog>
@@ -513,7 +514,7 @@ void IngredientDock::exportFile(const QString& path) {
     m_status->setText(tr("Exporting to %1...").arg(path));
     m_worker.run<int>(
         [names, format, file](db::Database& db) {
-            db::writeTextFile(file, db::exportIngredients(db, names, format));
+            io::writeFileAtomically(file, db::exportIngredients(db, names, format));
             return static_cast<int>(names.size());
         },
         [this, path](int count) {

@@ -1,6 +1,7 @@
 #include "ingredient_fields.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/number_format.h"
 
 #include <charconv>
 #include <cmath>
@@ -42,11 +43,7 @@ template <class Data, class Fn> void visitScalars(Data& data, Fn fn) {
 
 std::string displayUnit(std::string_view unit) { return unit == "1" ? std::string() : std::string(unit); }
 
-std::string formatNumber(double value) {
-    char buffer[64];
-    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-    return ec == std::errc() ? std::string(buffer, end) : std::string();
-}
+std::string formatNumber(double value) { return io::formatNumber(value, io::NumberFormat::Shortest); }
 
 std::string_view trim(std::string_view text) {
     const auto space = [](char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; };

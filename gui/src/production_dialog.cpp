@@ -2,6 +2,7 @@
 
 #include "paintlab/database/recipes.h"
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/atomic_file.h"
 
 #include <QButtonGroup>
 #include <QComboBox>
@@ -311,7 +312,7 @@ bool ProductionDialog::exportSheet() {
             const std::string text = f == db::FileFormat::Csv    ? db::productionCsv(sheet)
                                      : f == db::FileFormat::Json ? db::productionJson(sheet)
                                                                  : db::productionHtml(sheet);
-            db::writeTextFile(file, text);
+            io::writeFileAtomically(file, text);
             Written written{sheet.version, {}, static_cast<int>(sheet.layers.size())};
             for (const db::ProductionLayer& layer : sheet.layers)
                 for (const std::string& w : layer.warnings) written.warnings.push_back(layer.name + ": " + w);

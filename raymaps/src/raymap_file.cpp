@@ -4,8 +4,8 @@
 #include "raymap_io.h"
 #include "record_layout.h"
 
+#include "json_reader.h"
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/json_reader.h"
 #include "paintlab/raymaps/raymap.h"
 
 #include <nlohmann/json.hpp>
@@ -49,7 +49,7 @@ RayMapHeader parseHeader(const std::vector<std::byte>& payload, const std::strin
     const json& lights = r.require("lights", "the explicit lights");
     if (!lights.is_array() || lights.size() > 255) r.fail("lights", "not an array of at most 255 lights");
     for (std::size_t i = 0; i < lights.size(); ++i) {
-        jsonio::ObjectReader l(lights[i], r.fieldPath("lights > light " + std::to_string(i + 1)), file);
+        jsonio::ObjectReader l(lights[i], r.elementPath("lights", i), file);
         ExplicitLight light;
         const std::string kind = l.string("kind", true);
         if (kind == "sun")

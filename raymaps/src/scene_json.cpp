@@ -1,5 +1,5 @@
+#include "json_reader.h"
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/json_reader.h"
 #include "paintlab/raymaps/scene.h"
 
 #include <Eigen/Geometry>
@@ -194,13 +194,6 @@ Shape readShape(ObjectReader& r, const std::string& source, const std::filesyste
     return shape;
 }
 
-std::string itemLabel(const char* what, std::size_t index, const json& value) {
-    std::string label = std::string(what) + " " + std::to_string(index + 1);
-    if (value.is_object() && value.contains("name") && value["name"].is_string())
-        label += " '" + value["name"].get<std::string>() + "'";
-    return label;
-}
-
 const json& requireArray(ObjectReader& r, std::string_view key, std::size_t max) {
     const json& value = r.require(key, "an array");
     if (!value.is_array()) r.fail(key, "expected an array, found " + jsonio::typeName(value));
@@ -245,13 +238,13 @@ Scene parseSceneJson(const std::string& text, const std::filesystem::path& file)
     if (r.find("lights") != nullptr) {
         const json& lights = requireArray(r, "lights", 64);
         for (std::size_t i = 0; i < lights.size(); ++i)
-            scene.lights.push_back(readLight(lights[i], "lights > light " + std::to_string(i + 1), source));
+            scene.lights.push_back(readLight(lights[i], r.elementPath("lights", i), source));
     }
 
     const json& materials = requireArray(r, "materials", 1024);
     std::set<std::string> names;
     for (std::size_t i = 0; i < materials.size(); ++i) {
-        const std::string path = "materials > " + itemLabel("material", i, materials[i]);
+        const std::string path = r.elementPath("materials", i);
         Material m = readMaterial(materials[i], path, source);
         if (!names.insert(m.name).second)
             throw InputError(source, path, "material name '" + m.name + "' is used twice");
@@ -261,7 +254,7 @@ Scene parseSceneJson(const std::string& text, const std::filesystem::path& file)
     const json& objects = requireArray(r, "objects", 4096);
     if (objects.empty()) r.fail("objects", "the scene has no objects");
     for (std::size_t i = 0; i < objects.size(); ++i) {
-        ObjectReader o(objects[i], "objects > " + itemLabel("object", i, objects[i]), source);
+        ObjectReader o(objects[i], r.elementPath("objects", i), source);
         SceneObject object;
         object.name = o.string("name", false);
         object.shape = readShape(o, source, base);
@@ -273,11 +266,11 @@ Scene parseSceneJson(const std::string& text, const std::filesystem::path& file)
                 if (scene.materialIndex(to) < 0) {
                     std::string message = "no material named '";
                     message.append(to).append("' (for mesh material '").append(from).append("')");
-                    o.fail("mesh > material_map", message);
+                    o.fail("mesh.material_map", message);
                 }
         if (const auto* car = std::get_if<CarBodyShape>(&object.shape))
             if (!car->wheel_material.empty() && scene.materialIndex(car->wheel_material) < 0)
-                o.fail("car_body > wheel_material", "no material named '" + car->wheel_material + "'");
+                o.fail("car_body.wheel_material", "no material named '" + car->wheel_material + "'");
         object.transform = readTransform(o, source);
         o.finish();
         scene.objects.push_back(std::move(object));

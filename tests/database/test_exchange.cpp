@@ -49,7 +49,7 @@ std::vector<Ingredient> allIngredients(Database& db) {
 }
 
 std::filesystem::path write(const TempDir& dir, const std::string& name, const std::string& text) {
-    const auto path = dir / name;
+    auto path = dir / name;
     test::writeBytes(path, text);
     return path;
 }
@@ -240,23 +240,23 @@ std::vector<BadFile> badFiles() {
         {"json truncated",
          "bad.json",
          goodIngredientsJson(R"("unit": "1/µm", "value": 0.1)").substr(0, 200),
-         {"not valid JSON"}},
+         {"the file ends early (truncated JSON)"}},
         {"json negative wavelength",
          "bad.json",
          goodIngredientsJson(R"("unit": "1/µm", "wavelengths_nm": [-400, 700], "values": [0.1, 0.2])"),
-         {"ingredients[1] 'j'.spectra.sigma_a_per_um.wavelengths_nm[0]", "must be positive"}},
+         {"ingredients[1].spectra.sigma_a_per_um.wavelengths_nm[0]", "must be positive"}},
         {"json non-monotonic wavelengths",
          "bad.json",
          goodIngredientsJson(R"("unit": "1/µm", "wavelengths_nm": [700, 400], "values": [0.1, 0.2])"),
-         {"ingredients[1] 'j'.spectra.sigma_a_per_um"}},
+         {"ingredients[1].spectra.sigma_a_per_um"}},
         {"json unknown unit",
          "bad.json",
          goodIngredientsJson(R"("unit": "parsec", "value": 0.1)"),
-         {"ingredients[1] 'j'.spectra.sigma_a_per_um.unit", "unknown unit 'parsec'"}},
+         {"ingredients[1].spectra.sigma_a_per_um.unit", "unknown unit 'parsec'"}},
         {"json missing field",
          "bad.json",
          goodIngredientsJson(R"("value": 0.1)"),
-         {"ingredients[1] 'j'.spectra.sigma_a_per_um.unit", "missing"}},
+         {"ingredients[1].spectra.sigma_a_per_um.unit", "missing"}},
         {"json duplicate name in the file",
          "bad.json",
          goodIngredientsJson(R"("unit": "1/µm", "value": 0.1)", "good"),
@@ -268,7 +268,7 @@ std::vector<BadFile> badFiles() {
         {"json out of range",
          "bad.json",
          goodIngredientsJson(R"("unit": "1/µm", "value": -5)"),
-         {"ingredients[1] pigment 'j'", "sigma_a_per_um", "outside the allowed range"}},
+         {"ingredients[1] pigment 'j'", "sigma_a_per_um", "is below the minimum 0"}},
         {"spectra csv duplicate name",
          "bad.csv",
          "name,quantity,unit,wavelength_nm,value\ns,reflectance,1,400,0.1\nt,reflectance,1,400,0.1\n"
@@ -278,7 +278,7 @@ std::vector<BadFile> badFiles() {
          "bad.json",
          R"({"format": "paintlab-spectra", "format_version": 1, "spectra": [{"name": "s", "quantity": "reflectance",
             "unit": "1", "wavelengths_nm": [400, 500], "values": [0.1, "NaN"]}]})",
-         {"spectra[0] 's'.values[1]", "expected a number"}},
+         {"spectra[0].values[1]", "expected a number"}},
         {"spectra json duplicate of a stored name",
          "bad.json",
          R"({"format": "paintlab-spectra", "format_version": 1, "spectra": [{"name": "fresh", "quantity": "reflectance",

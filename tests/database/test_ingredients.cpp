@@ -278,7 +278,7 @@ TEST(IngredientJson, ErrorsNameSourceAndField) {
         {"kind": "binder", "name": "b", "colour": "red", "spectra": {
           "refractive_index": {"unit": "1", "source": "s", "value": 1.5},
           "absorption_per_um": {"unit": "1/µm", "source": "s", "value": 0}}}]})",
-                "ingredients[0] 'b'.colour");
+                "ingredients[0].colour");
     expectError(R"({"format": "paintlab-ingredients", "format_version": 1, "ingredients": [
         {"kind": "binder", "name": "b", "spectra": {
           "refractive_index": {"unit": "1", "source": "s", "wavelengths_nm": [500, 400], "values": [1, 2]},

@@ -5,6 +5,7 @@
 // is exact, absorption darkens the full model only through tilted flakes.
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/csv.h"
 #include "paintlab/engine/model_validity.h"
 #include "paintlab/engine/recipe_json.h"
 
@@ -85,20 +86,16 @@ Recipe reportPaint(const std::string& type, double volume_fraction, double diame
     return r;
 }
 
+// The report's rows by column name, read by the one CSV reader (io/csv.h).
 std::vector<std::map<std::string, std::string>> readCsv(const std::string& path) {
-    std::ifstream file(path);
+    std::ifstream file(path, std::ios::binary);
+    std::ostringstream text;
+    text << file.rdbuf();
+    const io::CsvTable table = io::CsvTable::parse(text.str(), path);
     std::vector<std::map<std::string, std::string>> rows;
-    std::string line;
-    if (!std::getline(file, line)) return rows;
-    std::vector<std::string> header;
-    std::stringstream head(line);
-    for (std::string cell; std::getline(head, cell, ',');) header.push_back(cell);
-    while (std::getline(file, line)) {
-        std::stringstream fields(line);
+    for (const io::CsvRecord& record : table.records()) {
         std::map<std::string, std::string> row;
-        std::size_t i = 0;
-        for (std::string cell; std::getline(fields, cell, ',') && i < header.size(); ++i)
-            row[header[i]] = cell;
+        for (const std::string& column : table.header()) row[column] = table.field(record, column);
         rows.push_back(std::move(row));
     }
     return rows;

@@ -115,7 +115,7 @@ TEST(RecipeJson, ErrorsNameTheSourceAndField) {
         FAIL() << "expected InputError";
     } catch (const InputError& e) {
         EXPECT_EQ(e.source(), "inline.json");
-        EXPECT_EQ(e.field(), "layer 1 'top' > thickness_um");
+        EXPECT_EQ(e.field(), "layers[0].thickness_um");
         EXPECT_NE(std::string(e.what()).find("missing required field"), std::string::npos);
     }
 }

@@ -22,6 +22,7 @@
 #include "spectra_plot.h"
 
 #include "paintlab/engine/brdf_colour.h"
+#include "paintlab/engine/io/csv.h"
 #include "paintlab/engine/layered_brdf.h"
 #include "paintlab/engine/multiangle.h"
 #include "paintlab/engine/recipe_json.h"
@@ -41,7 +42,6 @@
 #include <QTabWidget>
 #include <QTemporaryDir>
 #include <QTest>
-#include <QTextStream>
 
 #include <cmath>
 #include <map>
@@ -72,7 +72,7 @@ Recipe fewerFlakes(Recipe recipe) {
     return recipe;
 }
 
-// A CSV file as rows of cells (quoted cells as written by PlotWidget::csvText).
+// A CSV file as rows of cells, read by the one CSV reader (io/csv.h).
 struct Csv {
     QStringList header;
     std::vector<QStringList> rows;
@@ -80,43 +80,18 @@ struct Csv {
     double number(std::size_t row, const QString& name) const { return rows[row][column(name)].toDouble(); }
 };
 
-QStringList splitCsvLine(const QString& line) {
-    QStringList cells;
-    QString cell;
-    bool quoted = false;
-    for (qsizetype i = 0; i < line.size(); ++i) {
-        const QChar ch = line[i];
-        if (quoted) {
-            if (ch == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-                cell += '"';
-                ++i;
-            } else if (ch == '"') {
-                quoted = false;
-            } else {
-                cell += ch;
-            }
-        } else if (ch == '"') {
-            quoted = true;
-        } else if (ch == ',') {
-            cells << cell;
-            cell.clear();
-        } else {
-            cell += ch;
-        }
-    }
-    cells << cell;
-    return cells;
-}
-
 Csv readCsv(const QString& path) {
     Csv csv;
     QFile file(path);
-    if (!file.open(QIODevice::ReadOnly | QIODevice::Text)) return csv;
-    QTextStream in(&file);
-    csv.header = splitCsvLine(in.readLine());
-    while (!in.atEnd()) {
-        const QString line = in.readLine();
-        if (!line.isEmpty()) csv.rows.push_back(splitCsvLine(line));
+    if (!file.open(QIODevice::ReadOnly)) return csv;
+    const QByteArray bytes = file.readAll();
+    const io::CsvTable table = io::CsvTable::parse(
+        std::string_view(bytes.constData(), static_cast<std::size_t>(bytes.size())), path.toStdString());
+    for (const std::string& name : table.header()) csv.header << QString::fromStdString(name);
+    for (const io::CsvRecord& record : table.records()) {
+        QStringList row;
+        for (const std::string& field : record.fields) row << QString::fromStdString(field);
+        csv.rows.push_back(row);
     }
     return csv;
 }

@@ -78,32 +78,29 @@ TEST(SceneJson, TransformAppliesScaleRotationTranslation) {
 
 TEST(SceneJson, BadInputNamesTheField) {
     expectError(edited("\"schema_version\": 1", "\"schema_version\": 2"), "schema_version", "schema 1");
-    expectError(edited("\"width\": 64", "\"width\": 0"), "camera > width", "must lie in");
-    expectError(edited("\"width\": 64", "\"width\": 64.5"), "camera > width", "whole number");
-    expectError(edited("\"look_at\": [0, 0.5, 0]", "\"look_at\": [0, 1, 5]"), "camera > look_at",
+    expectError(edited("\"width\": 64", "\"width\": 0"), "camera.width", "must lie in");
+    expectError(edited("\"width\": 64", "\"width\": 64.5"), "camera.width", "whole number");
+    expectError(edited("\"look_at\": [0, 0.5, 0]", "\"look_at\": [0, 1, 5]"), "camera.look_at",
                 "camera position");
     expectError(edited("\"look_at\": [0, 0.5, 0]", "\"look_at\": [0, 0.5, 0], \"up\": [0, -1, -10]"),
-                "camera > up", "parallel");
-    expectError(edited("\"radius\": 0.5", "\"radius\": -0.5"), "object 1 'ball' > sphere > radius",
-                "must lie in");
+                "camera.up", "parallel");
+    expectError(edited("\"radius\": 0.5", "\"radius\": -0.5"), "objects[0].sphere.radius", "must lie in");
     expectError(edited("\"radius\": 0.5", "\"radius\": NaN"), "radius", "not a number JSON allows");
-    expectError(edited("\"material\": \"ground\"", "\"material\": \"grund\""), "object 2 'floor' > material",
+    expectError(edited("\"material\": \"ground\"", "\"material\": \"grund\""), "objects[1].material",
                 "no material named 'grund'");
-    expectError(edited("\"kind\": \"diffuse\"", "\"kind\": \"velvet\""), "material 2 'ground' > kind",
+    expectError(edited("\"kind\": \"diffuse\"", "\"kind\": \"velvet\""), "materials[1].kind",
                 "unknown material kind");
     expectError(edited("\"albedo\": [0.5, 0.4, 0.3]", "\"albedo\": [0.5, 0.4]"), "albedo", "expected 3");
     expectError(edited("\"albedo\": [0.5, 0.4, 0.3]", "\"albedo\": [0.5, 1.4, 0.3]"), "albedo", "[0, 0.99");
-    expectError(edited("{\"name\": \"ground\"", "{\"name\": \"paint\""), "material 2", "used twice");
-    expectError(edited("\"type\": \"sun\"", "\"type\": \"laser\""), "lights > light 1 > type",
-                "unknown light type");
+    expectError(edited("{\"name\": \"ground\"", "{\"name\": \"paint\""), "materials[1]", "used twice");
+    expectError(edited("\"type\": \"sun\"", "\"type\": \"laser\""), "lights[0].type", "unknown light type");
     expectError(edited("\"direction\": [1, 1, 0]", "\"direction\": [0, 0, 0]"), "direction", "zero");
     expectError(edited("\"plane\": {\"size\": 20}", "\"plane\": {\"size\": 20}, \"sphere\": {}"),
-                "object 2 'floor'", "exactly one shape");
+                "objects[1]", "exactly one shape");
     expectError(edited("\"sphere\": {\"radius\": 0.5}", "\"sphere\": {\"radius\": 0.5, \"radus\": 1}"),
-                "sphere > radus", "unknown field");
+                "sphere.radus", "unknown field");
     expectError(edited("\"objects\": [", "\"objcts\": [], \"objects\": ["), "objcts", "unknown field");
-    expectError(edited("\"size\": 20}", "\"size\": 20, \"material\": 3}"), "plane > material",
-                "unknown field");
+    expectError(edited("\"size\": 20}", "\"size\": 20, \"material\": 3}"), "plane.material", "unknown field");
     expectError(R"({"schema_version": 1, "camera": {}, "materials": [], "objects": []})", "objects",
                 "no objects");
     expectError(kMinimal.substr(0, kMinimal.size() / 2), "", "truncated");
@@ -119,7 +116,7 @@ TEST(SceneJson, MissingFilesAreNamed) {
         FAIL() << "accepted a scene whose mesh file is missing";
     } catch (const InputError& e) {
         const std::string what = e.what();
-        EXPECT_NE(what.find("object 1 'ball' > mesh > file"), std::string::npos) << what;
+        EXPECT_NE(what.find("objects[0].mesh.file"), std::string::npos) << what;
         EXPECT_NE(what.find((dir.path() / "missing-teapot.obj").string()), std::string::npos) << what;
     }
     const std::string env_scene =

@@ -1,6 +1,7 @@
 #include "colour/cgats.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/cgats.h"
 
 #include <charconv>
 #include <cmath>
@@ -19,16 +20,6 @@ namespace {
 // colord's largest table (CIE-A.sp, 531 bands) is about 10 kB; anything far
 // bigger is not one of these files, and must not be read whole into memory.
 constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t{4} * 1024 * 1024;
-
-struct Token {
-    std::string text;
-    std::size_t line = 0;
-};
-
-struct Keyword {
-    std::string value;
-    std::size_t line = 0;
-};
 
 [[noreturn]] void fail(const std::filesystem::path& file, const std::string& message) {
     throw Error(file.string() + ": " + message);
@@ -54,39 +45,6 @@ std::string readWholeFile(const std::filesystem::path& file) {
     return text.str();
 }
 
-// Splits one line into whitespace-separated tokens; a double-quoted string is
-// one token, and '#' outside quotes starts a comment (CGATS.17).
-std::vector<std::string> splitLine(std::string_view line) {
-    std::vector<std::string> tokens;
-    std::size_t i = 0;
-    while (i < line.size()) {
-        const char c = line[i];
-        if (c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f') {
-            ++i;
-        } else if (c == '#') {
-            break;
-        } else if (c == '"') {
-            const std::size_t close = line.find('"', i + 1);
-            const std::size_t end = close == std::string_view::npos ? line.size() : close;
-            tokens.emplace_back(line.substr(i + 1, end - i - 1));
-            i = end + 1;
-        } else {
-            std::size_t end = i;
-            while (end < line.size() && line[end] != ' ' && line[end] != '\t' && line[end] != '\r' &&
-                   line[end] != '#')
-                ++end;
-            tokens.emplace_back(line.substr(i, end - i));
-            i = end;
-        }
-    }
-    return tokens;
-}
-
-bool isReserved(std::string_view word) {
-    return word == "BEGIN_DATA_FORMAT" || word == "END_DATA_FORMAT" || word == "BEGIN_DATA" ||
-           word == "END_DATA";
-}
-
 // Strict parse: the whole token must be a number (from_chars is locale-independent).
 bool parseDouble(std::string_view text, double& value) {
     if (!text.empty() && text.front() == '+') text.remove_prefix(1);
@@ -95,127 +53,58 @@ bool parseDouble(std::string_view text, double& value) {
     return ec == std::errc() && ptr == end;
 }
 
-struct ParsedFile {
-    std::map<std::string, Keyword, std::less<>> keywords;
-    std::vector<Token> fieldNames;
-    std::vector<Token> values;
-};
-
-ParsedFile parse(const std::filesystem::path& file, const std::string& text) {
-    enum class State { Identifier, Header, Format, Data, Done };
-    State state = State::Identifier;
-    ParsedFile parsed;
-    bool sawFormat = false;
-    std::size_t lineNumber = 0;
-    std::size_t begin = 0;
-    while (begin <= text.size()) {
-        std::size_t newline = text.find('\n', begin);
-        if (newline == std::string::npos) newline = text.size();
-        ++lineNumber;
-        const std::string_view line = std::string_view(text).substr(begin, newline - begin);
-        // CGATS is text; a control byte means a binary or damaged file, and
-        // must not end up inside an error message as a "keyword".
-        for (const char c : line) {
-            const auto byte = static_cast<unsigned char>(c);
-            if ((byte < 0x20 && c != '\t' && c != '\r' && c != '\v' && c != '\f') || byte == 0x7f)
-                failAt(file, lineNumber, "is not a text file (control byte " + std::to_string(byte) + ")");
-        }
-        const auto tokens = splitLine(line);
-        begin = newline + 1;
-        if (tokens.empty()) continue;
-        switch (state) {
-        case State::Identifier:
-            // The first line names the file type ("CMF", "SPECT", "CGATS.17", ...).
-            if (tokens.size() != 1 || isReserved(tokens.front()))
-                failAt(file, lineNumber, "does not start with a CGATS file identifier line");
-            state = State::Header;
-            break;
-        case State::Header:
-            if (tokens.front() == "BEGIN_DATA_FORMAT") {
-                if (sawFormat) failAt(file, lineNumber, "second BEGIN_DATA_FORMAT block");
-                sawFormat = true;
-                state = State::Format;
-                for (std::size_t t = 1; t < tokens.size(); ++t)
-                    parsed.fieldNames.push_back({tokens[t], lineNumber});
-            } else if (tokens.front() == "BEGIN_DATA") {
-                if (!sawFormat) failAt(file, lineNumber, "BEGIN_DATA before any BEGIN_DATA_FORMAT block");
-                state = State::Data;
-                for (std::size_t t = 1; t < tokens.size(); ++t)
-                    parsed.values.push_back({tokens[t], lineNumber});
-            } else if (isReserved(tokens.front())) {
-                failAt(file, lineNumber, "unexpected " + tokens.front());
-            } else {
-                // KEYWORD value; a keyword given twice is a sign of a damaged or merged file.
-                Keyword keyword{tokens.size() > 1 ? tokens[1] : std::string(), lineNumber};
-                if (!parsed.keywords.emplace(tokens.front(), std::move(keyword)).second)
-                    failAt(file, lineNumber, "keyword " + tokens.front() + " given twice");
-            }
-            break;
-        case State::Format:
-        case State::Data: {
-            const bool format = state == State::Format;
-            for (const auto& token : tokens) {
-                if (state != (format ? State::Format : State::Data))
-                    failAt(file, lineNumber,
-                           "unexpected '" + token + "' after " + (format ? "END_DATA_FORMAT" : "END_DATA"));
-                if (token == (format ? "END_DATA_FORMAT" : "END_DATA"))
-                    state = format ? State::Header : State::Done;
-                else if (isReserved(token))
-                    failAt(file, lineNumber, "unexpected " + token);
-                else
-                    (format ? parsed.fieldNames : parsed.values).push_back({token, lineNumber});
-            }
-            break;
-        }
-        case State::Done:
-            // These files hold one table; anything after it means a damaged or concatenated file.
-            failAt(file, lineNumber, "unexpected content after END_DATA");
-        }
-    }
-    switch (state) {
-    case State::Identifier:
-        fail(file, "is empty");
-    case State::Header:
-        fail(file, "has no BEGIN_DATA block (truncated?)");
-    case State::Format:
-        fail(file, "ends inside the data format block: no END_DATA_FORMAT (truncated?)");
-    case State::Data:
-        fail(file, "ends inside the data block: no END_DATA (truncated?)");
-    case State::Done:
-        break;
-    }
-    return parsed;
-}
-
-const Keyword& requireKeyword(const std::filesystem::path& file, const ParsedFile& parsed,
-                              std::string_view name) {
-    const auto found = parsed.keywords.find(name);
-    if (found == parsed.keywords.end()) fail(file, "header has no " + std::string(name));
+// A header keyword's value; the table comes from lcms2 (io/cgats.h).
+std::string requireKeyword(const std::filesystem::path& file, const io::CgatsTable& parsed,
+                           std::string_view name) {
+    const auto found = parsed.properties.find(name);
+    if (found == parsed.properties.end()) fail(file, "header has no " + std::string(name));
     return found->second;
 }
 
-double requireNumber(const std::filesystem::path& file, const ParsedFile& parsed, std::string_view name) {
-    const Keyword& keyword = requireKeyword(file, parsed, name);
+double requireNumber(const std::filesystem::path& file, const io::CgatsTable& parsed, std::string_view name) {
+    const std::string text = requireKeyword(file, parsed, name);
     double value = 0.0;
-    if (!parseDouble(keyword.value, value) || !std::isfinite(value))
-        failAt(file, keyword.line, std::string(name) + " '" + keyword.value + "' is not a finite number");
+    if (!parseDouble(text, value) || !std::isfinite(value))
+        fail(file, std::string(name) + " '" + text + "' is not a finite number");
     return value;
 }
 
-std::size_t requireCount(const std::filesystem::path& file, const ParsedFile& parsed, std::string_view name) {
-    const Keyword& keyword = requireKeyword(file, parsed, name);
+std::size_t requireCount(const std::filesystem::path& file, const io::CgatsTable& parsed,
+                         std::string_view name) {
+    const std::string text = requireKeyword(file, parsed, name);
     std::size_t value = 0;
-    const char* const end = keyword.value.data() + keyword.value.size();
-    const auto [ptr, ec] = std::from_chars(keyword.value.data(), end, value);
+    const char* const end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
     if (ec != std::errc() || ptr != end || value == 0)
-        failAt(file, keyword.line, std::string(name) + " '" + keyword.value + "' is not a positive integer");
+        fail(file, std::string(name) + " '" + text + "' is not a positive integer");
     return value;
+}
+
+// CGATS is text; a control byte means a binary or damaged file, and must not
+// end up inside an error message as a "keyword".
+void requireText(const std::filesystem::path& file, const std::string& text) {
+    std::size_t line = 1;
+    for (const char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (c == '\n')
+            ++line;
+        else if ((byte < 0x20 && c != '\t' && c != '\r' && c != '\v' && c != '\f') || byte == 0x7f)
+            failAt(file, line, "is not a text file (control byte " + std::to_string(byte) + ")");
+    }
+    if (text.find_first_not_of(" \t\r\n\v\f") == std::string::npos) fail(file, "is empty");
 }
 
 }  // namespace
 
 SpectralTable readSpectralTable(const std::filesystem::path& file, std::size_t expected_sets) {
-    const ParsedFile parsed = parse(file, readWholeFile(file));
+    const std::string text = readWholeFile(file);
+    requireText(file, text);
+    io::CgatsTable parsed;
+    try {
+        parsed = io::parseCgats(text, file.string());
+    } catch (const InputError& e) {
+        throw Error(e.what());
+    }
 
     // The grid comes from these keywords, not from the field names: colord's
     // names are not a reliable encoding (CIE-A.sp calls its 300 nm field SPEC_300000).
@@ -230,16 +119,15 @@ SpectralTable readSpectralTable(const std::filesystem::path& file, std::size_t e
     if (fields != bands)
         fail(file, "NUMBER_OF_FIELDS " + std::to_string(fields) + " differs from SPECTRAL_BANDS " +
                        std::to_string(bands));
-    if (parsed.fieldNames.size() != fields)
-        fail(file, "data format lists " + std::to_string(parsed.fieldNames.size()) + " fields, header says " +
+    if (parsed.columns.size() != fields)
+        fail(file, "data format lists " + std::to_string(parsed.columns.size()) + " fields, header says " +
                        std::to_string(fields));
-    for (const Token& name : parsed.fieldNames)
-        if (name.text.rfind("SPEC_", 0) != 0)
-            failAt(file, name.line, "field '" + name.text + "' is not a spectral (SPEC_) field");
+    for (const std::string& name : parsed.columns)
+        if (!name.starts_with("SPEC_")) fail(file, "field '" + name + "' is not a spectral (SPEC_) field");
     if (sets != expected_sets)
         fail(file, "has " + std::to_string(sets) + " data sets, expected " + std::to_string(expected_sets));
-    if (parsed.values.size() != fields * sets)
-        fail(file, "data block has " + std::to_string(parsed.values.size()) + " values, expected " +
+    if (parsed.valueCount() != fields * sets || parsed.rows.size() != sets)
+        fail(file, "data block has " + std::to_string(parsed.valueCount()) + " values, expected " +
                        std::to_string(sets) + " sets of " + std::to_string(fields) + " (truncated?)");
 
     SpectralTable table;
@@ -250,14 +138,23 @@ SpectralTable readSpectralTable(const std::filesystem::path& file, std::size_t e
         table.wavelengths_nm[i] =
             start_nm + (end_nm - start_nm) * static_cast<double>(i) / static_cast<double>(bands - 1);
     table.sets.assign(sets, std::vector<double>(fields));
-    for (std::size_t k = 0; k < parsed.values.size(); ++k) {
-        const Token& token = parsed.values[k];
-        double value = 0.0;
-        if (!parseDouble(token.text, value) || !std::isfinite(value))
-            failAt(file, token.line, "'" + token.text + "' is not a finite number");
-        if (value < 0.0) failAt(file, token.line, "negative value " + token.text + " in a spectral table");
-        table.sets[k / fields][k % fields] = value;
-    }
+    for (std::size_t set = 0; set < sets; ++set)
+        for (std::size_t k = 0; k < fields; ++k) {
+            const std::string& cell = parsed.rows[set][k];
+            double value = 0.0;
+            const bool finite = parseDouble(cell, value) && std::isfinite(value);
+            if (finite && value >= 0.0) {
+                table.sets[set][k] = value;
+                continue;
+            }
+            std::string message = "data set ";
+            message.append(std::to_string(set + 1)).append(", ").append(parsed.columns[k]);
+            if (finite)
+                message.append(": negative value ").append(cell).append(" in a spectral table");
+            else
+                message.append(": '").append(cell).append("' is not a finite number");
+            fail(file, message);
+        }
     return table;
 }
 

@@ -1,11 +1,10 @@
 #pragma once
-// A reader for the spectral CGATS.17 (IT8.7) text files that colord-data
-// ships (cd-it8 "CMF" and "SPECT" files). It understands the subset those
-// files use: a file identifier line, KEYWORD value lines, one
-// BEGIN_DATA_FORMAT/END_DATA_FORMAT block of field names, one
-// BEGIN_DATA/END_DATA block of numbers, and '#' comments. Everything is
-// checked against the header; any mismatch throws paintlab::Error naming the
-// file. Private to the engine: the public interface is cie_tables.h.
+// The spectral CGATS.17 (IT8.7) files that colord-data ships (cd-it8 "CMF"
+// and "SPECT" files), read through the one CGATS parser (io/cgats.h, on
+// liblcms2) and checked against their header: the grid from
+// SPECTRAL_START_NM, SPECTRAL_END_NM and SPECTRAL_BANDS, SPEC_ fields only,
+// every value finite and >= 0. Any mismatch throws paintlab::Error naming
+// the file. Private to the engine: the public interface is cie_tables.h.
 
 #include <filesystem>
 #include <vector>

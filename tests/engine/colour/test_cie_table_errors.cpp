@@ -110,13 +110,13 @@ TEST_F(BadColordData, TruncatedInTheDataBlock) {
     const std::string real = readText(kRealCmf);
     // Cut in the middle of the second data set (the y-bar row).
     const fs::path file = writeCmf(real.substr(0, real.rfind("BEGIN_DATA") + 2000));
-    expectErrorNaming([&] { readCmfFile(file); }, file, "no END_DATA");
+    expectErrorNaming([&] { readCmfFile(file); }, file, "(truncated?)");
 }
 
 TEST_F(BadColordData, TruncatedInTheHeader) {
     const std::string real = readText(kRealCmf);
     const fs::path file = writeCmf(real.substr(0, real.find("BEGIN_DATA_FORMAT") + 200));
-    expectErrorNaming([&] { readCmfFile(file); }, file, "no END_DATA_FORMAT");
+    expectErrorNaming([&] { readCmfFile(file); }, file, "not a readable CGATS/IT8 file: line ");
 }
 
 TEST_F(BadColordData, MissingValuesBeforeEndData) {
@@ -131,7 +131,7 @@ TEST_F(BadColordData, MissingValuesBeforeEndData) {
 
 TEST_F(BadColordData, GarbageText) {
     const fs::path file = writeCmf("this is not a colour matching function\nat all\n");
-    expectErrorNaming([&] { readCmfFile(file); }, file, "CGATS file identifier");
+    expectErrorNaming([&] { readCmfFile(file); }, file, "not a readable CGATS/IT8 file");
 }
 
 TEST_F(BadColordData, BinaryGarbage) {
@@ -141,14 +141,21 @@ TEST_F(BadColordData, BinaryGarbage) {
     expectErrorNaming([&] { readCmfFile(file); }, file, "is not a text file");
 }
 
-TEST_F(BadColordData, NonNumericValueIsReportedWithItsLine) {
+TEST_F(BadColordData, NonNumericValueIsReportedWithItsField) {
     std::string text = readText(kRealCmf);
     const std::size_t at = text.find("0.0001299");
-    text.replace(at, 9, "0.00O1299");  // letter O for zero, a classic
+    text.replace(at, 9, "O.0001299");  // letter O for zero, a classic
     const fs::path file = writeCmf(text);
-    // Line 15 is the first data line of colord's file.
-    expectErrorNaming([&] { readCmfFile(file); }, file.string() + ":15",
-                      "'0.00O1299' is not a finite number");
+    // The first value of colord's file: data set 1, field SPEC_360.
+    expectErrorNaming([&] { readCmfFile(file); }, file,
+                      "data set 1, SPEC_360: 'O.0001299' is not a finite number");
+}
+
+TEST_F(BadColordData, ASplitValueIsReportedWithItsLine) {
+    std::string text = readText(kRealCmf);
+    text.replace(text.find("0.0001299"), 9, "0.00 1299");  // one value too many
+    const fs::path file = writeCmf(text);
+    expectErrorNaming([&] { readCmfFile(file); }, file, "not a readable CGATS/IT8 file: line ");
 }
 
 TEST_F(BadColordData, NegativeValue) {

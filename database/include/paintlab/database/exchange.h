@@ -68,8 +68,4 @@ std::string exportSpectra(Database& db, const std::vector<std::string>& names, F
 // One measurement, as JSON or CSV.
 std::string exportMeasurement(Database& db, std::string_view name, FileFormat format);
 
-// Writes text to file atomically (a temporary file beside it is renamed over
-// it): an existing file is never left half written. Throws Error naming the file.
-void writeTextFile(const std::filesystem::path& file, std::string_view text);
-
 }  // namespace paintlab::db

@@ -23,6 +23,15 @@ struct RecipeProblem {
 // spectra that do not cover the visible range), in recipe order.
 std::vector<RecipeProblem> checkRecipe(const Recipe& recipe);
 
+// The problems of one material on its own, as the database stores an
+// ingredient: every declared range (parameters.h) except the volume fraction,
+// which a recipe gives, and a mirror flake's rule of a reflectance or the
+// metal's n and k. Fields are the material's keys ("sigma_a_per_um",
+// "reflectance"); the messages are checkRecipe's.
+std::vector<RecipeProblem> checkMaterial(const Binder& binder);
+std::vector<RecipeProblem> checkMaterial(const Component& component);
+std::vector<RecipeProblem> checkMaterial(const Substrate& substrate);
+
 // Throws InputError(source, field, message) for the first error; warnings pass.
 void validateRecipe(const Recipe& recipe, const std::string& source);
 

@@ -1,4 +1,4 @@
-#include "paintlab/engine/json_reader.h"
+#include "json_reader.h"
 
 #include "paintlab/engine/error.h"
 
@@ -170,6 +170,20 @@ double ObjectReader::number(std::string_view key, const nlohmann::json& value) c
     return x;
 }
 
+std::optional<double> ObjectReader::optionalNumber(std::string_view key) {
+    const nlohmann::json* value = find(key);
+    if (value == nullptr) return std::nullopt;
+    return number(key, *value);
+}
+
+std::vector<double> ObjectReader::numbers(std::string_view key, std::size_t min_entries) {
+    std::vector<double> out = numberArray(key, require(key, "an array of numbers"));
+    if (out.size() < min_entries)
+        fail(key, "expected at least " + std::to_string(min_entries) + " numbers, found " +
+                      std::to_string(out.size()));
+    return out;
+}
+
 double ObjectReader::numberIn(std::string_view key, double lo, double hi, std::optional<double> fallback,
                               bool lo_exclusive) {
     const nlohmann::json* value = fallback ? find(key) : &require(key, "a number");
@@ -223,7 +237,11 @@ void ObjectReader::finish() const {
 }
 
 std::string ObjectReader::fieldPath(std::string_view key) const {
-    return m_path.empty() ? std::string(key) : m_path + " > " + std::string(key);
+    return m_path.empty() ? std::string(key) : m_path + "." + std::string(key);
+}
+
+std::string ObjectReader::elementPath(std::string_view key, std::size_t index) const {
+    return fieldPath(key) + "[" + std::to_string(index) + "]";
 }
 
 }  // namespace paintlab::jsonio

@@ -3,8 +3,8 @@
 // line break is double-quoted and its quotes doubled, the first record is
 // the header. The reader keeps each record's line number for error messages
 // and refuses what a cut-off or hand-mangled file looks like (an unclosed
-// quote, a record with more or fewer fields than the header). Private to the
-// database library.
+// quote, a record with more or fewer fields than the header). Numbers are
+// read and written the same in every locale (std::from_chars, number_format.h).
 
 #include <cstddef>
 #include <initializer_list>
@@ -13,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-namespace paintlab::db::detail {
+namespace paintlab::io {
 
 struct CsvRecord {
     std::size_t line = 0;  // 1-based line where the record starts
@@ -56,10 +56,14 @@ private:
 
 // One field, quoted if it must be.
 std::string csvField(std::string_view text);
-// The shortest decimal text that reads back as the same double.
+// The shortest decimal text that reads back as the same double
+// (NumberFormat::Shortest); "" for nullopt.
 std::string csvNumber(double value);
 std::string csvNumber(const std::optional<double>& value);
 // Fields joined by commas, ended by "\n" (each is quoted here with csvField).
 std::string csvLine(const std::vector<std::string>& fields);
+// Fields already quoted (or known to need no quotes, as numbers) joined by
+// commas, ended by "\n".
+std::string csvJoin(const std::vector<std::string>& quoted_fields);
 
-}  // namespace paintlab::db::detail
+}  // namespace paintlab::io

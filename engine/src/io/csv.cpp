@@ -1,14 +1,15 @@
-// RFC 4180 CSV reader and writer (csv.h).
+// RFC 4180 CSV reader and writer (io/csv.h).
 
-#include "csv.h"
+#include "paintlab/engine/io/csv.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/number_format.h"
 
 #include <charconv>
 #include <cmath>
 #include <set>
 
-namespace paintlab::db::detail {
+namespace paintlab::io {
 
 namespace {
 
@@ -162,24 +163,27 @@ std::string csvField(std::string_view text) {
     return out;
 }
 
-std::string csvNumber(double value) {
-    char buffer[64];
-    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-    return {buffer, result.ptr};
-}
+std::string csvNumber(double value) { return formatNumber(value, NumberFormat::Shortest); }
 
 std::string csvNumber(const std::optional<double>& value) {
     return value ? csvNumber(*value) : std::string();
 }
 
-std::string csvLine(const std::vector<std::string>& fields) {
+std::string csvJoin(const std::vector<std::string>& quoted_fields) {
     std::string out;
-    for (std::size_t i = 0; i < fields.size(); ++i) {
+    for (std::size_t i = 0; i < quoted_fields.size(); ++i) {
         if (i > 0) out.push_back(',');
-        out += csvField(fields[i]);
+        out += quoted_fields[i];
     }
     out.push_back('\n');
     return out;
 }
 
-}  // namespace paintlab::db::detail
+std::string csvLine(const std::vector<std::string>& fields) {
+    std::vector<std::string> quoted;
+    quoted.reserve(fields.size());
+    for (const auto& field : fields) quoted.push_back(csvField(field));
+    return csvJoin(quoted);
+}
+
+}  // namespace paintlab::io

@@ -1,0 +1,28 @@
+#pragma once
+// Numbers as text, the same in every locale (std::to_chars, never printf or a
+// stream's locale): one function for messages, files and tables, with the
+// precision named by the caller.
+
+#include <string>
+
+namespace paintlab::io {
+
+enum class NumberFormat {
+    // 6 significant digits, as printf("%g") and iostreams print by default:
+    // messages, the BRDF table's CSV.
+    Message,
+    // 4 significant digits (printf "%.4g"): the CLI's recipe summaries.
+    Brief,
+    // The shortest text that reads back as the same double: data files (CSV, CGATS).
+    Shortest,
+    // 17 significant digits (printf "%.17g"): the GUI plots' CSV exports.
+    Digits17,
+};
+
+std::string formatNumber(double value, NumberFormat format = NumberFormat::Message);
+
+// Fixed decimals (printf "%.*f") for text people read (production sheets);
+// decimals is clamped to [0, 17].
+std::string formatFixed(double value, int decimals);
+
+}  // namespace paintlab::io
