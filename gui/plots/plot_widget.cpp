@@ -1,14 +1,12 @@
 #include "plot_widget.h"
 
+#include "file_output.h"
+
 #include "plot_render_thread.h"
 
-#include "paintlab/engine/error.h"
-#include "paintlab/engine/io/atomic_file.h"
 #include "paintlab/engine/io/csv.h"
 #include "paintlab/engine/io/number_format.h"
 
-#include <QBuffer>
-#include <QByteArray>
 #include <QElapsedTimer>
 #include <QOffscreenSurface>
 #include <QOpenGLContext>
@@ -231,28 +229,7 @@ void PlotWidget::showChart(vtkContextView* view, vtkChartXY* chart) const {
     useReadableFont(chart);
 }
 
-namespace {
-
-// Bytes to a file through the one atomic writer (io/atomic_file.h); false on any failure.
-bool writeFile(const QString& path, std::string_view bytes) {
-    try {
-        io::writeFileAtomically(std::filesystem::path(path.toStdString()), bytes);
-        return true;
-    } catch (const Error&) {
-        return false;
-    }
-}
-
-}  // namespace
-
-bool PlotWidget::exportPng(const QString& path) {
-    const QImage image = renderImage();
-    if (image.isNull()) return false;
-    QByteArray png;
-    QBuffer buffer(&png);
-    if (!buffer.open(QIODevice::WriteOnly) || !image.save(&buffer, "PNG")) return false;
-    return writeFile(path, std::string_view(png.constData(), static_cast<std::size_t>(png.size())));
-}
+bool PlotWidget::exportPng(const QString& path) { return saveImageAtomically(renderImage(), path); }
 
 bool PlotWidget::writeCsv(const QString& path, const QStringList& header,
                           const std::vector<QStringList>& rows) {
@@ -264,7 +241,7 @@ bool PlotWidget::writeCsv(const QString& path, const QStringList& header,
     };
     std::string text = line(header);
     for (const QStringList& row : rows) text += line(row);
-    return writeFile(path, text);
+    return writeFileAtomically(path, text);
 }
 
 QString PlotWidget::csvNumber(double value) {

@@ -2,6 +2,7 @@
 // data on first use) and the demo scene, whose ray map is traced once and
 // cached; every recipe edit re-shades only the paint.
 
+#include "file_output.h"
 #include "main_window.h"
 #include "plot_render_thread.h"
 
@@ -80,16 +81,15 @@ int main(int argc, char** argv) {
     if (parser.isSet(recipe)) window.selectRecipe(parser.value(recipe));
     if (parser.isSet(screenshot)) {
         const QString file = parser.value(screenshot);
-        QObject::connect(window.scheduler(), &paintlab::gui::RenderScheduler::becameIdle, &window,
-                         [&window, file]() {
-                             if (window.renderDock()->image().isNull()) return;  // still tracing
-                             // The plots' latest drawings (plot render thread) into their widgets.
-                             paintlab::gui::PlotRenderThread::instance().settle();
-                             const int code = window.grab().save(file) ? 0 : 1;
-                             if (code != 0)
-                                 std::fprintf(stderr, "paintlab: cannot write %s\n", qPrintable(file));
-                             QApplication::exit(code);
-                         });
+        QObject::connect(
+            window.scheduler(), &paintlab::gui::RenderScheduler::becameIdle, &window, [&window, file]() {
+                if (window.renderDock()->image().isNull()) return;  // still tracing
+                // The plots' latest drawings (plot render thread) into their widgets.
+                paintlab::gui::PlotRenderThread::instance().settle();
+                const int code = paintlab::gui::saveImageAtomically(window.grab().toImage(), file) ? 0 : 1;
+                if (code != 0) std::fprintf(stderr, "paintlab: cannot write %s\n", qPrintable(file));
+                QApplication::exit(code);
+            });
     }
     return QApplication::exec();
 }

@@ -1,6 +1,7 @@
 #include "main_window.h"
 
 #include "accuracy_dock.h"
+#include "file_output.h"
 #include "inplane_plot.h"
 #include "recipe_editor_dock.h"
 #include "render_dock.h"
@@ -294,7 +295,7 @@ void MainWindow::saveImage() {
     const QImage image = m_render->imageToSave();  // what is shown: a comparison with its labels
     if (image.isNull()) return;
     const QString path = QFileDialog::getSaveFileName(this, tr("Save image"), {}, tr("Images (*.png)"));
-    if (!path.isEmpty() && !image.save(path))
+    if (!path.isEmpty() && !saveImageAtomically(image, path))
         showError(tr("Cannot save the image"), tr("%1: cannot be written").arg(path));
 }
 

@@ -62,28 +62,14 @@ std::string chunkTypeName(std::uint32_t type) {
 // ---- writer ----
 
 ChunkFileWriter::ChunkFileWriter(std::filesystem::path path, const Magic& magic, std::uint32_t version)
-    : m_path(std::move(path)) {
-    m_partial = m_path;
-    m_partial += ".partial";
-    m_out.open(m_partial, std::ios::binary | std::ios::trunc);
-    if (!m_out) throw Error(m_partial.string() + ": cannot open for writing");
+    : m_file(std::move(path)) {
     writeBytes(magic.data(), magic.size());
     const std::uint32_t reserved = 0;
     writeBytes(&version, 4);
     writeBytes(&reserved, 4);
 }
 
-ChunkFileWriter::~ChunkFileWriter() {
-    if (m_finished) return;
-    m_out.close();
-    std::error_code ec;
-    std::filesystem::remove(m_partial, ec);
-}
-
-void ChunkFileWriter::writeBytes(const void* data, std::size_t size) {
-    m_out.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
-    if (!m_out) throw Error(m_partial.string() + ": write failed (disk full?)");
-}
+void ChunkFileWriter::writeBytes(const void* data, std::size_t size) { m_file.write(data, size); }
 
 void ChunkFileWriter::addChunk(std::uint32_t type, std::span<const std::byte> payload) {
     const ChunkHeader header{type, 0, payload.size(), crc32Of(payload)};
@@ -96,13 +82,7 @@ void ChunkFileWriter::addChunk(std::uint32_t type, std::span<const std::byte> pa
 void ChunkFileWriter::finish() {
     const std::uint64_t count = m_chunks;
     addChunk(kEndChunk, std::as_bytes(std::span(&count, 1)));
-    m_out.flush();
-    m_out.close();
-    if (!m_out) throw Error(m_partial.string() + ": write failed (disk full?)");
-    std::error_code ec;
-    std::filesystem::rename(m_partial, m_path, ec);
-    if (ec) throw Error(m_path.string() + ": cannot move the finished file into place: " + ec.message());
-    m_finished = true;
+    m_file.commit();
 }
 
 // ---- reader ----

@@ -1,15 +1,20 @@
-// Writing relit images: linear EXR, tone-mapped sRGB PNG (OpenImageIO).
+// Writing relit images: linear EXR, tone-mapped sRGB PNG (OpenImageIO),
+// encoded in memory and then written with the one atomic file writer.
 
 #include "paintlab/engine/colour.h"
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/atomic_file.h"
 #include "paintlab/raymaps/display_image.h"
 #include "paintlab/raymaps/relight.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string_view>
+#include <vector>
 
 namespace paintlab::raymaps {
 
@@ -43,7 +48,9 @@ void writeImage(const RgbImage& image, const std::filesystem::path& path, double
     if (!png && ext != ".exr")
         throw InputError("<argument>", "--out", path.string() + ": the image must be .exr (linear) or .png");
     const std::string name = path.string();
-    auto out = OIIO::ImageOutput::create(name);
+    std::vector<unsigned char> encoded;
+    OIIO::Filesystem::IOVecOutput memory(encoded);
+    auto out = OIIO::ImageOutput::create(name, &memory);
     if (!out) throw Error(name + ": cannot create an image writer: " + OIIO::geterror());
     const double scale = std::exp2(exposure_ev);
     const std::size_t n = image.rgb.size();
@@ -60,6 +67,9 @@ void writeImage(const RgbImage& image, const std::filesystem::path& path, double
         ok = out->write_image(OIIO::TypeDesc::FLOAT, scaled.data());
     }
     if (!ok || !out->close()) throw Error(name + ": cannot write the image: " + out->geterror());
+    out.reset();
+    io::writeFileAtomically(path,
+                            std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
 }
 
 }  // namespace paintlab::raymaps

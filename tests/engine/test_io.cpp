@@ -2,6 +2,8 @@
 // printf would write them in the C locale, whatever the locale; the atomic
 // writer; CSV quoting and reading back.
 
+#include "temp_dir.h"
+
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/io/atomic_file.h"
 #include "paintlab/engine/io/csv.h"
@@ -17,6 +19,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace paintlab {
 namespace {
@@ -68,7 +71,7 @@ TEST_F(AtomicFile, ReplacesTheFileAndLeavesNoTemporary) {
     std::ostringstream text;
     text << in.rdbuf();
     EXPECT_EQ(text.str(), std::string("new\0bytes", 9));
-    EXPECT_FALSE(fs::exists(m_dir / "out.txt.tmp"));
+    EXPECT_EQ(test::entriesOf(m_dir), std::vector<std::string>{"out.txt"});  // no temporary left
 }
 
 TEST_F(AtomicFile, AMissingFolderIsAnInputErrorNamingTheFile) {

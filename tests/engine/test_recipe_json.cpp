@@ -1,3 +1,5 @@
+#include "temp_dir.h"
+
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/recipe_json.h"
 #include "paintlab/engine/recipe_validation.h"
@@ -6,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 namespace paintlab {
 namespace {
@@ -100,7 +103,7 @@ TEST(RecipeJson, SaveIsAtomicAndReadable) {
     const Recipe r = loadRecipeFile(dataDir() / "valid_minimal.json");
     saveRecipeFile(r, file);
     EXPECT_EQ(loadRecipeFile(file), r);
-    EXPECT_FALSE(fs::exists(dir / "recipe.json.tmp"));
+    EXPECT_EQ(test::entriesOf(dir), std::vector<std::string>{"recipe.json"});  // no temporary left
     // A failing save (target directory missing) leaves nothing behind and throws.
     EXPECT_THROW(saveRecipeFile(r, dir / "missing" / "recipe.json"), Error);
     EXPECT_EQ(loadRecipeFile(file), r);  // the earlier save is intact

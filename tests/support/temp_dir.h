@@ -4,13 +4,24 @@
 
 #include <stdlib.h>  // mkdtemp
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace paintlab::test {
+
+// The names in a folder, sorted (a test that a writer left no temporary file).
+inline std::vector<std::string> entriesOf(const std::filesystem::path& folder) {
+    std::vector<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(folder))
+        names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
 
 class TempDir {
 public:
@@ -31,6 +42,8 @@ public:
     }
 
     const std::filesystem::path& path() const { return m_path; }
+    // The names in the folder, sorted: what a writer left behind.
+    std::vector<std::string> entries() const { return entriesOf(m_path); }
     std::filesystem::path operator/(const std::string& name) const { return m_path / name; }
     // Writes text to a file in the folder; returns its path.
     std::filesystem::path write(const std::string& name, const std::string& text) const {

@@ -14,8 +14,11 @@
 //           (u32), CRC-32 of the preceding 20 bytes (u32), payload
 //   end:    a chunk of type kEndChunk whose payload is the chunk count (u64)
 //
-// Writing goes to FILE.partial, renamed over FILE only by finish(), so a
-// crash or a full disk never leaves a half-written file under the real name.
+// Writing goes through the engine's atomic writer (io/atomic_file.h): a
+// temporary file renamed over FILE only by finish(), so a crash or a full
+// disk never leaves a half-written file under the real name.
+
+#include "paintlab/engine/io/atomic_file.h"
 
 #include <array>
 #include <cstddef>
@@ -44,7 +47,7 @@ std::uint32_t crc32Of(std::span<const std::byte> data, std::uint32_t previous = 
 class ChunkFileWriter {
 public:
     ChunkFileWriter(std::filesystem::path path, const Magic& magic, std::uint32_t version);
-    ~ChunkFileWriter();  // removes the partial file unless finish() succeeded
+    ~ChunkFileWriter() = default;  // the temporary file goes unless finish() succeeded
     ChunkFileWriter(const ChunkFileWriter&) = delete;
     ChunkFileWriter& operator=(const ChunkFileWriter&) = delete;
     ChunkFileWriter(ChunkFileWriter&&) = delete;
@@ -56,11 +59,8 @@ public:
 
 private:
     void writeBytes(const void* data, std::size_t size);
-    std::filesystem::path m_path;
-    std::filesystem::path m_partial;
-    std::ofstream m_out;
+    io::AtomicFileWriter m_file;
     std::uint64_t m_chunks = 0;
-    bool m_finished = false;
 };
 
 struct ChunkInfo {
