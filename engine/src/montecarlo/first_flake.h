@@ -31,6 +31,7 @@
 
 #include "flake_tile.h"
 #include "mc_connection.h"
+#include "mc_glints.h"
 
 #include <cstdint>
 #include <span>

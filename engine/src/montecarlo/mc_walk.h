@@ -4,8 +4,11 @@
 #include "chain_promise.h"
 #include "flake_tile.h"
 #include "mc_connection.h"
+#include "mc_glints.h"
 #include "mc_random.h"
 #include "mc_stack.h"
+
+#include "paintlab/engine/montecarlo/monte_carlo.h"
 
 #include <cstdint>
 #include <span>
@@ -16,22 +19,9 @@ namespace paintlab::mc {
 struct WalkSettings {
     int max_events = 1000000;
     double roulette_weight = 0.1;
-    // Histogram estimator: the path classes (mc_connection.h) whose escapes it scores.
-    unsigned histogram_classes = kAllClasses;
-    // Of class Other, which part: 1 chains of delta events from the beam (no
-    // pigment, substrate or continuum-flake vertex), 2 after such a vertex when
-    // the first direction change was a delta, 4 when it was such a vertex (the
-    // reverse walks' part, traceReversePath), 8 instead of 2 when the first
-    // change was the beam's reflection off an explicit flake and the second a
-    // pigment vertex in that flake's layer (the reflected beams' part), 16
-    // instead of 2 when the beam's reflection off an explicit flake was followed
-    // by the internal reflection at the paint's top and then a pigment vertex
-    // in that flake's layer (the top images' part), 32 instead of 2 when the
-    // path ends with a pigment vertex in a tiled layer, one reflection off a
-    // flake of that layer and the way out (the forward flake images' part,
-    // flake_images), 64 the same with the internal reflection at the paint's
-    // top between the vertex and the flake.
-    unsigned histogram_other = 127;
+    // Histogram estimator: the path classes whose escapes it scores, and the parts of class Other.
+    HistogramClasses histogram_classes;
+    HistogramOtherParts histogram_other;
     // Score classes Smooth and BeamFlake by connections (explicit flakes only; the
     // caller then leaves them out of histogram_classes).
     bool connections = false;
@@ -50,11 +40,10 @@ struct WalkSettings {
     // And to its images off a flake and then the paint's top (McSettings::top_images).
     bool top_images = false;
     // Connections (forward): the direct next-event estimate from pigment and
-    // Lambertian vertices into each cone (off only to isolate a part in tests:
-    // McSettings::connection_parts).
+    // Lambertian vertices into each cone (ConnectionParts::cone_direct).
     bool cone_direct = true;
-    // Connections (forward): pigment vertices of class-2 prefixes (see
-    // histogram_other) also connect to each cone through one flake of their
+    // Connections (forward): pigment vertices of delta_first prefixes
+    // (HistogramOtherParts) also connect to each cone through one flake of their
     // layer, and through the top and then such a flake (McSettings::flake_images).
     bool flake_images = false;
     // Delta-chain walks: the beam's reflections off explicit flakes end the
@@ -132,7 +121,7 @@ PathOutcome tracePath(const PathContext& context, Vec3 v, double weight, double 
                       std::span<double> f_out, PathRng* connection_rng = nullptr);
 
 // Delta-chain walks (McSettings::delta_walks): the part of class Other with no
-// smooth vertex (histogram_other bit 1: chains of flake mirror reflections and
+// smooth vertex (HistogramOtherParts::delta_chains: chains of flake mirror reflections and
 // internal reflections from the beam, e.g. beam -> flake -> flake underside ->
 // flake -> cone, which sets the flop geometries' error in the pearlescent demo)
 // by a forward walk without collisions: the straight flights between delta
@@ -167,7 +156,7 @@ PathOutcome traceFromFirstFlake(const PathContext& context, const Vec3& v_top, d
 // forward paths of class Other whose first direction change was a smooth
 // vertex, e.g. beam -> pigment -> flake -> cone, which the histogram finds
 // about once in 10^5 paths at the flop (docs/PERFORMANCE.md), and which the
-// forward histogram then leaves out (histogram_other bit 4). Returns the sum
+// forward histogram then leaves out (HistogramOtherParts::smooth_first). Returns the sum
 // of those estimates (f(w, wi), 1/sr) and the work done. Never throws.
 struct ReverseOutcome {
     double f = 0.0;
