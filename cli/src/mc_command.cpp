@@ -50,7 +50,7 @@ struct McOptions {
     double cone_deg = 0.0;  // 0: next-event estimator (explicit flakes default to 5)
     bool reject_overlaps = false;
     bool disk_flakes = false;     // explicit flakes: exact disks instead of 16-gons
-    bool histogram_only = false;  // explicit flakes: no connections (the estimator before 2026-12)
+    bool histogram_only = false;  // explicit flakes: the cone histogram alone (no connections)
     int tile_views = 32;          // explicit flakes: azimuths each tile is traced at
     int batches = mc::McSettings{}.batches;
     bool table = false;     // mc: tabulate on the fast model's basis (mc_table.h)
@@ -94,7 +94,7 @@ mc::McSettings mcSettings(const McOptions& o) {
     s.reject_overlaps = o.reject_overlaps;
     if (o.disk_flakes) s.flake_polygon_sides = 0;
     s.connections = !o.histogram_only;
-    s.split_branches = !o.histogram_only;  // --histogram-only: the estimator before 2026-12, path for path
+    s.split_branches = !o.histogram_only;  // --histogram-only: the analog walk, no split branches
     s.tile_views = o.tile_views;
     s.batches = o.batches;
     s.histogram_cone_deg = o.cone_deg > 0.0 ? o.cone_deg : (o.explicit_flakes ? 5.0 : 0.0);

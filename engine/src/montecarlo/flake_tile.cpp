@@ -146,11 +146,9 @@ private:
 
 // One flake (or one periodic copy of it) as Embree user geometry: the plane
 // and the polygon in double (the ray is float). One cache line: the
-// intersection callback is bound by loading it (perf, 2026-12-04: 45 % of
-// flakeIntersect's samples on its first load with the 120-byte layout of
-// before), so the in-plane basis is recomputed in the rare polygon-edge case
-// instead of stored, and the rotation is kept as the float it was rounded to
-// when the flake was placed.
+// intersection callback is bound by loading it, so the in-plane basis is
+// recomputed in the rare polygon-edge case instead of stored, and the
+// rotation is kept as the float it was rounded to when the flake was placed.
 struct alignas(64) FlakePrimitive {
     Vec3 centre;
     Vec3 normal;
@@ -407,9 +405,8 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
 
     // No "threads=N" in the configuration: with it Embree's TBB tasking installs a
     // process-wide tbb::global_control(max_allowed_parallelism, N) for the
-    // device's lifetime (embree common/tasking/taskschedulertbb.cpp), and
-    // "threads=1" had run every explicit-flake job on one thread (measured
-    // 2026-12-02: process CPU time = wall time on two idle cores). The default
+    // device's lifetime (embree common/tasking/taskschedulertbb.cpp), so
+    // "threads=1" would run every explicit-flake job on one thread. The default
     // leaves TBB's parallelism to the caller (McSettings::threads).
     m_impl->device = rtcNewDevice(nullptr);
     if (m_impl->device == nullptr) throw Error("Embree: cannot create a device");

@@ -186,8 +186,7 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
         if (budget_seconds > 0.0) {
             // A time budget: the stop is checked between rounds only, and one
             // round of a slow paint (long walks in a scattering ground coat)
-            // can outlast a job's share many times over (measured: 370 s for
-            // a 20 s compare of the three-layer demo). So a short pilot round
+            // can outlast a job's share many times over. So a short pilot round
             // first, then rounds sized to the time left at the pace measured;
             // runs with a path count alone keep their fixed chunks.
             const double elapsed = std::chrono::duration<double>(Clock::now() - job_start).count();
@@ -224,7 +223,6 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
             // unboosted chance, then boosted up to 64 times); they only set the
             // rates and are dropped while they are a small part of the job
             // (unbiased: the rates are fixed before the kept paths run).
-            // Measured on the demo at 380 nm: 328k paths to 1 % instead of 574k.
             if (runner.adapt(seen) && !pilot_dropped) {
                 pilot_dropped = true;
                 if (started * 8 <= max_paths && (budget_seconds <= 0.0 || elapsed * 8.0 <= budget_seconds)) {

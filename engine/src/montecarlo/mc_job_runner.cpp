@@ -206,9 +206,8 @@ bool JobRunner::adapt(const Sums& total) {
 // worth its share of f_k (the stop rule's measure) times the cone's need
 // of the delta walks, the relative variance they leave in it over the
 // largest such: c_k = (f_min / f_k) (v_k / v_max), v_k = Var_delta,k / f_k^2.
-// (With f_min / f_k alone the demo's near-specular cones, whose delta part
-// is ~1e-3 of their variance, kept most branches: 20 % less cost per
-// walk at 437 nm instead of 35 %, and no shorter stop.)
+// (With f_min / f_k alone the near-specular cones, whose delta part is tiny,
+// kept most branches alive.)
 void JobRunner::weighPromiseCones(const Sums& total, const std::vector<double>& delta_variance,
                                   const std::vector<double>& f2) {
     if (m_promise.empty()) return;
@@ -235,8 +234,7 @@ void JobRunner::weighPromiseCones(const Sums& total, const std::vector<double>& 
 // key holds few hits (a few hundred over hundreds of keys at the demo's
 // flop), so its mean square is shrunk towards that of all keys with the
 // weight of kFirstFlakePrior draws: unmeasured keys stay area-proportional.
-// (Without the shrinkage the learned weights followed single hits, and
-// the delta walks' variance at 780 nm rose 1.4x above the area-proportional draw.)
+// (Without the shrinkage the learned weights follow single hits.)
 void JobRunner::learnFirstFlakeProposal(const Sums& total, const std::vector<double>& f2) {
     const std::size_t keys = total.first_count.size();
     std::vector<double> s(keys, 0.0);

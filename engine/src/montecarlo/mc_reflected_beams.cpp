@@ -372,7 +372,7 @@ double reflectedBeams(const PaintStack& stack, std::span<const LayerFlakes> tile
             offFlakeThenTop);
     // The candidates' plane tests join the shadow rays in the cost model of
     // the adaptive rates, 64 tests as one unit; the unit's cost
-    // (kCostPerImageRay, monte_carlo.cpp) is fitted to measured times.
+    // (kCostPerImageRay, mc_rates.h) is fitted to measured times.
     if (rays != nullptr) *rays += static_cast<std::int64_t>(tested / 64);
     return sum;
 }

@@ -19,7 +19,7 @@ inline constexpr std::size_t kEscaped = 0;
 inline constexpr std::size_t kTransmitted = 1;
 inline constexpr std::size_t kFirstExit = 2;
 
-// Per exit cone, what the adaptive connection fractions (JobRunner::adapt)
+// Per exit cone, what the adaptive connection fractions (adaptRates, mc_rates.h)
 // need besides the per-path entries: the raw next-event score of the paths
 // that ran it (unweighted by the fraction), the raw glint samples, and costs.
 struct ConeStats {

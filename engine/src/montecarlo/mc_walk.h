@@ -1,5 +1,6 @@
 #pragma once
-// One Monte Carlo path through the paint at one wavelength (mc_walk.cpp).
+// The Monte Carlo walks through the paint at one wavelength: forward paths,
+// delta-chain, first-flake and reverse walks (mc_walk.cpp; the walker: mc_walker.h).
 
 #include "chain_promise.h"
 #include "flake_tile.h"
@@ -84,14 +85,14 @@ struct PathContext {
     WalkSettings settings;
     const FourierCells* fourier = nullptr;  // projection (null: off)
     std::span<const GlintSet> glints;       // per bin, this path's tile realisation (connections)
-    // Connections with a fraction per cone (monte_carlo.cpp): per bin, the weight of
+    // Connections with a fraction per cone (mc_job_chunks.cpp): per bin, the weight of
     // this path's next-event connections into it (0: none); empty: settings.connection_weight for all.
     std::span<const double> nee_weights;
     // Where the next-event connections' scores go (per bin); empty: f_out.
     std::span<double> nee_out;
     // Per bin, b >= 1: a pigment collision runs the connections into it with
     // probability min(1, b sigma_s / sigma) instead of sigma_s / sigma, the
-    // chance that it scatters (weighted by the inverse; mc_walk.cpp, collide);
+    // chance that it scatters (weighted by the inverse; Walker::connectFromPigment);
     // empty: 1 for all.
     std::span<const double> nee_boost = {};
 };

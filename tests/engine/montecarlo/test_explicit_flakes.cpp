@@ -16,13 +16,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <numbers>
 #include <string>
 
 namespace paintlab {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 using test::expectClose;
 
 Recipe flakeLayer(double n, double thickness_um, Substrate substrate, const MirrorFlake& flake) {

@@ -130,7 +130,7 @@ struct McSettings {
     double connection_fraction = 0.125;
     // Connections: the beam's single flake reflections over every azimuth of
     // each tile at once, importance-sampled and stratified per chunk
-    // (mc_connection.h, azimuthGlintSets; errors over paths then become
+    // (mc_glints.h, azimuthGlintSets; errors over paths then become
     // conservative). false: one flake per connected path and view.
     bool glint_azimuths = true;
     // Connections with glint_azimuths: per cone, the next-event rate, the glint
