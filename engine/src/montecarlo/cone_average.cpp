@@ -1,5 +1,7 @@
 #include "paintlab/engine/montecarlo/cone_average.h"
 
+#include "mc_stack.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -10,12 +12,9 @@ std::vector<double> coneAverage(const LayeredBrdf& fast, const Direction& wi, co
                                 double cone_deg) {
     if (!(cone_deg > 0.0)) return fast.eval(wi, axis);
     const double alpha = cone_deg * std::numbers::pi / 180.0;
-    // Orthonormal basis around the axis (Duff et al., JCGT 2017).
-    const double sign = std::copysign(1.0, axis.z);
-    const double a = -1.0 / (sign + axis.z);
-    const double b = axis.x * axis.y * a;
-    const Direction b1{1.0 + sign * axis.x * axis.x * a, sign * b, -sign * axis.x};
-    const Direction b2{b, sign + axis.y * axis.y * a, -axis.y};
+    Vec3 b1;
+    Vec3 b2;
+    orthonormalBasis({axis.x, axis.y, axis.z}, b1, b2);
     std::vector<double> sum(fast.wavelengthsNm().size(), 0.0);
     double weight_sum = 0.0;
     const int n_beta = 8;

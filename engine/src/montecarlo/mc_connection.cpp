@@ -122,19 +122,7 @@ double straightToAmbient(const PaintStack& stack, std::span<const LayerFlakes> t
 
 Vec3 sampleInCone(const HistogramBin& bin, double u1, double u2) {
     const double cos_beta = 1.0 - u1 * (1.0 - bin.cos_cone);
-    const double sin_beta = std::sqrt(std::max(0.0, 1.0 - cos_beta * cos_beta));
-    const double phi = 2.0 * std::numbers::pi * u2;
-    const Vec3& a = bin.wo;
-    // Basis around the axis (Duff et al., JCGT 2017).
-    const double sign = std::copysign(1.0, a.z);
-    const double k = -1.0 / (sign + a.z);
-    const double h = a.x * a.y * k;
-    const Vec3 b1{1.0 + sign * a.x * a.x * k, sign * h, -sign * a.x};
-    const Vec3 b2{h, sign + a.y * a.y * k, -a.y};
-    const double cx = sin_beta * std::cos(phi);
-    const double cy = sin_beta * std::sin(phi);
-    return {cx * b1.x + cy * b2.x + cos_beta * a.x, cx * b1.y + cy * b2.y + cos_beta * a.y,
-            cx * b1.z + cy * b2.z + cos_beta * a.z};
+    return directionAround(bin.wo, cos_beta, 2.0 * std::numbers::pi * u2);
 }
 
 }  // namespace paintlab::mc

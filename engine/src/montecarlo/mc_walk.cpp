@@ -41,7 +41,7 @@ WalkSettings deltaChainSettings(const WalkSettings& settings) {
     return delta;
 }
 
-// A walk without collisions (Walker::delta_only) from (x, y, depth) in slice j.
+// A walk without collisions (Walker::Mode::DeltaChain) from (x, y, depth) in slice j.
 Walker deltaWalker(const PathContext& context, const WalkSettings& settings, PathRng& rng,
                    std::span<double> f_out, const Vec3& v, double weight, double x, double y, std::size_t j,
                    double depth, PathClass path_class) {
@@ -51,7 +51,7 @@ Walker deltaWalker(const PathContext& context, const WalkSettings& settings, Pat
     walker.j = j;
     walker.depth = depth;
     walker.history.path_class = path_class;
-    walker.delta_only = true;
+    walker.mode = Walker::Mode::DeltaChain;
     return walker;
 }
 
@@ -122,7 +122,7 @@ ReverseOutcome traceReversePath(const PathContext& context, Vec3 v, double weigh
     settings.histogram_classes = HistogramClasses::none();
     Walker walker(context.stack, context.explicit_flakes, settings, rng, v, weight, x, y);
     walker.connection_rng = &connection_rng;
-    walker.reverse = true;
+    walker.mode = Walker::Mode::Reverse;
     walker.reverse_target = target;
     walker.run();
     const WalkTally& t = walker.tally;

@@ -13,26 +13,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// Orthonormal basis around a unit vector (Duff et al., JCGT 2017).
-void basis(const Vec3& n, Vec3& b1, Vec3& b2) {
-    const double sign = std::copysign(1.0, n.z);
-    const double a = -1.0 / (sign + n.z);
-    const double b = n.x * n.y * a;
-    b1 = {1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x};
-    b2 = {b, sign + n.y * n.y * a, -n.y};
-}
-
-Vec3 around(const Vec3& axis, double cos_theta, double phi) {
-    Vec3 b1;
-    Vec3 b2;
-    basis(axis, b1, b2);
-    const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
-    const double cx = sin_theta * std::cos(phi);
-    const double cy = sin_theta * std::sin(phi);
-    return {cx * b1.x + cy * b2.x + cos_theta * axis.x, cx * b1.y + cy * b2.y + cos_theta * axis.y,
-            cx * b1.z + cy * b2.z + cos_theta * axis.z};
-}
-
 // Inverse-CDF sample of the Henyey-Greenstein cosine (e.g. pbrt-v4, SampleHenyeyGreenstein).
 double sampleHgCos(double g, double u) {
     if (std::abs(g) < 1e-3) return 1.0 - 2.0 * u;
@@ -76,13 +56,13 @@ double Walker::run() {
         for (std::size_t k = 0; k < s.flakes.size(); ++k) flake_rate += s.flakeRate(k, abs_cos);
         const double sigma = s.sigma_a_per_um + s.sigma_s_per_um + flake_rate;
         const double to_boundary = (v.z < 0.0 ? s.bottom_um - depth : depth - s.top_um) / abs_cos;
-        const double t = sigma > 0.0 && !delta_only ? -std::log1p(-rng.uniform()) / sigma
-                                                    : std::numeric_limits<double>::infinity();
+        const double t = sigma > 0.0 && mode != Mode::DeltaChain ? -std::log1p(-rng.uniform()) / sigma
+                                                                 : std::numeric_limits<double>::infinity();
         // Free paths are memoryless: after a flake or a wrap, a new one is drawn.
         const int tile = traceTile(s, sigma, t, to_boundary);
         if (tile < 0) return 0.0;
         if (tile > 0) continue;
-        if (delta_only) {
+        if (mode == Mode::DeltaChain) {
             weight *= std::exp(-sigma * to_boundary);
             if (!roulette()) return 0.0;
         }
@@ -146,7 +126,8 @@ bool Walker::roulette() {
 
 bool Walker::promiseRoulette() {
     const ChainPromise* promise = settings.chain_promise;
-    if (promise == nullptr || !delta_only || history.path_class == PathClass::Beam || !(promise_weight > 0.0))
+    if (promise == nullptr || mode != Mode::DeltaChain || history.path_class == PathClass::Beam ||
+        !(promise_weight > 0.0))
         return true;
     const double q =
         std::clamp(weight * promise->at(v, beam_x, beam_y) / promise_weight, settings.promise_floor, 1.0);
@@ -175,13 +156,13 @@ int Walker::traceTile(const Slice& s, double sigma, double t, double to_boundary
     if (hit.kind >= 0) {
         move(hit.t);
         depth = std::clamp(depth - v.z * hit.t, s.top_um, s.bottom_um);
-        if (delta_only) weight *= std::exp(-sigma * hit.t);
+        if (mode == Mode::DeltaChain) weight *= std::exp(-sigma * hit.t);
         return explicitFlakeEvent(lf.kinds[static_cast<std::size_t>(hit.kind)], hit.normal, s.layer) ? 1 : -1;
     }
     if (t_side < t && t_side < to_boundary) {
         move(t_side);
         depth = std::clamp(depth - v.z * t_side, s.top_um, s.bottom_um);
-        if (delta_only) weight *= std::exp(-sigma * t_side);
+        if (mode == Mode::DeltaChain) weight *= std::exp(-sigma * t_side);
         if (tx <= ty)
             x = v.x > 0.0 ? 0.0 : L;
         else
@@ -196,7 +177,8 @@ bool Walker::explicitFlakeEvent(const FlakeKind& f, const Vec3& n, int layer) {
     const double vn = dot(v, n);
     const double c = std::abs(vn);
     const double R = f.R(c);
-    if (delta_only && settings.skip_beam_flake_reflections && history.path_class == PathClass::Beam) {
+    if (mode == Mode::DeltaChain && settings.skip_beam_flake_reflections &&
+        history.path_class == PathClass::Beam) {
         // The first-flake walks take the reflected branch; only the passed one goes on.
         const double T = f.T(c);
         if (splitting()) {
@@ -254,7 +236,7 @@ bool Walker::collide(const Slice& s, double sigma, double flake_rate) {
     // Reverse walk: a smooth first change belongs to the forward connections (the
     // path reversed ends at a smooth vertex); tiled layers have no continuum flakes,
     // so every collision here scatters off a pigment.
-    if (reverse) {
+    if (mode == Mode::Reverse) {
         if (history.path_class == PathClass::Beam) return false;
         reverseFromPigment(s, sigma);
     }
@@ -271,7 +253,7 @@ bool Walker::collide(const Slice& s, double sigma, double flake_rate) {
             g = lobe.g;
             if ((pick -= lobe.weight) < 0.0) break;
         }
-        v = around(v, sampleHgCos(g, rng.uniform()), 2.0 * kPi * rng.uniform());
+        v = directionAround(v, sampleHgCos(g, rng.uniform()), 2.0 * kPi * rng.uniform());
         history.pigmentScatter(s.layer, tiled(s.layer));
     } else {
         u -= s.sigma_s_per_um;
@@ -302,8 +284,8 @@ bool Walker::substrate(const Slice& s) {
     case SubstrateKind::Black:
         return false;
     case SubstrateKind::Lambertian: {
-        if (delta_only) return false;
-        if (reverse) {
+        if (mode == Mode::DeltaChain) return false;
+        if (mode == Mode::Reverse) {
             if (history.path_class == PathClass::Beam) return false;
             reverseFromLambert(s);
         }

@@ -60,18 +60,25 @@ struct Walker {
     PathHistory history;
     WalkTally tally;
 
-    // Reverse walk (traceReversePath): it enters from the exit cone, and scores
-    // next-event estimates towards reverse_target (upward in the top slice, the
-    // beam reversed) from its smooth vertices once its first direction change
-    // was a delta; a first change at a smooth vertex ends it.
-    bool reverse = false;
-    Vec3 reverse_target{0.0, 0.0, 1.0};
-    // Delta-chain walk (traceDeltaChains): no collisions; the extinction of the
-    // slices is applied as the weight e^(-sigma t) of the straight flight instead,
-    // and a smooth vertex (the Lambertian substrate) ends it.
-    bool delta_only = false;
-    double promise_weight = 0.0;  // promise_threshold times the start weight
-    double beam_x = 1.0;          // the beam's lateral travel direction (the promise's frame)
+    // Which walk this is.
+    enum class Mode {
+        // tracePath: the analog walk, scored by the histogram, the next-event
+        // chains, the projection and the connections.
+        Forward,
+        // traceReversePath: it enters from the exit cone, and scores next-event
+        // estimates towards reverse_target (upward in the top slice, the beam
+        // reversed) from its smooth vertices once its first direction change was
+        // a delta; a first change at a smooth vertex ends it.
+        Reverse,
+        // traceDeltaChains, traceFromFirstFlake: no collisions; the extinction of
+        // the slices is applied as the weight e^(-sigma t) of the straight flight
+        // instead, and a smooth vertex (the Lambertian substrate) ends it.
+        DeltaChain,
+    };
+    Mode mode = Mode::Forward;
+    Vec3 reverse_target{0.0, 0.0, 1.0};  // Reverse
+    double promise_weight = 0.0;         // DeltaChain: promise_threshold times the start weight
+    double beam_x = 1.0;                 // the beam's lateral travel direction (the promise's frame)
     double beam_y = 0.0;
 
     // Splitting (WalkSettings::split_branches): the same expectation as choosing a
