@@ -7,6 +7,7 @@
 
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/montecarlo/cone_average.h"
 #include "paintlab/engine/montecarlo/mc_table.h"
 #include "paintlab/engine/montecarlo/monte_carlo.h"
 #include "paintlab/engine/multiangle.h"
@@ -49,7 +50,7 @@ struct McOptions {
     double cone_deg = 0.0;  // 0: next-event estimator (explicit flakes default to 5)
     bool reject_overlaps = false;
     bool disk_flakes = false;     // explicit flakes: exact disks instead of 16-gons
-    bool histogram_only = false;  // explicit flakes: no connections (the estimator before 2026-12)
+    bool histogram_only = false;  // explicit flakes: the cone histogram alone (no connections)
     int tile_views = 32;          // explicit flakes: azimuths each tile is traced at
     int batches = mc::McSettings{}.batches;
     bool table = false;     // mc: tabulate on the fast model's basis (mc_table.h)
@@ -93,7 +94,7 @@ mc::McSettings mcSettings(const McOptions& o) {
     s.reject_overlaps = o.reject_overlaps;
     if (o.disk_flakes) s.flake_polygon_sides = 0;
     s.connections = !o.histogram_only;
-    s.split_branches = !o.histogram_only;  // --histogram-only: the estimator before 2026-12, path for path
+    s.split_branches = !o.histogram_only;  // --histogram-only: the analog walk, no split branches
     s.tile_views = o.tile_views;
     s.batches = o.batches;
     s.histogram_cone_deg = o.cone_deg > 0.0 ? o.cone_deg : (o.explicit_flakes ? 5.0 : 0.0);
@@ -312,40 +313,6 @@ int runMc(const McOptions& o) {
     return 0;
 }
 
-// The fast model's f averaged over a histogram cone as the MC estimates it:
-// int_cone f cos dw / int_cone cos dw (midpoint rule in the cone angle and azimuth).
-std::vector<double> coneAverage(const LayeredBrdf& fast, const Direction& wi, const Direction& axis,
-                                double cone_deg) {
-    if (!(cone_deg > 0.0)) return fast.eval(wi, axis);
-    const double alpha = cone_deg * M_PI / 180.0;
-    const double sign = std::copysign(1.0, axis.z);
-    const double a = -1.0 / (sign + axis.z);
-    const double b = axis.x * axis.y * a;
-    const Direction b1{1.0 + sign * axis.x * axis.x * a, sign * b, -sign * axis.x};
-    const Direction b2{b, sign + axis.y * axis.y * a, -axis.y};
-    std::vector<double> sum(fast.wavelengthsNm().size(), 0.0);
-    double weight_sum = 0.0;
-    const int n_beta = 8;
-    const int n_psi = 24;
-    for (int i = 0; i < n_beta; ++i) {
-        const double beta = (i + 0.5) / n_beta * alpha;
-        for (int j = 0; j < n_psi; ++j) {
-            const double psi = (j + 0.5) / n_psi * 2.0 * M_PI;
-            const double s = std::sin(beta) * std::cos(psi);
-            const double t = std::sin(beta) * std::sin(psi);
-            const Direction w{std::cos(beta) * axis.x + s * b1.x + t * b2.x,
-                              std::cos(beta) * axis.y + s * b1.y + t * b2.y,
-                              std::cos(beta) * axis.z + s * b1.z + t * b2.z};
-            const double weight = std::sin(beta) * std::max(w.z, 0.0);
-            const auto f = fast.eval(wi, w);
-            for (std::size_t k = 0; k < f.size(); ++k) sum[k] += weight * f[k];
-            weight_sum += weight;
-        }
-    }
-    for (auto& v : sum) v /= weight_sum;
-    return sum;
-}
-
 int runCompare(const McOptions& o) {
     const mc::McSettings settings = mcSettings(o);
     const Preset preset = parsePreset(o.preset);
@@ -364,7 +331,7 @@ int runCompare(const McOptions& o) {
     std::vector<Row> rows;
     for (std::size_t k = 0; k < kAspecularAnglesDeg.size(); ++k) {
         const MultiAngleGeometry g = multiAngleGeometry(kAspecularAnglesDeg[k]);
-        const auto f_fast = coneAverage(fast, g.wi, g.wo, settings.histogram_cone_deg);
+        const auto f_fast = mc::coneAverage(fast, g.wi, g.wo, settings.histogram_cone_deg);
         Row row{kAspecularAnglesDeg[k], 0.0, 0.0, 0.0, 0.0, 0.0};
         std::vector<double> f_mc;
         std::vector<double> se;

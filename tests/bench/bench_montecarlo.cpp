@@ -7,7 +7,9 @@
 #include "flake_tile.h"
 #include "mc_connection.h"
 #include "mc_engine.h"
+#include "mc_glints.h"
 #include "mc_random.h"
+#include "mc_reflected_beams.h"
 
 #include "paintlab/engine/montecarlo/mc_table.h"
 #include "paintlab/engine/montecarlo/monte_carlo.h"
@@ -205,11 +207,21 @@ void BM_McExplicitBudget(benchmark::State& state) {
     s.explicit_flakes = true;
     s.histogram_cone_deg = 5.0;
     s.connections = (config >= 5 && config <= 9) || config >= 16;
-    if (config == 1 || config == 6) s.batches = 1;  // else the default (16; 8 before 2026-12-03)
-    if (config >= 2 && config <= 4) s.histogram_classes = 1U << static_cast<unsigned>(config - 1);
+    if (config == 1 || config == 6) s.batches = 1;  // else the default
+    if (config >= 2 && config <= 4) {
+        s.histogram_classes = mc::HistogramClasses::none();
+        s.histogram_classes.beam_flake = config == 2;
+        s.histogram_classes.smooth = config == 3;
+        s.histogram_classes.other = config == 4;
+    }
     if (config >= 10 && config <= 15) {
-        s.histogram_classes = 8;
-        s.histogram_other = config == 14 ? 2U : (config == 15 ? 4U : (config % 2 == 0 ? 1U : 6U));
+        s.histogram_classes = mc::HistogramClasses::none();
+        s.histogram_classes.other = true;
+        // 14: delta_first; 15: smooth_first; else even: delta_chains, odd: delta_first and smooth_first.
+        s.histogram_other = mc::HistogramOtherParts::none();
+        s.histogram_other.delta_chains = config <= 13 && config % 2 == 0;
+        s.histogram_other.delta_first = config == 14 || (config <= 13 && config % 2 == 1);
+        s.histogram_other.smooth_first = config == 15 || (config <= 13 && config % 2 == 1);
         s.split_branches = config <= 11 || config >= 14;
     }
     if (config == 16) s.reverse_walks = false;

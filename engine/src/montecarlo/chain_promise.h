@@ -17,7 +17,7 @@
 // |d.n_B|); upward into a cone, no roulette. The cone weights c_k =
 // (f_min / f_k) (v_k / v_max) weigh a chain by its share of f_k and the cone
 // by its need of the delta walks, v_k the relative variance they leave in it
-// (JobRunner::adapt, weighPromiseCones). The branch survives with
+// (JobRunner::weighPromiseCones). The branch survives with
 // q = clamp(w promise / threshold, floor, 1) and carries w / q: unbiased for
 // any promise (weight-window roulette, e.g. Vorba and Krivanek 2016,
 // "Adjoint-driven Russian roulette and splitting"), so the tables may be

@@ -23,14 +23,12 @@
 // proportional to A_G, so a group the learning missed costs at most a
 // constant factor of variance, never bias.
 //
-// Measured on the demo (docs/PERFORMANCE.md): the delta walks' variance per
-// walk at 437 nm, 45as110, about halves and a walk's modelled cost falls
-// ~30 %, but the stop rule's time to 1 % did not fall (20 seeds: mean 7.9 s
-// with or without them) and it scattered twice as much between seeds
-// (standard deviation 1.7 s against 0.9 s); so they are off by default.
+// Off by default: on the demo they lower the delta walks' variance per walk
+// but not the stop rule's time (docs/PERFORMANCE.md, "First-flake walks").
 
 #include "flake_tile.h"
 #include "mc_connection.h"
+#include "mc_glints.h"
 
 #include <cstdint>
 #include <span>

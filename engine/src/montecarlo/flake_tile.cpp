@@ -86,16 +86,6 @@ double radicalInverse(std::uint64_t i, std::uint64_t base) {
     return inverse;
 }
 
-// Basis in a flake's plane (Duff et al., JCGT 2017); the polygon's vertices are
-// centre + r (cos phi b1 + sin phi b2).
-void planeBasis(const Vec3& normal, Vec3& b1, Vec3& b2) {
-    const double sign = std::copysign(1.0, normal.z);
-    const double a = -1.0 / (sign + normal.z);
-    const double b = normal.x * normal.y * a;
-    b1 = {1.0 + sign * normal.x * normal.x * a, sign * b, -sign * normal.x};
-    b2 = {b, sign + normal.y * normal.y * a, -normal.y};
-}
-
 Vec3 cross(const Vec3& a, const Vec3& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
@@ -146,16 +136,14 @@ private:
 
 // One flake (or one periodic copy of it) as Embree user geometry: the plane
 // and the polygon in double (the ray is float). One cache line: the
-// intersection callback is bound by loading it (perf, 2026-12-04: 45 % of
-// flakeIntersect's samples on its first load with the 120-byte layout of
-// before), so the in-plane basis is recomputed in the rare polygon-edge case
-// instead of stored, and the rotation is kept as the float it was rounded to
-// when the flake was placed.
+// intersection callback is bound by loading it, so the in-plane basis is
+// recomputed in the rare polygon-edge case instead of stored, and the
+// rotation is kept as the float it was rounded to when the flake was placed.
 struct alignas(64) FlakePrimitive {
     Vec3 centre;
     Vec3 normal;
     double radius_um = 0.0;   // circumradius of the polygon
-    float rotation = 0.0F;    // of its first vertex from planeBasis's b1 (radians)
+    float rotation = 0.0F;    // of its first vertex from orthonormalBasis's b1 (the flake's plane) (radians)
     std::uint32_t flake = 0;  // index of the flake it copies (FlakeTile::flakes())
 };
 static_assert(sizeof(FlakePrimitive) == 64);
@@ -177,7 +165,7 @@ bool insideRing(double u, double v, double apothem, double rotation, int sides) 
 // disk of radius r, |q| alone): inside the
 // inscribed circle always, outside the circumscribed never (both need only
 // |q|), and in the thin ring between (3.8 % of the disk for 16 sides)
-// against the edge of its sector, in the in-plane basis of planeBasis. This
+// against the edge of its sector, in the in-plane basis of orthonormalBasis. This
 // is exactly the polygon pointOnFlake samples and flakeAreaUm2 measures.
 bool insidePolygon(const Vec3& q, const Vec3& normal, double r, double rotation, int sides) {
     const double rho2 = dot(q, q);
@@ -187,7 +175,7 @@ bool insidePolygon(const Vec3& q, const Vec3& normal, double r, double rotation,
     if (rho2 <= apothem * apothem) return true;
     Vec3 b1;
     Vec3 b2;
-    planeBasis(normal, b1, b2);
+    orthonormalBasis(normal, b1, b2);
     return insideRing(dot(q, b1), dot(q, b2), apothem, rotation, sides);
 }
 
@@ -407,9 +395,8 @@ FlakeTile::FlakeTile(const std::vector<FlakeGeometry>& kinds, double top_um, dou
 
     // No "threads=N" in the configuration: with it Embree's TBB tasking installs a
     // process-wide tbb::global_control(max_allowed_parallelism, N) for the
-    // device's lifetime (embree common/tasking/taskschedulertbb.cpp), and
-    // "threads=1" had run every explicit-flake job on one thread (measured
-    // 2026-12-02: process CPU time = wall time on two idle cores). The default
+    // device's lifetime (embree common/tasking/taskschedulertbb.cpp), so
+    // "threads=1" would run every explicit-flake job on one thread. The default
     // leaves TBB's parallelism to the caller (McSettings::threads).
     m_impl->device = rtcNewDevice(nullptr);
     if (m_impl->device == nullptr) throw Error("Embree: cannot create a device");
@@ -537,7 +524,7 @@ Vec3 FlakeTile::pointOnFlake(std::size_t i, double u1, double u2, double u3) con
     const PlacedFlake& f = m_placed[i];
     Vec3 b1;
     Vec3 b2;
-    planeBasis(f.normal, b1, b2);
+    orthonormalBasis(f.normal, b1, b2);
     if (m_sides == 0) {
         // The disk: uniform over its area for the radius r sqrt(u2).
         const double rho = f.radius_um * std::sqrt(std::clamp(u2, 0.0, 1.0));

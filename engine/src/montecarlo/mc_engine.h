@@ -17,6 +17,7 @@
 #include "first_flake.h"
 #include "flake_tile.h"
 #include "mc_connection.h"
+#include "mc_glints.h"
 #include "mc_stack.h"
 #include "mc_walk.h"
 
@@ -80,12 +81,5 @@ private:
     std::vector<std::vector<FlakeGroups>> m_groups;                // [batch][layer] (first_flake_walks)
     double m_tile_side_um = 1.0;
 };
-
-// Mean and standard error over paths from the mean and the sum of squared deviations M2.
-Estimate pooledEstimate(double mean, double m2, std::int64_t paths);
-// Over batches: the pooled mean m and the spread of the batches' means m_k
-// weighted by their path counts n_k (N in all, K batches with paths):
-// se^2 = K / (K - 1) sum_k (n_k / N)^2 (m_k - m)^2.
-Estimate batchMeansEstimate(std::span<const double> batch_means, std::span<const std::int64_t> batch_paths);
 
 }  // namespace paintlab::mc

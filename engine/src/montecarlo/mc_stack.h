@@ -9,6 +9,8 @@
 #include "paintlab/engine/layer_optics.h"
 #include "paintlab/engine/recipe.h"
 
+#include <algorithm>
+#include <cmath>
 #include <complex>
 #include <vector>
 
@@ -24,6 +26,28 @@ struct Vec3 {
     double x = 0.0, y = 0.0, z = 0.0;
 };
 inline double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+// Orthonormal basis (b1, b2) around the unit vector n (Duff et al., JCGT 2017).
+inline void orthonormalBasis(const Vec3& n, Vec3& b1, Vec3& b2) {
+    const double sign = std::copysign(1.0, n.z);
+    const double a = -1.0 / (sign + n.z);
+    const double b = n.x * n.y * a;
+    b1 = {1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x};
+    b2 = {b, sign + n.y * n.y * a, -n.y};
+}
+
+// The unit vector at polar cosine cos_theta and azimuth phi (from b1 of
+// orthonormalBasis) about the unit vector `axis`.
+inline Vec3 directionAround(const Vec3& axis, double cos_theta, double phi) {
+    Vec3 b1;
+    Vec3 b2;
+    orthonormalBasis(axis, b1, b2);
+    const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+    const double cx = sin_theta * std::cos(phi);
+    const double cy = sin_theta * std::sin(phi);
+    return {cx * b1.x + cy * b2.x + cos_theta * axis.x, cx * b1.y + cy * b2.y + cos_theta * axis.y,
+            cx * b1.z + cy * b2.z + cos_theta * axis.z};
+}
 
 // One kind of flake in a slice: area density (one face per unit volume),
 // orientation distribution and reflectance / transmittance at the local

@@ -1,11 +1,15 @@
 #pragma once
-// One Monte Carlo path through the paint at one wavelength (mc_walk.cpp).
+// The Monte Carlo walks through the paint at one wavelength: forward paths,
+// delta-chain, first-flake and reverse walks (mc_walk.cpp; the walker: mc_walker.h).
 
 #include "chain_promise.h"
 #include "flake_tile.h"
 #include "mc_connection.h"
+#include "mc_glints.h"
 #include "mc_random.h"
 #include "mc_stack.h"
+
+#include "paintlab/engine/montecarlo/monte_carlo.h"
 
 #include <cstdint>
 #include <span>
@@ -16,22 +20,9 @@ namespace paintlab::mc {
 struct WalkSettings {
     int max_events = 1000000;
     double roulette_weight = 0.1;
-    // Histogram estimator: the path classes (mc_connection.h) whose escapes it scores.
-    unsigned histogram_classes = kAllClasses;
-    // Of class Other, which part: 1 chains of delta events from the beam (no
-    // pigment, substrate or continuum-flake vertex), 2 after such a vertex when
-    // the first direction change was a delta, 4 when it was such a vertex (the
-    // reverse walks' part, traceReversePath), 8 instead of 2 when the first
-    // change was the beam's reflection off an explicit flake and the second a
-    // pigment vertex in that flake's layer (the reflected beams' part), 16
-    // instead of 2 when the beam's reflection off an explicit flake was followed
-    // by the internal reflection at the paint's top and then a pigment vertex
-    // in that flake's layer (the top images' part), 32 instead of 2 when the
-    // path ends with a pigment vertex in a tiled layer, one reflection off a
-    // flake of that layer and the way out (the forward flake images' part,
-    // flake_images), 64 the same with the internal reflection at the paint's
-    // top between the vertex and the flake.
-    unsigned histogram_other = 127;
+    // Histogram estimator: the path classes whose escapes it scores, and the parts of class Other.
+    HistogramClasses histogram_classes;
+    HistogramOtherParts histogram_other;
     // Score classes Smooth and BeamFlake by connections (explicit flakes only; the
     // caller then leaves them out of histogram_classes).
     bool connections = false;
@@ -50,11 +41,10 @@ struct WalkSettings {
     // And to its images off a flake and then the paint's top (McSettings::top_images).
     bool top_images = false;
     // Connections (forward): the direct next-event estimate from pigment and
-    // Lambertian vertices into each cone (off only to isolate a part in tests:
-    // McSettings::connection_parts).
+    // Lambertian vertices into each cone (ConnectionParts::cone_direct).
     bool cone_direct = true;
-    // Connections (forward): pigment vertices of class-2 prefixes (see
-    // histogram_other) also connect to each cone through one flake of their
+    // Connections (forward): pigment vertices of delta_first prefixes
+    // (HistogramOtherParts) also connect to each cone through one flake of their
     // layer, and through the top and then such a flake (McSettings::flake_images).
     bool flake_images = false;
     // Delta-chain walks: the beam's reflections off explicit flakes end the
@@ -95,14 +85,14 @@ struct PathContext {
     WalkSettings settings;
     const FourierCells* fourier = nullptr;  // projection (null: off)
     std::span<const GlintSet> glints;       // per bin, this path's tile realisation (connections)
-    // Connections with a fraction per cone (monte_carlo.cpp): per bin, the weight of
+    // Connections with a fraction per cone (mc_job_chunks.cpp): per bin, the weight of
     // this path's next-event connections into it (0: none); empty: settings.connection_weight for all.
     std::span<const double> nee_weights;
     // Where the next-event connections' scores go (per bin); empty: f_out.
     std::span<double> nee_out;
     // Per bin, b >= 1: a pigment collision runs the connections into it with
     // probability min(1, b sigma_s / sigma) instead of sigma_s / sigma, the
-    // chance that it scatters (weighted by the inverse; mc_walk.cpp, collide);
+    // chance that it scatters (weighted by the inverse; Walker::connectFromPigment);
     // empty: 1 for all.
     std::span<const double> nee_boost = {};
 };
@@ -132,7 +122,7 @@ PathOutcome tracePath(const PathContext& context, Vec3 v, double weight, double 
                       std::span<double> f_out, PathRng* connection_rng = nullptr);
 
 // Delta-chain walks (McSettings::delta_walks): the part of class Other with no
-// smooth vertex (histogram_other bit 1: chains of flake mirror reflections and
+// smooth vertex (HistogramOtherParts::delta_chains: chains of flake mirror reflections and
 // internal reflections from the beam, e.g. beam -> flake -> flake underside ->
 // flake -> cone, which sets the flop geometries' error in the pearlescent demo)
 // by a forward walk without collisions: the straight flights between delta
@@ -167,7 +157,7 @@ PathOutcome traceFromFirstFlake(const PathContext& context, const Vec3& v_top, d
 // forward paths of class Other whose first direction change was a smooth
 // vertex, e.g. beam -> pigment -> flake -> cone, which the histogram finds
 // about once in 10^5 paths at the flop (docs/PERFORMANCE.md), and which the
-// forward histogram then leaves out (histogram_other bit 4). Returns the sum
+// forward histogram then leaves out (HistogramOtherParts::smooth_first). Returns the sum
 // of those estimates (f(w, wi), 1/sr) and the work done. Never throws.
 struct ReverseOutcome {
     double f = 0.0;

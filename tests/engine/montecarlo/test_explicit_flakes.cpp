@@ -4,6 +4,7 @@
 
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/montecarlo/cone_average.h"
 #include "paintlab/engine/montecarlo/monte_carlo.h"
 #include "paintlab/engine/thin_film.h"
 
@@ -15,13 +16,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <numbers>
 #include <string>
 
 namespace paintlab {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 using test::expectClose;
 
 Recipe flakeLayer(double n, double thickness_um, Substrate substrate, const MirrorFlake& flake) {
@@ -184,35 +183,6 @@ TEST(MonteCarloExplicitFlakes, HorizontalMirrorsTwoStreamObliqueAndRetracedColum
                        "albedo at normal incidence, sd 1 um");
 }
 
-// The fast model's f averaged over the histogram's cone like the estimator:
-// int_cone f cos dw / int_cone cos dw (Gauss-Legendre in the cone angle, midpoint in azimuth).
-double coneAverage(const LayeredBrdf& fast, const Direction& wi, const Direction& wo, double cone_deg) {
-    const double alpha = cone_deg * kPi / 180.0;
-    const Direction axis = wo;
-    // Basis around the axis.
-    const double sign = std::copysign(1.0, axis.z);
-    const double a = -1.0 / (sign + axis.z);
-    const double b = axis.x * axis.y * a;
-    const double b1[3] = {1.0 + sign * axis.x * axis.x * a, sign * b, -sign * axis.x};
-    const double b2[3] = {b, sign + axis.y * axis.y * a, -axis.y};
-    const int nb = 8, np = 24;
-    double num = 0.0, den = 0.0;
-    for (int i = 0; i < nb; ++i) {
-        const double beta = (i + 0.5) / nb * alpha;
-        for (int j = 0; j < np; ++j) {
-            const double psi = (j + 0.5) / np * 2.0 * kPi;
-            const double s = std::sin(beta), cb = std::cos(beta);
-            const Direction w{cb * axis.x + s * (std::cos(psi) * b1[0] + std::sin(psi) * b2[0]),
-                              cb * axis.y + s * (std::cos(psi) * b1[1] + std::sin(psi) * b2[1]),
-                              cb * axis.z + s * (std::cos(psi) * b1[2] + std::sin(psi) * b2[2])};
-            const double weight = s * w.z;
-            num += weight * fast.eval(wi, w)[0];
-            den += weight;
-        }
-    }
-    return num / den;
-}
-
 // A 20 µm layer of 0.5 µm thick mirrors of the given diameter (15 deg spread,
 // A d = 0.05 / 0.5 x diameter) in a 1.5 binder over a grey base, the fast model
 // of it, and light at 45 deg seen at 30, 20 and 0 deg on the specular side.
@@ -255,7 +225,7 @@ TEST(MonteCarloExplicitFlakes, SmallSparseFlakesApproachTheFastModel) {
     const double a_fast = fast.albedo(inc.wi)[0];
     expectClose(out.albedo.mean, out.albedo.std_error, a_fast, 0.02 * a_fast, "albedo");
     for (std::size_t k = 0; k < inc.wo.size(); ++k) {
-        const double f_fast = coneAverage(fast, inc.wi, inc.wo[k], cone_deg);
+        const double f_fast = mc::coneAverage(fast, inc.wi, inc.wo[k], cone_deg)[0];
         expectClose(out.brdf_per_sr[k].mean, out.brdf_per_sr[k].std_error, f_fast, 0.02 * f_fast,
                     "f (cone) exit " + std::to_string(k));
     }
@@ -276,7 +246,7 @@ TEST(MonteCarloExplicitFlakes, HistogramOnContinuumFlakesMatchesTheFastModelCone
     s.explicit_flakes = false;
     const auto hist = mc::runMonteCarlo(r, std::vector<double>{fast.wavelengthsNm()[0]}, req, s);
     for (std::size_t k = 0; k < inc.wo.size(); ++k) {
-        const double f_fast = coneAverage(fast, inc.wi, inc.wo[k], cone_deg);
+        const double f_fast = mc::coneAverage(fast, inc.wi, inc.wo[k], cone_deg)[0];
         const auto& e = hist.bands[0][0].brdf_per_sr[k];
         expectClose(e.mean, e.std_error, f_fast, 0.02 * f_fast,
                     "continuum histogram exit " + std::to_string(k));

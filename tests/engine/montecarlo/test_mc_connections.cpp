@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <initializer_list>
 #include <numbers>
 #include <string>
 #include <variant>
@@ -253,8 +254,10 @@ TEST(MonteCarloConnections, HistogramClassesAddUpToTheWhole) {
     s.connections = false;
     const auto all = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
     std::vector<double> sum(req[0].wo.size(), 0.0);
-    for (unsigned c : {1U, 2U, 4U, 8U}) {
-        s.histogram_classes = c;
+    for (bool mc::HistogramClasses::*only : {&mc::HistogramClasses::beam, &mc::HistogramClasses::beam_flake,
+                                             &mc::HistogramClasses::smooth, &mc::HistogramClasses::other}) {
+        s.histogram_classes = mc::HistogramClasses::none();
+        s.histogram_classes.*only = true;
         const auto part = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
         for (std::size_t k = 0; k < sum.size(); ++k) sum[k] += part.bands[0][0].brdf_per_sr[k].mean;
     }
@@ -264,22 +267,37 @@ TEST(MonteCarloConnections, HistogramClassesAddUpToTheWhole) {
     }
 }
 
-// One part of the connections alone (connection_parts `part`, the histogram
-// off) against the histogram alone on the same path classes (histogram_other
-// `other` of class Other), each over 16 batches with its own seed and tiles,
-// at 550 nm: the part must be resolved by the histogram (mean > 5 errors, or
-// the comparison could not fail) and agree with it at kZ = 4.
+// The connection parts with only `part` on.
+mc::ConnectionParts onlyPart(bool mc::ConnectionParts::*part) {
+    mc::ConnectionParts parts = mc::ConnectionParts::none();
+    parts.*part = true;
+    return parts;
+}
+
+// The parts of class Other with only `parts` on.
+mc::HistogramOtherParts otherParts(std::initializer_list<bool mc::HistogramOtherParts::*> parts) {
+    mc::HistogramOtherParts other = mc::HistogramOtherParts::none();
+    for (bool mc::HistogramOtherParts::*part : parts) other.*part = true;
+    return other;
+}
+
+// One part of the connections alone (`part`, the histogram off) against the
+// histogram alone on the same parts of class Other (`other`), each over 16
+// batches with its own seed and tiles, at 550 nm: the part must be resolved by
+// the histogram (mean > 5 errors, or the comparison could not fail) and agree
+// with it at kZ = 4.
 void expectPartMatchesHistogram(const Recipe& r, const std::vector<mc::IncidenceRequest>& req,
-                                mc::McSettings s, unsigned part, unsigned other, std::int64_t histogram_paths,
+                                mc::McSettings s, bool mc::ConnectionParts::*part,
+                                const mc::HistogramOtherParts& other, std::int64_t histogram_paths,
                                 const char* name) {
     s.batches = 16;
-    s.histogram_classes = 0;
-    s.connection_parts = part;
+    s.histogram_classes = mc::HistogramClasses::none();
+    s.connection_parts = onlyPart(part);
     const auto connected = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
     s.seed += 1;
     s.max_paths = histogram_paths;
     s.connections = false;
-    s.histogram_classes = 8;
+    s.histogram_classes.other = true;
     s.histogram_other = other;
     const auto histogram = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
     for (std::size_t k = 0; k < req[0].wo.size(); ++k) {
@@ -297,7 +315,7 @@ TEST(MonteCarloConnections, ReverseWalksMatchTheHistogramOnTheirPathClass) {
     // The reverse walks (McSettings::reverse_walks) score, by reciprocity, the
     // forward paths of class Other whose first direction change was a smooth
     // vertex (beam -> pigment -> ... -> flake -> cone); the histogram restricted
-    // to that class (histogram_other 4) estimates the same cone average from
+    // to that class (HistogramOtherParts::smooth_first) estimates the same cone average from
     // forward paths. Mirror flakes with a 15 deg spread in a scattering binder:
     // at the flop geometry (50 deg on the source's side) single glints are rare
     // and this class is a large part of f. Independent seeds (own tiles),
@@ -316,12 +334,17 @@ TEST(MonteCarloConnections, ReverseWalksMatchTheHistogramOnTheirPathClass) {
     s.tile_flakes = 800;
     // With their connections to the beam's mirror images (reflected_beams and
     // top_images, the default) they also take the paths beam -> flake ->
-    // pigment -> ... (bit 8) and beam -> flake -> top -> pigment -> ... (bit 16;
+    // pigment -> ... and beam -> flake -> top -> pigment -> ... (the latter
     // here ~17 % of the part: left out, exit 2 was off by z = 4.2).
-    expectPartMatchesHistogram(r, req, s, 4, 4 | 8 | 16, 400000, "reverse walks");
+    using Other = mc::HistogramOtherParts;
+    expectPartMatchesHistogram(
+        r, req, s, &mc::ConnectionParts::reverse_walks,
+        otherParts({&Other::smooth_first, &Other::beam_flake_pigment, &Other::beam_flake_top_pigment}),
+        400000, "reverse walks");
     s.reflected_beams = false;
     s.top_images = false;
-    expectPartMatchesHistogram(r, req, s, 4, 4, 400000, "reverse walks, direct beam only");
+    expectPartMatchesHistogram(r, req, s, &mc::ConnectionParts::reverse_walks,
+                               otherParts({&Other::smooth_first}), 400000, "reverse walks, direct beam only");
 }
 
 // A clear coat (index, thickness in µm) over a Lambertian base (albedo)...
@@ -361,12 +384,12 @@ TEST(MonteCarloConnections, TopImagesMatchTheHistogramOnTheirPathClass) {
     // The reverse walks' connections to the beam's images off a flake and then
     // the paint's top (McSettings::top_images) score the forward paths beam ->
     // flake -> top (internal reflection) -> pigment -> ... -> delta -> cone
-    // (histogram_other 16). Tilted mirror flakes in a scattering binder under a
+    // (HistogramOtherParts::beam_flake_top_pigment). Tilted mirror flakes in a scattering binder under a
     // clear coat of another index, so that the column's lateral run up and
     // down through the coat (Snell in each) is tested too; the flakes' upward
     // reflections beyond the top's critical angle come back whole. The
-    // reverse walks here score the direct beam as well (bit 4) and not the
-    // flakes' direct images (reflected_beams off), so the histogram takes 4 | 16.
+    // reverse walks here score the direct beam as well (smooth_first) and not the
+    // flakes' direct images (reflected_beams off), so the histogram takes both.
     // Statistics as above (kZ = 4, 16 batches each, independent seeds; the part
     // resolved by the histogram, mean > 5 errors).
     const Recipe r =
@@ -381,35 +404,40 @@ TEST(MonteCarloConnections, TopImagesMatchTheHistogramOnTheirPathClass) {
     // The top images are ~16 % of the part here (0.0024 of 0.015 1/sr): the same
     // run without them is off by z = -6.2 / -6.7 / -4.3 at the three exits
     // (measured 2026-12-03), so the test fails if they are lost; ~12 s on two idle cores.
-    expectPartMatchesHistogram(r, req, s, 4, 4 | 16, 1200000, "reverse walks with the top images");
+    using Other = mc::HistogramOtherParts;
+    expectPartMatchesHistogram(r, req, s, &mc::ConnectionParts::reverse_walks,
+                               otherParts({&Other::smooth_first, &Other::beam_flake_top_pigment}), 1200000,
+                               "reverse walks with the top images");
 }
 
 TEST(MonteCarloConnections, FlakeImagesMatchTheHistogramOnTheirPathClass) {
     // The forward connections through one flake (McSettings::flake_images)
-    // score the paths whose prefix no other walk takes (histogram_other 2) and
+    // score the paths whose prefix no other walk takes (delta_first) and
     // that end pigment -> flake -> cone or pigment -> top -> flake -> cone
-    // (bits 32 and 64), e.g. beam -> flake -> flake -> pigment -> flake -> cone.
+    // (ends_pigment_flake, ends_pigment_top_flake), e.g. beam -> flake -> flake -> pigment -> flake -> cone.
     // Dense, strongly tilted mirror flakes under a clear coat of another index
     // (chains of two reflections before a pigment vertex are common): the
-    // histogram restricted to those two bits against the flake images alone
-    // (connection_parts 16). The top's part is ~25 % of it here (measured
-    // 2026-12-03: 0.00058 of which 0.00044 direct); against ~4 % errors on each
-    // side, losing it would be z ~ 4.5 (estimated, not run). Statistics as above (kZ = 4, 16 batches each,
-    // independent seeds; the part resolved by the histogram, mean > 5 errors).
+    // histogram restricted to those two parts against the flake images alone. The top's part is ~25 % of it
+    // here (measured 2026-12-03: 0.00058 of which 0.00044 direct); against ~4 % errors on each side, losing
+    // it would be z ~ 4.5 (estimated, not run). Statistics as above (kZ = 4, 16 batches each, independent
+    // seeds; the part resolved by the histogram, mean > 5 errors).
     const Recipe r =
         mirrorFlakesUnderClearCoat({1.55, 10.0, 0.5}, 0.12, 25.0, test::pigment(0.01, 5.0, 2.0, 0.2));
     const std::vector<mc::IncidenceRequest> req = specularNormalAndBackscatter();
     auto s = explicitSettings(60000, 10.0, 61);
     s.tile_flakes = 800;
-    expectPartMatchesHistogram(r, req, s, 16, 32 | 64, 1500000, "flake images");
+    using Other = mc::HistogramOtherParts;
+    expectPartMatchesHistogram(r, req, s, &mc::ConnectionParts::flake_images,
+                               otherParts({&Other::ends_pigment_flake, &Other::ends_pigment_top_flake}),
+                               1500000, "flake images");
 }
 
 TEST(MonteCarloConnections, DeltaWalksMatchTheHistogramOnChainsFromTheBeam) {
     // The delta-chain walks (McSettings::delta_walks) score the paths of class
     // Other without a smooth vertex (several flake reflections, internal
     // reflections) by walks without collisions that carry the extinction as the
-    // weight e^(-sigma t); the histogram restricted to that part (histogram_other
-    // 1) counts the same paths in the analog walk, where the extinction is a
+    // weight e^(-sigma t); the histogram restricted to that part (delta_chains)
+    // counts the same paths in the analog walk, where the extinction is a
     // survival probability. Dense, strongly tilted mirror flakes (R 0.9, 25 deg)
     // in an absorbing and scattering binder under a clear coat with an index
     // step (internal reflections): chains of two and more reflections are a
@@ -422,13 +450,15 @@ TEST(MonteCarloConnections, DeltaWalksMatchTheHistogramOnChainsFromTheBeam) {
     auto s = explicitSettings(100000, 10.0, 45);
     s.tile_flakes = 800;
     s.delta_rate = 1.0;  // the first round's (adaptive_fractions sets the later ones)
-    expectPartMatchesHistogram(r, req, s, 8, 1, 600000, "delta walks");
+    const mc::HistogramOtherParts chains = otherParts({&mc::HistogramOtherParts::delta_chains});
+    expectPartMatchesHistogram(r, req, s, &mc::ConnectionParts::delta_walks, chains, 600000, "delta walks");
     // With the first-flake walks (first_flake.h), which then take the chains
     // that begin at a flake while the uniform walks keep those that begin with
     // an internal reflection at the index step. (The beam refracted into the
     // flake layer wrongly, upwards, made them score nothing: z = -23.)
     s.first_flake_walks = true;
-    expectPartMatchesHistogram(r, req, s, 8, 1, 600000, "delta walks with first-flake walks");
+    expectPartMatchesHistogram(r, req, s, &mc::ConnectionParts::delta_walks, chains, 600000,
+                               "delta walks with first-flake walks");
     // The roulette by promise (McSettings::chain_promise, chain_promise.h)
     // stops a branch with probability 1 - q and weighs the survivors by 1 / q,
     // so the mean is the same for any promise. At the default threshold it
@@ -441,7 +471,8 @@ TEST(MonteCarloConnections, DeltaWalksMatchTheHistogramOnChainsFromTheBeam) {
     s.seed = 47;
     s.chain_promise_threshold = 1.0;
     s.chain_promise_floor = 0.05;
-    expectPartMatchesHistogram(r, req, s, 8, 1, 600000, "delta walks, strong roulette by promise");
+    expectPartMatchesHistogram(r, req, s, &mc::ConnectionParts::delta_walks, chains, 600000,
+                               "delta walks, strong roulette by promise");
 }
 
 TEST(MonteCarloConnections, FirstFlakeWalksMatchTheHistogramOnChainsFromAPearlFlake) {
@@ -468,7 +499,9 @@ TEST(MonteCarloConnections, FirstFlakeWalksMatchTheHistogramOnChainsFromAPearlFl
     s.tile_flakes = 800;
     s.delta_rate = 1.0;
     s.first_flake_walks = true;
-    expectPartMatchesHistogram(r, req, s, 8, 1, 600000, "first-flake walks");
+    const mc::HistogramOtherParts chains = otherParts({&mc::HistogramOtherParts::delta_chains});
+    expectPartMatchesHistogram(r, req, s, &mc::ConnectionParts::delta_walks, chains, 600000,
+                               "first-flake walks");
 }
 
 }  // namespace

@@ -10,7 +10,9 @@
 
 #include "mc_connection.h"
 #include "mc_engine.h"
+#include "mc_glints.h"
 #include "mc_random.h"
+#include "mc_reflected_beams.h"
 
 #include "paintlab/engine/fresnel.h"
 #include "paintlab/engine/montecarlo/monte_carlo.h"

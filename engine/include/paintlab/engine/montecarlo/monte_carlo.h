@@ -1,72 +1,34 @@
 #pragma once
-// The full model (shared/ARCHITECTURE.md, "The full model"): Monte Carlo
-// radiative transfer in a layered paint, one wavelength at a time, as the
-// independent check of the fast model (layered_brdf.h).
+// The full model: Monte Carlo radiative transfer in a layered paint, one
+// wavelength at a time, the independent check of the fast model
+// (layered_brdf.h; docs/ARCHITECTURE.md, "The full model").
 //
-// Physics (monte_carlo.cpp and mc_walk.cpp have the details):
-//  - a collimated beam enters through the smooth top interface (Fresnel
-//    reflection / refraction between the ambient and the top binder);
-//  - in each layer the binder with its pigments (and raw media) is a
-//    participating medium: free paths by sigma_t, Henyey-Greenstein scattering
-//    with the exact lobe mixture of SlabOptics (no delta-M), absorption by
-//    weighting with Russian roulette;
-//  - flakes are either (default) a continuum of oriented two-sided
-//    reflectors with the fast model's statistics (area density,
-//    FlakeOrientation, reflectance and thin-film transmittance at the local
-//    angle) sampled per collision, or (explicit_flakes) real flat flakes of
-//    the recipe's diameter in a laterally periodic tile per layer, traced
-//    with Embree, rays wrapping at the tile's sides;
-//  - internal interfaces refract / reflect where the binder index changes;
-//    the substrate is Lambertian, black, a metal mirror (complex Fresnel) or
-//    transparent (what crosses it is lost);
-//  - a depth-varying concentration is a stack of homogeneous slices.
+// A collimated beam enters through the smooth top interface; each layer's
+// binder with its pigments is a participating medium (Henyey-Greenstein
+// lobes, absorption by weighting, Russian roulette); flakes are either a
+// continuum of oriented reflectors with the fast model's statistics or, with
+// explicit_flakes, real flat flakes in a periodic Embree tile per layer;
+// internal interfaces refract and reflect; the substrate is Lambertian,
+// black, metal or transparent.
 //
-// Estimators, each with its standard error:
-//  - albedo(wi): directional-hemispherical reflectance, the top interface's
-//    mirror term included (as LayeredBrdf::albedo);
-//  - transmittance(wi): what crosses into a transparent substrate (the
-//    unscattered beam included), 0 for the other substrates;
-//  - f(wi, wo) by next-event (point) estimation: from every scattering vertex
-//    the radiance that reaches wo through the stack's smooth interfaces along
-//    the one direction that refracts into wo (straight up, or down and back by
-//    specular reflections below, summed in closed form), with the radiance
-//    law L / n^2 and the (1 - R) factors; the top interface's mirror term is
-//    excluded (as LayeredBrdf::eval);
-//  - or, with histogram_cone_deg > 0 (always with explicit flakes, whose
-//    mirror reflections are deltas that next-event estimation cannot reach),
-//    the escaping weight in a cone of that half-angle around wo over the
-//    cone's projected solid angle: the cone average of f cos over that of cos;
-//    with explicit flakes and `connections` (default) the paths whose last
-//    direction change was a pigment or the Lambertian substrate, and the
-//    beam's single flake reflections (averaged over every azimuth of each
-//    tile), are scored by exact connections to the cone through the real
-//    tiles instead (mc_connection.h), same mean; the walk splits at flakes and
-//    at the top interface instead of choosing a branch (split_branches); most
-//    of the rest (multiple reflections) by reverse walks from the cone and
-//    delta-chain walks without collisions (reverse_walks, delta_walks,
-//    reflected_beams, top_images);
-//  - a whole table on the fast model's basis: mc_table.h.
-//
-// Standard errors: over independent paths, except with explicit flakes,
-// where the paths are split into `batches`, each tracing its own tile
-// realisation, and the error is that of the batches' means (batches - 1
-// degrees of freedom): it then includes the randomness of the flake
-// arrangement, which at a few hundred flakes per tile is several times the
-// path error (tests/engine/montecarlo/test_flake_tiles.cpp).
+// Estimates, each with its standard error: the albedo (mirror term
+// included), the transmittance into a transparent substrate, and f(wi, wo)
+// by next-event estimation or, with histogram_cone_deg > 0 (always with
+// explicit flakes, whose mirror reflections are deltas), as the cone average
+// of f cos over that of cos. With explicit flakes most path classes are scored
+// by connections, reverse walks and delta-chain walks instead of the
+// histogram (mc_connection.h, mc_walk.h); a table on the fast model's basis:
+// mc_table.h. Errors are over paths, or with explicit flakes over `batches`
+// tile realisations (so they include the flake arrangement's randomness).
 //
 // Determinism: path p of (band b, incidence i) draws from a generator seeded
-// by (seed, b, i, p) alone, chunk c of paths belongs to batch c mod batches
-// and tile k of a layer is seeded by (seed, layer, k); chunks are merged in
-// order, so the numbers do not depend on the thread count or scheduling.
-// Stopping by time only changes how many chunks are merged.
+// by (seed, b, i, p); chunks are merged in order, so results do not depend on
+// the thread count; stopping by time only changes how many chunks are merged.
 //
-// Known limits: the tile is periodic (its side is set by tile_flakes, at
-// least two flake diameters), so arrangements longer-ranged than the tile are
-// not represented; its geometry is float (Embree); flakes are thickness-less
-// 16-gons (or exact disks: flake_polygon_sides) and overlap unless reject_overlaps. What the connections and
-// the reverse / delta-chain walks leave to the histogram (a flake reflection followed by a top reflection or
-// more flakes before a pigment vertex, then a flake) sets the cost of explicit flakes at the flop
-// (docs/PERFORMANCE.md). Settings.threads sets TBB's process-wide parallelism for the duration of the call.
+// Limits: the tile is periodic (side set by tile_flakes, >= 2 flake
+// diameters) and float (Embree); flakes are thickness-less polygons or disks
+// that overlap unless reject_overlaps. settings.threads sets TBB's
+// process-wide parallelism for the duration of the call.
 
 #include "paintlab/engine/brdf.h"
 #include "paintlab/engine/layered_brdf.h"
@@ -80,12 +42,53 @@
 
 namespace paintlab::mc {
 
+// Which parts of the explicit-flake connections run (diagnostics for error
+// budgets; all on by default). A part left out is not scored at all: the
+// histogram does not take it over.
+struct ConnectionParts {
+    bool cone_direct = true;    // next-event from pigment and Lambertian vertices into the cones
+    bool glints = true;         // the beam's single flake reflections
+    bool reverse_walks = true;  // reverse walks from the cones (McSettings::reverse_walks)
+    bool delta_walks = true;    // delta-chain walks (McSettings::delta_walks)
+    bool flake_images = true;   // forward connections through one flake (McSettings::flake_images)
+    static constexpr ConnectionParts none() { return {false, false, false, false, false}; }
+};
+
+// The path classes, by their last direction change, whose escapes the
+// histogram scores (diagnostics; with connections, beam_flake and smooth are
+// scored by them and never by the histogram).
+struct HistogramClasses {
+    bool beam = true;        // unscattered beam
+    bool beam_flake = true;  // the beam's first reflection off an explicit flake
+    bool smooth = true;      // a pigment, the Lambertian substrate or a continuum flake
+    bool other = true;       // anything else (several flakes, internal reflections, mirrors)
+    static constexpr HistogramClasses none() { return {false, false, false, false}; }
+};
+
+// Of class `other`, the parts the histogram scores (diagnostics). "Smooth
+// vertex": a pigment, the Lambertian substrate or a continuum flake; "delta":
+// a mirror reflection (explicit flake, internal interface, metal).
+struct HistogramOtherParts {
+    bool delta_chains = true;  // only delta events since the beam (the delta-chain walks' part)
+    bool delta_first = true;   // a smooth vertex after a first delta change (none of the parts below)
+    bool smooth_first = true;  // the first change a smooth vertex (the reverse walks' part)
+    // The beam's reflection off an explicit flake, then a pigment vertex in its layer (reflected_beams).
+    bool beam_flake_pigment = true;
+    // That reflection, the top's internal reflection, then a pigment vertex in the flake's layer
+    // (top_images).
+    bool beam_flake_top_pigment = true;
+    // Ends pigment vertex in a tiled layer -> a flake of that layer -> out (flake_images).
+    bool ends_pigment_flake = true;
+    // Ends pigment vertex -> the top's internal reflection -> such a flake -> out (flake_images).
+    bool ends_pigment_top_flake = true;
+    static constexpr HistogramOtherParts none() { return {false, false, false, false, false, false, false}; }
+};
+
 struct McSettings {
     std::uint64_t seed = 1;
-    // Stop for every (band, incidence) at the first of: max_paths paths; all
-    // its estimates at or below target_rel_error (relative standard error;
-    // 0 = off; checked after each round of chunks); its share of max_seconds
-    // (0 = off; the budget is divided evenly over bands x incidences).
+    // Each (band, incidence) stops at the first of: max_paths paths; every
+    // estimate at or below target_rel_error (relative standard error, 0 = off,
+    // checked between rounds of chunks); its even share of max_seconds (0 = off).
     std::int64_t max_paths = 100000;
     double target_rel_error = 0.0;
     double max_seconds = 0.0;
@@ -101,175 +104,84 @@ struct McSettings {
     bool explicit_flakes = false;
     int tile_flakes = 20000;       // flakes per tile aimed at (sets the tile's side, >= 2 diameters)
     int max_tile_flakes = 200000;  // per kind and layer
-    // Explicit flakes: a flake that intersects one already placed (thickness-less
-    // disks, periodic images included) is moved elsewhere (flake_tile.h).
+    // A flake that intersects one already placed is moved elsewhere (flake_tile.h).
     bool reject_overlaps = false;
-    // Explicit flakes' shape: regular polygons of the disk's area with this many
-    // sides (16 by default; the polygon's edge is ~1 % of its radius from the
-    // disk's), or 0 for exact disks (flake_tile.h).
+    // Regular polygons of the disk's area with this many sides, or 0 for exact disks (flake_tile.h).
     int flake_polygon_sides = 16;
-    // The paths of each (band, incidence) are split by chunk into this many
-    // batches (chunk c into batch c mod batches). With explicit flakes every
-    // batch traces its own tile realisation (own seed), and the standard errors
-    // are those of the batches' means (batches - 1 degrees of freedom), so they
-    // include the randomness of the flake arrangement; otherwise they are over
-    // paths. tabulateMonteCarlo (mc_table.h) also keeps one table per batch.
-    // 16 (8 before 2026-12-03): the tiles' own spread is then half as large
-    // (measured on the demo: as large as the paths' error at the near-specular
-    // cones with 8 tiles), and an error from 15 degrees of freedom scatters by
-    // ~18 % instead of ~27 %, so the stop rule stops less often on a low draw.
+    // Chunk c of a job belongs to batch c mod batches. With explicit flakes each
+    // batch traces its own tile realisation and the errors are those of the
+    // batches' means (batches - 1 degrees of freedom), so they include the
+    // flake arrangement's randomness. tabulateMonteCarlo keeps one table per batch.
     int batches = 16;
-    // Explicit flakes: score the path classes that allow it by connections
-    // instead of the histogram (mc_connection.h): next-event estimation from
-    // pigment and Lambertian vertices through the tiles into each cone, and
-    // the beam's single reflections off the tile's flakes listed per cone.
-    // Same expectation (the cone average), far smaller variance; false: the
-    // histogram alone (the estimator before 2026-12).
+    // Explicit flakes: score the path classes that allow it by exact
+    // connections through the tiles (mc_connection.h) instead of the
+    // histogram; same mean, far smaller variance. false: the histogram alone.
     bool connections = true;
-    // Explicit flakes: every tile is traced at this many azimuths of the
-    // incidence plane (path p at view p mod tile_views; evenly spaced, with
-    // a random offset per batch). The flake statistics are isotropic in
-    // azimuth, so each view is as valid a realisation as the tile itself
-    // (only the periodic lattice turns with it), and the average over views
-    // removes most of the spread between tiles where few flakes glint into
-    // a cone. 1: the tile in its own frame only (the estimator before 2026-12).
+    // Explicit flakes: trace every tile at this many evenly spaced azimuths
+    // (path p at view p mod tile_views). The flake statistics are isotropic,
+    // so each view is a valid realisation; averaging removes most of the
+    // spread between tiles. 1: the tile's own frame only.
     int tile_views = 32;
-    // Explicit flakes with connections: the share of paths (drawn at random,
-    // in [1e-3, 1]) that run them, their scores divided by it (unbiased). The
-    // connections cost ~10 shadow rays per path and their own noise is small,
-    // while the histogram's share (multiple flake reflections) needs many
-    // paths: fewer connected paths buy more paths per second. With
-    // glint_azimuths, a value x above 1 (up to 64) runs the next-event
-    // connections on every path and raises each pigment collision's chance to
-    // run them from sigma_s / sigma (the chance that it scatters) to
-    // min(1, x sigma_s / sigma) (mc_walk.h, PathContext::nee_boost): with an
-    // absorbing pigment (the demo's carbon black) the scores are otherwise
-    // zero on all but 0.5-3 % of the collisions. adaptive_fractions then sets
-    // x per cone from the first round on.
+    // Connections: the share of paths (in [1e-3, 1]) that run them, their
+    // scores divided by it. With glint_azimuths, x > 1 (up to 64) runs them on
+    // every path and raises a pigment collision's chance to run them to
+    // min(1, x sigma_s / sigma) (PathContext::nee_boost). adaptive_fractions
+    // sets x per cone after the first round.
     double connection_fraction = 0.125;
-    // Explicit flakes with connections: the beam's single flake reflections
-    // (class BeamFlake) estimated over every azimuth of each tile at once, the
-    // flake drawn by importance (its reflectance and the attenuation down to
-    // it), the samples drawn per chunk of paths and stratified over it
-    // (mc_connection.h, azimuthGlintSets); false: per view of the tile, one
-    // flake per connected path in proportion to its area (the estimator of
-    // 2026-12-01; adaptive_fractions then does not apply). The stratified
-    // samples tie the paths of a chunk together: errors over batches are
-    // exact, errors over paths (batches = 1) conservative.
+    // Connections: the beam's single flake reflections over every azimuth of
+    // each tile at once, importance-sampled and stratified per chunk
+    // (mc_glints.h, azimuthGlintSets; errors over paths then become
+    // conservative). false: one flake per connected path and view.
     bool glint_azimuths = true;
-    // Explicit flakes with connections and glint_azimuths: per exit cone, the
-    // next-event rate (share of paths, or beyond 1 the collisions' boost; see
-    // connection_fraction), the glint samples and the reverse walks per path,
-    // and the delta-chain walks per path, chosen after every round of chunks
-    // from each cone's own variance so far and a cost model of counted work
-    // (monte_carlo.cpp); the first round uses connection_fraction, and its
-    // paths are then dropped from the estimate when they are a small part of
-    // the job (they only set the rates). Unbiased: a path's rates are fixed
-    // before it runs. false: connection_fraction for every cone.
+    // Connections with glint_azimuths: per cone, the next-event rate, the glint
+    // samples, reverse walks and delta-chain walks per path are chosen after
+    // every round from the cones' variances and a cost model (mc_rates.h).
+    // Unbiased: a path's rates are fixed before it runs. The first round's
+    // paths are dropped when they are a small part of the job.
     bool adaptive_fractions = true;
-    // Explicit flakes: a path follows both branches wherever an explicit flake
-    // reflects or passes it (weights R and T) and where the top interface
-    // reflects or lets it out (weights F and 1 - F), instead of drawing one
-    // with those probabilities; at most 6 splits deep along a branch, Russian
-    // roulette below roulette_weight as always. Same expectation; the chains of
-    // several flake reflections (class Other, what limits the explicit-flake
-    // estimate, docs/PERFORMANCE.md) are no longer thinned by the product of
-    // their reflectances. Lossless paint then no longer returns exactly 1 per
-    // path (the roulette of the split-off branches). false: the analog choice.
+    // Explicit flakes: a path follows both branches at every explicit flake
+    // (weights R and T) and at the top interface (weights F and 1 - F), up to
+    // 6 splits deep, instead of choosing one. Same mean; chains of several
+    // flake reflections are no longer thinned by their reflectances.
     bool split_branches = true;
-    // Explicit flakes with connections: the paths of class Other whose first
-    // direction change was a pigment (or the Lambertian substrate), such as
-    // beam -> pigment -> flake -> cone, the part that limited the flop
-    // geometries, are scored by reverse walks from the cone (reciprocity;
-    // mc_walk.h, traceReversePath) instead of the histogram. false: the histogram.
+    // Connections: the paths whose first direction change was a pigment or the
+    // Lambertian substrate and whose last was a delta are scored by reverse
+    // walks from the cones (reciprocity; mc_walk.h, traceReversePath).
     bool reverse_walks = true;
-    // Reverse walks per path and cone in the first round (adaptive_fractions then sets them per cone).
+    // Reverse walks per path and cone in the first round (adaptive_fractions sets the later ones).
     double reverse_rate = 0.125;
-    // Reverse walks: their pigment vertices also connect to the beam's single
-    // mirror images off the explicit flakes of their layer (a flat flake keeps
-    // the beam collimated; mc_connection.h, reflectedBeams), which scores the
-    // forward paths beam -> flake -> pigment -> ... -> delta -> cone
-    // (histogram_other bit 8) instead of the histogram.
+    // Reverse walks: pigment vertices also connect to the beam's mirror images
+    // off the flakes of their layer (HistogramOtherParts::beam_flake_pigment).
     bool reflected_beams = true;
-    // Reverse walks: their pigment vertices also connect to the beam's images
-    // off an explicit flake of their layer and then the paint's top (the
-    // column the flake reflects upwards comes back down from the top's
-    // internal reflection, still collimated), which scores the forward paths
-    // beam -> flake -> top -> pigment -> ... -> delta -> cone (histogram_other
-    // bit 16) instead of the histogram: at the flop they were most of what the
-    // histogram had left (docs/PERFORMANCE.md).
+    // Reverse walks: ... and to its images off a flake and then the paint's top
+    // (HistogramOtherParts::beam_flake_top_pigment).
     bool top_images = true;
-    // Explicit flakes with connections and glint_azimuths: the forward
-    // next-event connections from a pigment vertex in a flake layer also reach
-    // each cone through one mirror reflection off a flake of that layer
-    // (straight, or after the top's internal reflection), for the paths whose
-    // prefix no other walk takes (histogram_other bit 2): by reciprocity the
-    // cone direction's images off the flakes, as reflected_beams and top_images
-    // (mc_connection.h, reflectedBeams). It scores the paths ending pigment ->
-    // flake -> cone and pigment -> top -> flake -> cone after chains such as
-    // beam -> flake -> flake (histogram_other bits 32 and 64) instead of the
-    // histogram: the last path the histogram found at 45as110 in the demo was
-    // one of them (docs/PERFORMANCE.md).
+    // Connections with glint_azimuths: forward connections from a pigment
+    // vertex in a flake layer also reach each cone through one flake of that
+    // layer, directly or after the top's internal reflection
+    // (HistogramOtherParts::ends_pigment_flake, ends_pigment_top_flake).
     bool flake_images = true;
-    // Explicit flakes with connections: the paths of class Other without a
-    // smooth vertex (chains of flake and internal reflections from the beam)
-    // are scored by delta-chain walks (mc_walk.h, traceDeltaChains): forward
-    // walks without collisions that carry the pigments' extinction as a weight,
-    // delta_rate of them per path, with Russian roulette below
-    // delta_roulette_weight. false: the histogram.
+    // Connections: chains of delta events from the beam are scored by forward
+    // walks without collisions that carry the extinction as a weight
+    // (mc_walk.h, traceDeltaChains), delta_rate per path, Russian roulette
+    // below delta_roulette_weight.
     bool delta_walks = true;
-    // Delta-chain walks: the chains that begin with the beam's reflection off
-    // an explicit flake start on that flake, drawn by groups (tilt, azimuth
-    // relative to the beam, depth) with probabilities learned from the walks
-    // so far, half kept proportional to the groups' areas (first_flake.h;
-    // unbiased for any such probabilities). At the demo's flop three-flake
-    // chains whose first flake leans towards the light were most of the
-    // delta walks' variance. Off by default: on the demo they halve that
-    // variance per walk at 437 nm but did not shorten the stop rule's time
-    // (docs/PERFORMANCE.md, "First-flake walks"). false: every chain from a
-    // uniform entry point.
+    // Delta-chain walks: the chains that begin at an explicit flake start on
+    // it, drawn by groups with learned probabilities (first_flake.h). Off by
+    // default: it lowers the variance per walk but not the time to a target.
     bool first_flake_walks = false;
     double delta_rate = 0.25;
     double delta_roulette_weight = 1e-3;
-    // Delta-chain walks: besides the roulette by weight, each new branch is
-    // kept with a probability set by its promise, how likely its next
-    // reflection or two turn it into a cone (the orientation law at the
-    // half-vector; chain_promise.h), the cones weighted by their relative
-    // error and their need of the delta walks, and
-    // carries the inverse: unbiased, and most branches that cannot score stop
-    // early. From the first adaptation on (adaptive_fractions); false: by
-    // weight alone.
+    // Delta-chain walks (with adaptive_fractions): a branch also survives with a
+    // probability set by its promise of reaching a cone (chain_promise.h) and
+    // carries the inverse; unbiased, and hopeless branches stop early.
     bool chain_promise = true;
     double chain_promise_threshold = 1.4e-4;  // of the walk's start weight (mc_walk.h)
     double chain_promise_floor = 0.2;         // the lowest survival probability
-    // Diagnostics for error budgets: with connections and glint_azimuths, the parts that run (bit
-    // mask): 1 next-event from smooth vertices, 2 the beam's single flake
-    // reflections (glints), 4 the reverse walks. A part left out is not scored at
-    // all (the histogram does not take it over); 8 the delta-chain walks, 16
-    // the forward flake images (flake_images).
-    unsigned connection_parts = 31;
-    // Diagnostics for error budgets: bit mask of the path classes whose
-    // escapes the histogram scores (1 unscattered beam, 2 the beam's first
-    // reflection off an explicit flake, 4 last direction change a pigment,
-    // the Lambertian substrate or a continuum flake, 8 anything else); with
-    // connections, classes 2 and 4 are scored by them and never by the histogram.
-    unsigned histogram_classes = 15;
-    // Diagnostics: of class 8, the part the histogram scores: 1 chains of
-    // delta events from the beam (several flake reflections, internal
-    // reflections), 2 delta events after a pigment, substrate or continuum-flake
-    // vertex when the first direction change was a delta, 4 the same when it was
-    // such a vertex (with reverse_walks, scored by them and never by the
-    // histogram), 8 instead of 2 when the first change was the beam's reflection
-    // off an explicit flake and the second a pigment vertex in its layer (with
-    // reflected_beams, scored by the reverse walks), 16 instead of 2 when the
-    // first change was that reflection, the second the internal reflection at
-    // the paint's top and the third a pigment vertex in the flake's layer (with
-    // top_images, scored by the reverse walks), 32 instead of 2 when the path
-    // ends with a pigment vertex in a flake layer, one reflection off a flake
-    // of that layer and the way out, 64 the same with the top's internal
-    // reflection between the vertex and the flake (with flake_images, scored
-    // by the forward connections).
-    unsigned histogram_other = 127;
+    // Diagnostics for error budgets: what each estimator scores.
+    ConnectionParts connection_parts;
+    HistogramClasses histogram_classes;
+    HistogramOtherParts histogram_other;
 };
 
 struct Estimate {

@@ -1,0 +1,252 @@
+#include "mc_engine.h"
+
+#include "mc_job_runner.h"
+#include "mc_statistics.h"
+
+#include "paintlab/engine/error.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <future>
+
+namespace paintlab::mc {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Paths per chunk of a budgeted job's first round, which measures the pace.
+constexpr std::int64_t kPilotChunkPaths = 16;
+
+// The estimates of a job from its batches' sums: over the batches' means
+// when the batches trace different tiles, else over paths.
+JobResult finish(const JobRunner& runner, const std::vector<Sums>& batches, bool over_batches,
+                 double seconds) {
+    Sums total(runner.entries());
+    for (const auto& b : batches) total.add(b);
+    std::vector<std::int64_t> paths;
+    std::vector<std::vector<double>> batch_means;
+    for (const auto& b : batches)
+        if (b.paths > 0) {
+            paths.push_back(b.paths);
+            batch_means.push_back(b.mean);
+        }
+    const bool use_batches = over_batches && paths.size() >= 2;
+    std::vector<double> column(paths.size());
+    auto entry = [&](std::size_t k) {
+        if (!use_batches) return pooledEstimate(total.mean[k], total.m2[k], total.paths);
+        for (std::size_t b = 0; b < paths.size(); ++b) column[b] = batch_means[b][k];
+        return batchMeansEstimate(column, paths);
+    };
+    JobResult r;
+    IncidenceResult& inc = r.incidence;
+    inc.specular = runner.specular();
+    inc.albedo = entry(kEscaped);
+    inc.albedo.mean += inc.specular;  // exact, no variance
+    inc.transmittance = entry(kTransmitted);
+    for (std::size_t k = 0; k < runner.exitCount(); ++k) inc.brdf_per_sr.push_back(entry(kFirstExit + k));
+    for (std::size_t k = kFirstExit + runner.exitCount(); k < runner.estimateEntries(); ++k)
+        r.projection.push_back(entry(k));
+    inc.paths = total.paths;
+    inc.seconds = seconds;
+    r.batch_paths = std::move(paths);
+    r.batch_means = std::move(batch_means);
+    return r;
+}
+
+// The stop rule's error target: the albedo, every f and the projection's order-0 entries.
+bool converged(const JobResult& r, double target, int orders) {
+    if (!(target > 0.0)) return false;
+    const IncidenceResult& inc = r.incidence;
+    if (inc.albedo.relError() > target) return false;
+    for (const auto& e : inc.brdf_per_sr)
+        if (e.relError() > target) return false;
+    for (std::size_t k = 0; k < r.projection.size(); k += static_cast<std::size_t>(std::max(1, orders)))
+        if (r.projection[k].relError() > target) return false;
+    return true;
+}
+
+}  // namespace
+
+McEngine::McEngine(const Recipe& recipe, const McSettings& settings, const std::function<bool()>& keep_going)
+    : m_recipe(recipe), m_settings(settings), m_batches(std::max(1, settings.batches)) {
+    if (settings.explicit_flakes && !(settings.histogram_cone_deg > 0.0))
+        throw InputError("", "histogram_cone_deg",
+                         "explicit flakes need the histogram estimator (a cone > 0)");
+    if (!settings.explicit_flakes) return;
+    // Explicit flakes: per batch one tile per layer with flakes, the same for
+    // every band, built in parallel (each tile has its own seed and Embree device).
+    std::vector<std::vector<FlakeGeometry>> geometries;
+    std::vector<double> tops;
+    double depth = 0.0;
+    for (const auto& layer : recipe.layers) {
+        geometries.push_back(layerFlakeGeometries(layer));
+        tops.push_back(depth);
+        depth += layer.thickness_um;
+    }
+    const std::size_t layers = recipe.layers.size();
+    m_tiles.resize(static_cast<std::size_t>(m_batches));
+    for (auto& tiles : m_tiles) tiles.resize(layers);
+    m_tilts.assign(static_cast<std::size_t>(m_batches), std::vector<TiltIndex>(layers));
+    m_groups.assign(static_cast<std::size_t>(m_batches), std::vector<FlakeGroups>(layers));
+    std::atomic<bool> stop{false};
+    const auto build_tiles = [&] {
+        tbb::parallel_for(std::size_t{0}, m_tiles.size() * layers, [&](std::size_t index) {
+            const std::size_t k = index / layers;
+            const std::size_t l = index % layers;
+            if (geometries[l].empty()) return;
+            // Batch 0 keeps the single tile's seed of earlier versions.
+            const std::uint64_t tile_seed =
+                settings.seed ^ (0x9e3779b97f4a7c15ULL * (l + 1)) ^ (0xd1b54a32d192ed03ULL * k);
+            m_tiles[k][l] =
+                std::make_unique<FlakeTile>(geometries[l], tops[l], tops[l] + recipe.layers[l].thickness_um,
+                                            tile_seed, settings.tile_flakes, settings.max_tile_flakes,
+                                            settings.reject_overlaps, &stop, settings.flake_polygon_sides);
+            if (settings.connections && settings.glint_azimuths) {
+                m_tilts[k][l] = tiltIndex(*m_tiles[k][l]);
+                if (settings.delta_walks && settings.first_flake_walks)
+                    m_groups[k][l] = flakeGroups(*m_tiles[k][l], m_tilts[k][l], tops[l],
+                                                 tops[l] + recipe.layers[l].thickness_um);
+            }
+        });
+    };
+    if (keep_going) {
+        // The build runs on a helper thread (which joins TBB's arena like this
+        // one would, so both cores still build) while this thread asks
+        // keep_going: a cancel then lands within ~20 ms plus Embree's
+        // monitor interval, not after the whole set-up.
+        auto built = std::async(std::launch::async, build_tiles);
+        while (built.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready)
+            if (!stop.load() && !keep_going()) stop.store(true);
+        try {
+            built.get();  // rethrows the build's error
+        } catch (const std::exception&) {
+            if (!stop.load()) throw;  // a real failure; a cancelled tile's Error is ours
+        }
+        if (stop.load()) throw Error("Monte Carlo: cancelled");
+    } else {
+        build_tiles();
+    }
+    for (const auto& tiles : m_tiles)
+        for (const auto& tile : tiles)
+            if (tile) m_tile_side_um = std::max(m_tile_side_um, tile->sideUm());
+}
+
+McEngine::~McEngine() = default;
+
+McEngine::Band McEngine::band(double wavelength_nm) const {
+    Band band{buildPaintStack(m_recipe, wavelength_nm, m_settings.slices), {}};
+    if (!m_settings.explicit_flakes) return band;
+    // The tiles replace the continuum flakes of their layers.
+    for (auto& slice : band.stack.slices)
+        if (m_tiles[0][static_cast<std::size_t>(slice.layer)]) slice.flakes.clear();
+    std::vector<std::vector<FlakeKind>> kinds;
+    for (std::size_t l = 0; l < m_recipe.layers.size(); ++l)
+        kinds.push_back(m_tiles[0][l] ? layerFlakeKinds(m_recipe.layers[l], wavelength_nm)
+                                      : std::vector<FlakeKind>{});
+    for (std::size_t b = 0; b < m_tiles.size(); ++b) {
+        std::vector<LayerFlakes> layers;
+        for (std::size_t l = 0; l < m_tiles[b].size(); ++l) {
+            const TiltIndex& tilts = m_tilts[b][l];
+            const FlakeGroups& groups = m_groups[b][l];
+            layers.push_back({m_tiles[b][l].get(), kinds[l], tilts.order.empty() ? nullptr : &tilts,
+                              groups.flakes.empty() ? nullptr : &groups});
+        }
+        band.explicit_flakes.push_back(std::move(layers));
+    }
+    return band;
+}
+
+JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t incidence_key,
+                        const JobSpec& job, double budget_seconds,
+                        const std::function<bool(double)>& progress) const {
+    const auto job_start = Clock::now();
+    JobRunner runner(band, job, m_settings, m_tile_side_um, band_key, incidence_key);
+    const std::int64_t max_paths = std::max<std::int64_t>(1, m_settings.max_paths);
+    // Small runs: chunks small enough that every batch gets paths.
+    const std::int64_t chunk = std::max<std::int64_t>(
+        1, std::min<std::int64_t>(m_settings.chunk_paths, (max_paths + m_batches - 1) / m_batches));
+    std::vector<Sums> batches(static_cast<std::size_t>(m_batches),
+                              Sums(runner.entries(), runner.coneStats()));
+    const bool over_batches = m_settings.explicit_flakes && m_batches > 1;
+    std::int64_t next_chunk = 0;  // chunks started: chunk k goes to batch k % batches
+    std::int64_t started = 0;     // paths started: the next chunk's first path index
+    JobResult current;
+    Sums seen(runner.entries(), runner.coneStats());  // every path so far, for the adaptive rates
+    bool pilot_dropped = false;
+    while (started < max_paths) {
+        // One round of chunks in parallel; summed in chunk order (deterministic).
+        const std::int64_t remaining = max_paths - started;
+        std::int64_t round_chunk = chunk;
+        std::int64_t round_chunks =
+            std::min<std::int64_t>(std::max(1, m_settings.chunks_per_round), (remaining + chunk - 1) / chunk);
+        if (budget_seconds > 0.0) {
+            // A time budget: the stop is checked between rounds only, and one
+            // round of a slow paint (long walks in a scattering ground coat)
+            // can outlast a job's share many times over. So a short pilot round
+            // first, then rounds sized to the time left at the pace measured;
+            // runs with a path count alone keep their fixed chunks.
+            const double elapsed = std::chrono::duration<double>(Clock::now() - job_start).count();
+            if (started == 0) {
+                round_chunk = std::min<std::int64_t>(chunk, kPilotChunkPaths);
+            } else {
+                const double seconds_per_path = elapsed / static_cast<double>(started);
+                const double affordable = std::max(0.0, budget_seconds - elapsed) / seconds_per_path;
+                const auto paths =
+                    static_cast<std::int64_t>(std::min(affordable, static_cast<double>(remaining)));
+                round_chunk = std::clamp<std::int64_t>((paths + round_chunks - 1) / round_chunks, 1, chunk);
+            }
+            round_chunks = std::min<std::int64_t>(round_chunks, (remaining + round_chunk - 1) / round_chunk);
+        }
+        std::vector<Sums> sums(static_cast<std::size_t>(round_chunks));
+        tbb::parallel_for(std::int64_t{0}, round_chunks, [&](std::int64_t c) {
+            const std::int64_t index = next_chunk + c;
+            const std::int64_t first = started + c * round_chunk;
+            sums[static_cast<std::size_t>(c)] = runner.runChunk(
+                static_cast<std::size_t>(index % m_batches), first, std::min(round_chunk, max_paths - first));
+        });
+        for (std::int64_t c = 0; c < round_chunks; ++c)
+            batches[static_cast<std::size_t>((next_chunk + c) % m_batches)].add(
+                sums[static_cast<std::size_t>(c)]);
+        next_chunk += round_chunks;
+        started = std::min(max_paths, started + round_chunks * round_chunk);
+        const double elapsed = std::chrono::duration<double>(Clock::now() - job_start).count();
+        bool dropped_now = false;
+        if (runner.coneStats() > 0) {
+            for (const auto& c : sums) seen.add(c);
+            // The paths before the first adaptation ran at the first round's
+            // rates, whose variance can be many times the adapted one (the
+            // demo's flop: next-event connections on 1/8 of the paths at the
+            // unboosted chance, then boosted up to 64 times); they only set the
+            // rates and are dropped while they are a small part of the job
+            // (unbiased: the rates are fixed before the kept paths run).
+            if (runner.adapt(seen) && !pilot_dropped) {
+                pilot_dropped = true;
+                if (started * 8 <= max_paths && (budget_seconds <= 0.0 || elapsed * 8.0 <= budget_seconds)) {
+                    for (auto& b : batches) b = Sums(runner.entries(), runner.coneStats());
+                    dropped_now = true;
+                }
+            }
+        }
+        current = finish(runner, batches, over_batches, elapsed);
+        const bool out_of_time = budget_seconds > 0.0 && elapsed >= budget_seconds;
+        if (progress) {
+            double fraction = std::min(1.0, static_cast<double>(started) / static_cast<double>(max_paths));
+            if (budget_seconds > 0.0) fraction = std::max(fraction, std::min(1.0, elapsed / budget_seconds));
+            if (!progress(fraction)) throw Error("Monte Carlo: cancelled");
+        }
+        // The stop rule reads the spread of the batches: only once every batch has paths
+        // (a spread over a few batches of one chunk each is itself too uncertain to stop on).
+        const bool every_batch = !over_batches || std::all_of(batches.begin(), batches.end(),
+                                                              [](const Sums& b) { return b.paths > 0; });
+        if (out_of_time ||
+            (!dropped_now && every_batch && converged(current, m_settings.target_rel_error, job.orders)))
+            break;
+    }
+    return current;
+}
+
+}  // namespace paintlab::mc

@@ -1,0 +1,80 @@
+#include "mc_statistics.h"
+
+#include <cmath>
+
+namespace paintlab::mc {
+
+namespace {
+
+void addElementwise(std::vector<double>& to, const std::vector<double>& from) {
+    if (to.size() < from.size()) to.resize(from.size(), 0.0);
+    for (std::size_t i = 0; i < from.size(); ++i) to[i] += from[i];
+}
+
+}  // namespace
+
+void ConeStats::add(const ConeStats& o) {
+    delta_samples += o.delta_samples;
+    delta_s1 += o.delta_s1;
+    delta_s2 += o.delta_s2;
+    delta_cost += o.delta_cost;
+    reverse_samples += o.reverse_samples;
+    reverse_s1 += o.reverse_s1;
+    reverse_s2 += o.reverse_s2;
+    reverse_cost += o.reverse_cost;
+    nee_rate += o.nee_rate;
+    nee_s1 += o.nee_s1;
+    nee_s2 += o.nee_s2;
+    glint_samples += o.glint_samples;
+    glint_s1 += o.glint_s1;
+    glint_s2 += o.glint_s2;
+    glint_rays += o.glint_rays;
+}
+
+void Sums::add(const Sums& other) {
+    for (std::size_t k = 0; k < cones.size() && k < other.cones.size(); ++k) cones[k].add(other.cones[k]);
+    addElementwise(first_count, other.first_count);
+    addElementwise(first_s2, other.first_s2);
+    walk_cost += other.walk_cost;
+    nee_cost += other.nee_cost;
+    nee_attempts += other.nee_attempts;
+    if (other.paths == 0) return;
+    const auto na = static_cast<double>(paths);
+    const auto nb = static_cast<double>(other.paths);
+    const double n = na + nb;
+    for (std::size_t k = 0; k < mean.size(); ++k) {
+        const double delta = other.mean[k] - mean[k];
+        mean[k] += delta * nb / n;
+        m2[k] += other.m2[k] + delta * delta * na * nb / n;
+    }
+    paths += other.paths;
+}
+
+Estimate pooledEstimate(double mean, double m2, std::int64_t n) {
+    if (n <= 0) return {};
+    const auto dn = static_cast<double>(n);
+    const double var = n > 1 ? m2 / (dn - 1.0) : 0.0;
+    return {mean, std::sqrt(var / dn)};
+}
+
+Estimate batchMeansEstimate(std::span<const double> batch_means, std::span<const std::int64_t> batch_paths) {
+    double total = 0.0;
+    std::int64_t n = 0;
+    for (std::size_t b = 0; b < batch_means.size(); ++b) {
+        total += batch_means[b] * static_cast<double>(batch_paths[b]);
+        n += batch_paths[b];
+    }
+    if (n <= 0) return {};
+    const auto dn = static_cast<double>(n);
+    const double mean = total / dn;
+    const auto k = static_cast<double>(batch_means.size());
+    if (k < 2.0) return {mean, 0.0};
+    double var = 0.0;
+    for (std::size_t b = 0; b < batch_means.size(); ++b) {
+        const double d = (batch_means[b] - mean) * static_cast<double>(batch_paths[b]) / dn;
+        var += d * d;
+    }
+    return {mean, std::sqrt(var * k / (k - 1.0))};
+}
+
+}  // namespace paintlab::mc

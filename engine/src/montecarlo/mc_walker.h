@@ -1,0 +1,158 @@
+#pragma once
+// The state of one Monte Carlo walk through the paint (mc_walk.h has the
+// walks it runs): where the path is (position, direction, weight, slice), what
+// its direction changes make of it (PathHistory), and what it has tallied
+// (WalkTally). mc_walker.cpp moves it (free paths, tiles, interfaces,
+// substrate, collisions, splitting and roulette); mc_walker_scores.cpp scores
+// it (histogram, projection, next-event estimates and connections).
+
+#include "mc_path_history.h"
+#include "mc_walk.h"
+
+#include <cstdint>
+#include <span>
+
+namespace paintlab::mc {
+
+// What a walk (and the branches split off it) carried out and cost.
+struct WalkTally {
+    double transmitted = 0.0;    // into a transparent substrate
+    double escaped_extra = 0.0;  // what split-off branches carried out through the top
+    double reverse_score = 0.0;  // a reverse walk's estimate of f
+    std::int64_t events = 0;
+    std::int64_t rays = 0;
+    std::int64_t nee_rays = 0;
+    std::int64_t nee_attempts = 0;
+    std::int64_t image_calls = 0;  // flake-image connections (reflectedBeams) traced
+    std::int64_t image_rays = 0;   // their tile intersections and candidate tests
+};
+
+struct Walker {
+    Walker(const PaintStack& stack_, std::span<const LayerFlakes> explicit_flakes_,
+           const WalkSettings& settings_, PathRng& rng_, const Vec3& v_, double weight_, double x_, double y_)
+        : stack(stack_), explicit_flakes(explicit_flakes_), rng(rng_), settings(settings_), v(v_),
+          weight(weight_), x(x_), y(y_) {}
+
+    // What the walk runs in and where its scores go.
+    const PaintStack& stack;
+    std::span<const ExitChain> chains;
+    std::span<const HistogramBin> bins;
+    std::span<const LayerFlakes> explicit_flakes;
+    const FourierCells* fourier = nullptr;
+    PathRng& rng;
+    PathRng* connection_rng = nullptr;  // non-null: connections on
+    const WalkSettings& settings;
+    std::span<double> brdf_out;
+    std::span<const double> nee_weights;  // per bin (empty: settings.connection_weight)
+    std::span<double> nee_out;            // per bin (empty: brdf_out)
+    // Per bin, the factor (>= 1) on a pigment collision's chance to run the
+    // connections into it (PathContext::nee_boost); empty: 1.
+    std::span<const double> nee_boost;
+
+    // Where the path is.
+    Vec3 v;
+    double weight;
+    double x = 0.0;  // lateral position (µm), only used with explicit flakes
+    double y = 0.0;
+    std::size_t j = 0;   // slice
+    double depth = 0.0;  // µm below the top of the paint
+    int splits = 0;      // splits above this branch
+    PathHistory history;
+    WalkTally tally;
+
+    // Which walk this is.
+    enum class Mode {
+        // tracePath: the analog walk, scored by the histogram, the next-event
+        // chains, the projection and the connections.
+        Forward,
+        // traceReversePath: it enters from the exit cone, and scores next-event
+        // estimates towards reverse_target (upward in the top slice, the beam
+        // reversed) from its smooth vertices once its first direction change was
+        // a delta; a first change at a smooth vertex ends it.
+        Reverse,
+        // traceDeltaChains, traceFromFirstFlake: no collisions; the extinction of
+        // the slices is applied as the weight e^(-sigma t) of the straight flight
+        // instead, and a smooth vertex (the Lambertian substrate) ends it.
+        DeltaChain,
+    };
+    Mode mode = Mode::Forward;
+    Vec3 reverse_target{0.0, 0.0, 1.0};  // Reverse
+    double promise_weight = 0.0;         // DeltaChain: promise_threshold times the start weight
+    double beam_x = 1.0;                 // the beam's lateral travel direction (the promise's frame)
+    double beam_y = 0.0;
+
+    // Splitting (WalkSettings::split_branches): the same expectation as choosing a
+    // branch with its probability, without that choice's noise; it matters for
+    // the chains of several delta reflections (class Other), which the choice
+    // thins by the product of the flakes' R and the top's F (docs/PERFORMANCE.md).
+    bool splitting() const { return settings.split_branches && splits < settings.max_splits; }
+    // Follows a copy of this path, its weight times `factor`, to its end, and keeps what it carried.
+    void runBranch(double factor);
+    bool tiled(int layer) const {
+        return static_cast<std::size_t>(layer) < explicit_flakes.size() &&
+               explicit_flakes[static_cast<std::size_t>(layer)].tile != nullptr;
+    }
+    void move(double t) {
+        x += v.x * t;
+        y += v.y * t;
+    }
+
+    // The weight that leaves through the top; 0 when the path is absorbed or lost.
+    double run();
+    // Returns false when the path ends.
+    bool roulette();
+    // Delta-chain walks: the roulette of a new branch by its promise
+    // (WalkSettings::chain_promise); the beam's own branches and those that
+    // head into a cone always go on. Returns false when the branch ends.
+    bool promiseRoulette();
+
+    // Moving (mc_walker.cpp).
+    // Explicit flakes of the current layer along the free path t (medium) and
+    // to_boundary (slice): 1 = a flake was hit and handled, 2 = the ray
+    // wrapped at the tile's side, 0 = nothing in the way, -1 = the path ended.
+    int traceTile(const Slice& s, double sigma, double t, double to_boundary);
+    // An explicit flake hit with unit normal n: reflect, pass or absorb.
+    bool explicitFlakeEvent(const FlakeKind& f, const Vec3& n, int layer);
+    // A flake collision: sample a normal from D weighted by |v.n| (the flakes a
+    // ray meets), then reflect, pass (interference flakes) or absorb.
+    bool flakeEvent(const FlakeKind& f);
+    bool collide(const Slice& s, double sigma, double flake_rate);
+    // `top`: the paint's top (the ambient beyond).
+    bool crossInterface(double n_from, double n_to, bool top);
+    bool substrate(const Slice& s);
+
+    // Scoring (mc_walker_scores.cpp).
+    // Left through the top (v already refracted into the ambient): the
+    // histogram bins that contain the exit direction.
+    void escape();
+    void project(const FourierCells& cells);
+    // Next-event estimate from a collision in slice j with sampling rate sigma.
+    void scoreCollision(const Slice& s, double sigma);
+    // The Lambertian substrate's next-event estimates (chains and cone connections).
+    void scoreLambert(const Slice& s);
+    // Connections from a pigment collision into the cones (directly and through a flake's image).
+    void connectFromPigment(const Slice& s, double sigma);
+    // Reverse walk: the estimates from a pigment collision and from the Lambertian substrate.
+    void reverseFromPigment(const Slice& s, double sigma);
+    void reverseFromLambert(const Slice& s);
+    // Whether the exit direction of upward v (in slice j) lies in a cone: n sin(theta) is kept up to the
+    // ambient.
+    bool headsIntoCone() const;
+    // A pigment collision's chance to run cone k's connections: the share
+    // q = sigma_s / sigma of the collisions that scatter, times the cone's boost.
+    double coneCollisionRate(double q, std::size_t k) const {
+        return nee_boost.empty() ? q : std::min(1.0, q * nee_boost[k]);
+    }
+
+private:
+    template <class Score, class ConeWeight>
+    void eachCone(const Slice& s, const Score& score, const ConeWeight& cone_weight);
+    template <class Emitted, class ConeWeight>
+    void coneNextEvent(const Slice& s, const Emitted& emitted, const ConeWeight& cone_weight);
+    template <class ConeWeight>
+    void coneFlakeImages(const Slice& s, double factor, const ConeWeight& cone_weight);
+    template <class Emitted> void reverseNextEvent(const Slice& s, const Emitted& emitted);
+    void reverseReflectedBeams(const Slice& s, double factor);
+};
+
+}  // namespace paintlab::mc

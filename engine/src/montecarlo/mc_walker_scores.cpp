@@ -1,0 +1,232 @@
+#include "mc_walker.h"
+
+#include "mc_reflected_beams.h"
+
+#include "paintlab/engine/fresnel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace paintlab::mc {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+}  // namespace
+
+// Connections into the cones: for each cone this path connects to, a
+// direction w uniform in it (u: refracted into slice s) and score(w, u),
+// the vertex's estimate towards w before the connection weight, the
+// radiance law (n_0 / n)^2 and the cone's factor w_z Omega / Omega_proj.
+// `cone_weight(k)`: this vertex's own factor on cone k's connection (0: none).
+template <class Score, class ConeWeight>
+void Walker::eachCone(const Slice& s, const Score& score, const ConeWeight& cone_weight) {
+    const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
+    for (std::size_t k = 0; k < bins.size(); ++k) {
+        const double connection_weight =
+            (nee_weights.empty() ? settings.connection_weight : nee_weights[k]) * cone_weight(k);
+        if (!(connection_weight > 0.0)) continue;
+        const HistogramBin& bin = bins[k];
+        const double u1 = connection_rng->uniform();
+        const Vec3 w = sampleInCone(bin, u1, connection_rng->uniform());
+        Vec3 u;
+        if (!(w.z > 0.0) || !refractPlanar(w, stack.ambient_n, s.n, u)) continue;
+        const double value = score(w, u);
+        if (!(value > 0.0)) continue;
+        (nee_out.empty() ? brdf_out : nee_out)[k] +=
+            connection_weight * value * scale * w.z * bin.solid_angle / bin.projected_solid_angle;
+    }
+}
+
+// Connections: next-event estimation from a smooth vertex in slice j into
+// a direction uniform in each cone, through the tiles (mc_connection.h);
+// `emitted(u)` is the vertex's scattered weight per sr towards u (in the
+// slice) over the cosine's projection factor.
+template <class Emitted, class ConeWeight>
+void Walker::coneNextEvent(const Slice& s, const Emitted& emitted, const ConeWeight& cone_weight) {
+    eachCone(
+        s,
+        [&](const Vec3& /*w*/, const Vec3& u) {
+            const double value = emitted(u);
+            if (!(value > 0.0)) return 0.0;
+            ++tally.nee_attempts;
+            return value * straightToAmbient(stack, explicit_flakes, j, depth, x, y, u, &tally.nee_rays);
+        },
+        cone_weight);
+}
+
+// Connections through one flake (WalkSettings::flake_images): from a pigment
+// vertex in slice j (a tiled layer), for a direction w uniform in each cone
+// (u_top in the top slice), the light that reaches w after one mirror
+// reflection off a flake of this layer, straight or by way of the top's
+// internal reflection: by reciprocity the beam -u_top's images off those
+// flakes seen from the vertex (mc_connection.h, reflectedBeams), which a
+// planar flake makes exact. `factor` is the vertex's weight / (sigma q);
+// its scattered weight per sr towards the flake is factor times the kernel
+// (reflectedBeams includes it), and the 1 / u_z of a direct connection is
+// that of the last leg (mirroring keeps the volume element), as for the
+// reverse walks' images.
+template <class ConeWeight>
+void Walker::coneFlakeImages(const Slice& s, double factor, const ConeWeight& cone_weight) {
+    const double n_top = stack.slices.front().n;
+    eachCone(
+        s,
+        [&](const Vec3& w, const Vec3& u) {
+            Vec3 u_top;
+            if (!(u.z > 0.0) || !refractPlanar(w, stack.ambient_n, n_top, u_top)) return 0.0;
+            ++tally.image_calls;
+            return factor / u.z *
+                   reflectedBeams(stack, explicit_flakes, j, depth, x, y, v, {-u_top.x, -u_top.y, -u_top.z},
+                                  {true, true}, &tally.image_rays);
+        },
+        cone_weight);
+}
+
+// Reverse walk: the next-event estimate towards reverse_target (f at that
+// one direction, as the point estimator: no cone), `emitted(u)` as in coneNextEvent.
+template <class Emitted> void Walker::reverseNextEvent(const Slice& s, const Emitted& emitted) {
+    Vec3 u;
+    if (!refractPlanar(reverse_target, stack.slices.front().n, s.n, u) || !(u.z > 0.0)) return;
+    const double value = emitted(u);
+    if (!(value > 0.0)) return;
+    ++tally.nee_attempts;
+    const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
+    tally.reverse_score +=
+        value * straightToAmbient(stack, explicit_flakes, j, depth, x, y, u, &tally.nee_rays) * scale;
+}
+
+// Reverse walk: the next-event estimates towards the beam's single mirror
+// images off the flakes of this layer, and those off a flake and then the
+// paint's top (mc_connection.h, reflectedBeams), with
+// the direct beam's factors (`factor` = weight / (sigma q), over |beam_z|).
+void Walker::reverseReflectedBeams(const Slice& s, double factor) {
+    Vec3 beam;
+    if (!refractPlanar(reverse_target, stack.slices.front().n, s.n, beam) || !(beam.z > 0.0)) return;
+    ++tally.image_calls;
+    const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
+    tally.reverse_score += factor / beam.z * scale *
+                           reflectedBeams(stack, explicit_flakes, j, depth, x, y, v,
+                                          {-reverse_target.x, -reverse_target.y, -reverse_target.z},
+                                          {settings.reflected_beams, settings.top_images}, &tally.image_rays);
+}
+
+void Walker::escape() {
+    if (history.histogramScores(settings.histogram_classes, settings.histogram_other))
+        for (std::size_t k = 0; k < bins.size(); ++k)
+            if (dot(v, bins[k].wo) >= bins[k].cos_cone) brdf_out[k] += weight / bins[k].projected_solid_angle;
+    if (fourier != nullptr) project(*fourier);
+}
+
+void Walker::project(const FourierCells& cells) {
+    const double mu = std::clamp(v.z, 0.0, 1.0);
+    const double t_out = 1.0 - fresnelDielectric(mu, cells.top_eta);
+    if (!(t_out > 0.0)) return;
+    const auto it = std::lower_bound(cells.upper_mu.begin(), cells.upper_mu.end(), mu);
+    const auto cell = std::min(static_cast<std::size_t>(it - cells.upper_mu.begin()), cells.scale.size() - 1);
+    // cos(m delta) by the Chebyshev recurrence from cos(delta).
+    const double sin_o = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+    const double c =
+        sin_o > 1e-12 ? std::clamp((v.x * cells.cos_in + v.y * cells.sin_in) / sin_o, -1.0, 1.0) : 1.0;
+    const double value = weight / t_out * cells.scale[cell];
+    double* out = brdf_out.data() + cells.offset + cell * static_cast<std::size_t>(cells.orders);
+    double previous = 1.0;
+    double current = c;
+    out[0] += value;
+    for (int m = 1; m < cells.orders; ++m) {
+        out[m] += value * current;
+        const double next = 2.0 * c * current - previous;
+        previous = current;
+        current = next;
+    }
+}
+
+void Walker::scoreCollision(const Slice& s, double sigma) {
+    for (std::size_t k = 0; k < chains.size(); ++k) {
+        const ExitChain& c = chains[k];
+        const double mu = c.mu[j];
+        if (mu <= 0.0) continue;
+        const double e = c.extinction[j];
+        double value = 0.0;
+        if (c.up[j] > 0.0)
+            value +=
+                s.kernel(v, c.direction(stack, j, true)) * std::exp(-e * (depth - s.top_um) / mu) * c.up[j];
+        if (c.down[j] > 0.0)
+            value += s.kernel(v, c.direction(stack, j, false)) * std::exp(-e * (s.bottom_um - depth) / mu) *
+                     c.down[j];
+        brdf_out[k] += weight * value / (sigma * mu);
+    }
+}
+
+void Walker::scoreLambert(const Slice& s) {
+    for (std::size_t k = 0; k < chains.size(); ++k)
+        brdf_out[k] += weight * stack.lambert_albedo / kPi * chains[k].lambert;
+    if (connection_rng != nullptr && settings.cone_direct) {
+        const double emitted = weight * stack.lambert_albedo / kPi;
+        coneNextEvent(
+            s, [emitted](const Vec3& /*u*/) { return emitted; }, [](std::size_t /*k*/) { return 1.0; });
+    }
+}
+
+void Walker::connectFromPigment(const Slice& s, double sigma) {
+    // Connections: the kernel of a tiled layer's slice is the pigments' alone
+    // (sigma_s HG), so cone k's next event is drawn with probability
+    // q_k = min(1, b_k sigma_s / sigma) and weighted by 1 / q_k (unbiased;
+    // one uniform for every cone, so the cones' draws nest). With absorbing
+    // pigments most collisions absorb by weighting: at b_k = 1 (the chance
+    // that the collision scatters) a connection costs six shadow rays per
+    // scattering, but the score is then zero on all but q of the
+    // collisions (the demo's carbon black: q ~ 0.5-3 %), and at the flop,
+    // where these connections are most of f, that thinning was most of
+    // the variance. The boosts b_k (nee_boost) trade the two per cone.
+    if (connection_rng != nullptr && s.sigma_s_per_um > 0.0) {
+        const double q = std::min(1.0, s.sigma_s_per_um / sigma);
+        double q_max = q;
+        for (std::size_t k = 0; k < nee_boost.size(); ++k) q_max = std::max(q_max, coneCollisionRate(q, k));
+        const double u_connect = connection_rng->uniform();
+        if (u_connect < q_max) {
+            const auto fired = [&](std::size_t k) {
+                const double q_k = coneCollisionRate(q, k);
+                return u_connect < q_k ? 1.0 / q_k : 0.0;
+            };
+            if (settings.cone_direct)
+                coneNextEvent(
+                    s, [&](const Vec3& u) { return weight * s.kernel(v, u) / (sigma * u.z); }, fired);
+            // The flake images keep the unboosted chance q: they cost a search of
+            // the tile's flakes each, and are a small part of f where boosts pay.
+            if (settings.flake_images && u_connect < q && tiled(s.layer) &&
+                history.deltaFirstPrefixAt(s.layer))
+                coneFlakeImages(s, weight / (sigma * q), [](std::size_t /*k*/) { return 1.0; });
+        }
+    }
+}
+
+void Walker::reverseFromPigment(const Slice& s, double sigma) {
+    if (s.sigma_s_per_um > 0.0) {
+        const double q = std::min(1.0, s.sigma_s_per_um / sigma);
+        if (connection_rng->uniform() < q) {
+            reverseNextEvent(s, [&](const Vec3& u) { return weight * s.kernel(v, u) / (sigma * q * u.z); });
+            if (settings.reflected_beams || settings.top_images)
+                reverseReflectedBeams(s, weight / (sigma * q));
+        }
+    }
+}
+
+void Walker::reverseFromLambert(const Slice& s) {
+    const double emitted = weight * stack.lambert_albedo / kPi;
+    reverseNextEvent(s, [emitted](const Vec3& /*u*/) { return emitted; });
+}
+
+bool Walker::headsIntoCone() const {
+    const double ratio = stack.slices[j].n / stack.ambient_n;
+    const double wx = v.x * ratio;
+    const double wy = v.y * ratio;
+    const double lateral = wx * wx + wy * wy;
+    if (!(lateral < 1.0)) return false;
+    const Vec3 w{wx, wy, std::sqrt(1.0 - lateral)};
+    return std::any_of(bins.begin(), bins.end(),
+                       [&w](const HistogramBin& bin) { return dot(w, bin.wo) >= bin.cos_cone; });
+}
+
+}  // namespace paintlab::mc
