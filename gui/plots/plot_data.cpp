@@ -1,6 +1,8 @@
 #include "plot_data.h"
 
+#include "paintlab/engine/colour/band_weights.h"
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/fast_model/fourier_series.h"
 #include "paintlab/engine/layered_brdf.h"
 
 #include <Eigen/Dense>
@@ -39,54 +41,17 @@ std::vector<double> bandCoefficients(const LayeredBrdf& brdf, std::span<const do
     return out;
 }
 
-// pi f per band at one (cos_o, cos_i) pair from its coefficients and cos(m dphi).
+// pi f per band at one (cos_o, cos_i) pair from its coefficients and cos(m dphi),
+// summed and clipped at zero as LayeredBrdf::eval does.
 void sumSeries(const double* coefficients, std::size_t orders, std::size_t bands,
                std::span<const double> cos_m_dphi, std::span<double> factor) {
-    std::fill(factor.begin(), factor.end(), 0.0);
-    for (std::size_t m = 0; m < orders; ++m) {
-        const double c = cos_m_dphi[m];
-        const double* at = coefficients + m * bands;
-        for (std::size_t b = 0; b < bands; ++b) factor[b] += c * at[b];
-    }
-    // eval() clips each band at zero: a truncated Fourier series can ring slightly below it.
-    for (double& v : factor) v = std::numbers::pi * std::max(0.0, v);
+    const std::span<const double> band_major(coefficients, orders * bands);
+    for (std::size_t b = 0; b < bands; ++b)
+        factor[b] =
+            clippedFourierSum(cos_m_dphi.first(orders), band_major.subspan(b), bands, std::numbers::pi);
 }
 
 }  // namespace
-
-ColourWeights colourWeights(std::span<const double> wavelengths_nm, const ColourConditions& conditions) {
-    ColourWeights w;
-    w.conditions = conditions;
-    std::vector<double> unit(wavelengths_nm.size(), 0.0);
-    for (std::size_t k = 0; k < unit.size(); ++k) {
-        unit[k] = 1.0;
-        const SpectralColour c = spectrumColour(wavelengths_nm, unit, conditions);
-        w.xyz.push_back(c.xyz);
-        w.linear_srgb.push_back(c.linear_srgb);
-        unit[k] = 0.0;
-    }
-    return w;
-}
-
-Xyz weightedXyz(const ColourWeights& w, std::span<const double> spectrum) {
-    Xyz xyz;
-    for (std::size_t k = 0; k < spectrum.size() && k < w.xyz.size(); ++k) {
-        xyz.X += spectrum[k] * w.xyz[k].X;
-        xyz.Y += spectrum[k] * w.xyz[k].Y;
-        xyz.Z += spectrum[k] * w.xyz[k].Z;
-    }
-    return xyz;
-}
-
-Rgb weightedLinearSrgb(const ColourWeights& w, std::span<const double> spectrum) {
-    Rgb rgb;
-    for (std::size_t k = 0; k < spectrum.size() && k < w.linear_srgb.size(); ++k) {
-        rgb.r += spectrum[k] * w.linear_srgb[k].r;
-        rgb.g += spectrum[k] * w.linear_srgb[k].g;
-        rgb.b += spectrum[k] * w.linear_srgb[k].b;
-    }
-    return rgb;
-}
 
 std::vector<double> inplaneViewAnglesDeg() {
     std::vector<double> view;
@@ -111,7 +76,7 @@ std::vector<InplaneCurve> inplaneCurves(const LayeredBrdf& brdf, std::span<const
 
     const std::size_t bands = brdf.wavelengthsNm().size();
     const auto orders = static_cast<std::size_t>(brdf.orders());
-    const ColourWeights weights = colourWeights(brdf.wavelengthsNm());
+    const BandColourWeights weights = bandColourWeights(brdf.wavelengthsNm());
     // The light is at azimuth 180: the light's side has dphi = 0, the far side dphi = 180.
     std::vector<double> same_side(orders, 1.0);
     std::vector<double> far_side(orders);
@@ -158,7 +123,7 @@ LobeGrid lobeGrid(const LayeredBrdf& brdf, double theta_i_deg, double phi_i_deg,
 
     const std::size_t bands = brdf.wavelengthsNm().size();
     const auto orders = static_cast<std::size_t>(brdf.orders());
-    const ColourWeights weights = colourWeights(brdf.wavelengthsNm());
+    const BandColourWeights weights = bandColourWeights(brdf.wavelengthsNm());
     // cos(m (phi_o - phi_i)) per azimuth and order.
     std::vector<double> cos_m(static_cast<std::size_t>(phi_count) * orders);
     for (std::size_t p = 0; p < g.phi_o_deg.size(); ++p)

@@ -10,10 +10,8 @@
 // all their polar angles in one LayeredBrdf::fourierCoefficientsGrid call and
 // sum the series per direction: the same f as eval() (same tables, same
 // interpolation, each band clipped at zero as eval() does), to rounding.
-// Colours use the fact that XYZ and linear sRGB of a spectrum are linear in
-// its samples (reflectanceToXyz sums R(lambda) S x-bar over a spectrum that is
-// linear between samples): the colour of each band's unit spectrum, computed
-// once with spectrumColour, weights every direction's spectrum.
+// Colours weight every direction's spectrum by the colours of the bands
+// (colour/band_weights.h).
 
 #include "paintlab/engine/brdf_colour.h"
 #include "paintlab/engine/multiangle.h"
@@ -29,18 +27,6 @@ class LayeredBrdf;
 }
 
 namespace paintlab::gui {
-
-// Linear maps from a spectrum sampled at fixed wavelengths to its colour.
-struct ColourWeights {
-    ColourConditions conditions;  // of xyz; linear sRGB is D65 / 2° by definition (brdf_colour.h)
-    std::vector<Xyz> xyz;         // per sample: the XYZ of the unit spectrum at that sample
-    std::vector<Rgb> linear_srgb;
-};
-
-// Throws as spectrumColour.
-ColourWeights colourWeights(std::span<const double> wavelengths_nm, const ColourConditions& conditions = {});
-Xyz weightedXyz(const ColourWeights& w, std::span<const double> spectrum);
-Rgb weightedLinearSrgb(const ColourWeights& w, std::span<const double> spectrum);
 
 // In-plane reflectance factor pi f for light at theta_i (azimuth 180°),
 // viewed in the plane of incidence at view_deg: negative on the light's side

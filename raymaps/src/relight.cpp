@@ -4,7 +4,6 @@
 #include "relight_grid.h"
 #include "sampling.h"
 
-#include "paintlab/engine/brdf_colour.h"
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/layered_brdf.h"
 #include "paintlab/raymaps/relight.h"
@@ -48,18 +47,8 @@ RelightTables::RelightTables(const LayeredBrdf& brdf, int cells, int orders)
     const auto start = std::chrono::steady_clock::now();
     const auto wavelengths = brdf.wavelengthsNm();
     const std::size_t bands = wavelengths.size();
-    // Linear sRGB is linear in the spectrum: the weights are the colours of
-    // the unit spectra (brdf_colour.h: D65 / 2 degrees, white -> (1, 1, 1)).
-    m_weights.assign(3 * bands, 0.0);
-    std::vector<double> unit(bands, 0.0);
-    for (std::size_t b = 0; b < bands; ++b) {
-        unit[b] = 1.0;
-        const Rgb c = spectrumColour(wavelengths, unit).linear_srgb;
-        unit[b] = 0.0;
-        m_weights[3 * b] = c.r;
-        m_weights[3 * b + 1] = c.g;
-        m_weights[3 * b + 2] = c.b;
-    }
+    // Linear sRGB of each band (D65 / 2 degrees, white -> (1, 1, 1)).
+    m_weights = bandColourWeights(wavelengths);
     // Orders kept: at least 8 (the light table sums them at kC azimuths).
     const int n_phi = std::max(8, brdf.settings().orders);
     const auto nu = static_cast<std::size_t>(kN);
@@ -80,9 +69,10 @@ RelightTables::RelightTables(const LayeredBrdf& brdf, int cells, int orders)
     std::vector<double> mu_nodes(nu);
     for (int k = 0; k < kN; ++k) mu_nodes[static_cast<std::size_t>(k)] = grid::muNode(k);
     Eigen::MatrixXd weights(static_cast<Eigen::Index>(bands), 3);
-    for (std::size_t b = 0; b < bands; ++b)
-        for (std::size_t c = 0; c < 3; ++c)
-            weights(static_cast<Eigen::Index>(b), static_cast<Eigen::Index>(c)) = m_weights[3 * b + c];
+    for (std::size_t b = 0; b < bands; ++b) {
+        const Rgb& c = m_weights.linear_srgb[b];
+        weights.row(static_cast<Eigen::Index>(b)) << c.r, c.g, c.b;
+    }
     std::vector<double> series(nu * nu * series_orders * 3);
     brdf.fourierCoefficientsGrid(mu_nodes, mu_nodes, weights, series);
 
@@ -183,10 +173,8 @@ RelightTables::RelightTables(const LayeredBrdf& brdf, int cells, int orders)
 }
 
 Rgb3 RelightTables::toRgb(const std::vector<double>& spectrum) const {
-    Rgb3 c = Rgb3::Zero();
-    for (std::size_t b = 0; b < spectrum.size() && 3 * b + 2 < m_weights.size(); ++b)
-        c += spectrum[b] * Rgb3(m_weights[3 * b], m_weights[3 * b + 1], m_weights[3 * b + 2]);
-    return c;
+    const Rgb c = weightedLinearSrgb(m_weights, spectrum);
+    return {c.r, c.g, c.b};
 }
 
 Rgb3 RelightTables::lightTable(double mu_o, double mu_i, double cos_dphi) const {

@@ -5,7 +5,7 @@
 #include "record_layout.h"
 #include "sampling.h"
 
-#include "paintlab/engine/brdf_colour.h"
+#include "paintlab/engine/colour/band_weights.h"
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/sparkle_texture.h"
 
@@ -64,16 +64,14 @@ SparklePassStats addSparkle(const RayMap& map, const SparkleModel& model, RgbIma
     SparklePassStats stats;
     if (!model.hasFlakes() || h.lights.empty()) return stats;
 
-    // Linear sRGB weights of the model's bands (as RelightTables: the colours of the unit spectra).
+    // Linear sRGB weights of the model's bands (colour/band_weights.h).
     const auto wavelengths = model.wavelengthsNm();
     const std::size_t bands = wavelengths.size();
     std::vector<Rgb3> weights(bands, Rgb3::Zero());
     if (bands >= 2) {
-        std::vector<double> unit(bands, 0.0);
+        const BandColourWeights colours = bandColourWeights(wavelengths);
         for (std::size_t b = 0; b < bands; ++b) {
-            unit[b] = 1.0;
-            const Rgb c = spectrumColour(wavelengths, unit).linear_srgb;
-            unit[b] = 0.0;
+            const Rgb& c = colours.linear_srgb[b];
             weights[b] = Rgb3(c.r, c.g, c.b);
         }
     } else {

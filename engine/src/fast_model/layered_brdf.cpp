@@ -3,6 +3,7 @@
 #include "stack_assembly.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/fast_model/fourier_series.h"
 #include "paintlab/engine/fresnel.h"
 
 #include <tbb/parallel_for.h>
@@ -41,17 +42,11 @@ std::string_view presetName(Preset preset) {
 }
 
 FastModelSettings presetSettings(Preset preset) {
-    // Points on the measured accuracy-vs-time curves (tests/bench/bench_fast_model.cpp,
-    // docs/PERFORMANCE.md): worst CIEDE2000 over the six multi-angle geometries
-    // of the demo paints against the reference preset. Bands are computed over
-    // the whole 380-780 nm; preview needs 12 of them there (8 gave dE 2.9 on the
-    // pearlescent demo, 10 gave 1.6, 12 give 0.73, 14 give 0.53):
-    //   preview   pearlescent dE 0.60; silver 0.052; solid red 0.23; three-layer 0.44
-    //   standard  pearlescent dE 0.069; silver 0.010; solid red 0.040; three-layer 0.047
-    // The colour error of the cheap presets is mostly spectral (few bands),
-    // hence output_bands; the angular grid converges fast. Preview spaces the
-    // flake kernel's azimuth points one spread apart (4 per spread: pearlescent
-    // 0.73, silver 0.028), a fifth fewer instructions per recompute.
+    // Points on the measured accuracy-vs-time curves (tests/bench/bench_fast_model.cpp;
+    // the figures: docs/PERFORMANCE.md, docs/CHANGELOG.md). The cheap presets'
+    // colour error is mostly spectral (few bands), hence output_bands; the
+    // angular grid converges fast. Preview spaces the flake kernel's azimuth
+    // points one spread apart: a fifth less work.
     switch (preset) {
     case Preset::Preview:
         return {.nodes = 12,
@@ -433,20 +428,23 @@ void LayeredBrdf::eval(const Direction& wi, const Direction& wo, std::span<doubl
     Eigen::VectorXd out_odd;
     Eigen::VectorXd in_even;
     Eigen::VectorXd in_odd;
+    std::vector<double> terms;  // per order: 1 for m = 0, 2 (-1)^m cos(m dphi) for m > 0
+    std::vector<double> coefficients;
     for (std::size_t b = 0; b < m_bands.size() && b < out.size(); ++b) {
         const BandTable& t = m_bands[b];
         interpolationBasis(t, m_ambient_index, wo.z, out_even, out_odd);
         interpolationBasis(t, m_ambient_index, wi.z, in_even, in_odd);
         const double eta = m_top_index_per_band[b] / m_ambient_index;
         const double transmit = (1.0 - fresnelDielectric(wi.z, eta)) * (1.0 - fresnelDielectric(wo.z, eta));
-        double value = 0.0;
-        for (std::size_t m = 0; m < t.f.size(); ++m) {
+        for (std::size_t m = terms.size(); m < t.f.size(); ++m) {
             const double sign = (m % 2 == 0) ? 1.0 : -1.0;
-            const double weight = m == 0 ? 1.0 : 2.0 * sign * std::cos(double(m) * dphi);
-            value +=
-                m % 2 == 0 ? weight * out_even.dot(t.f[m] * in_even) : weight * out_odd.dot(t.f[m] * in_odd);
+            terms.push_back(m == 0 ? 1.0 : 2.0 * sign * std::cos(double(m) * dphi));
         }
-        out[b] = std::max(0.0, transmit * value);  // a truncated Fourier series can ring slightly below zero
+        coefficients.resize(t.f.size());
+        for (std::size_t m = 0; m < t.f.size(); ++m)
+            coefficients[m] = m % 2 == 0 ? out_even.dot(t.f[m] * in_even) : out_odd.dot(t.f[m] * in_odd);
+        out[b] =
+            clippedFourierSum(std::span<const double>(terms).first(t.f.size()), coefficients, 1, transmit);
     }
 }
 

@@ -206,10 +206,6 @@ FlakeTotals flakeTotals(const FlakeOrientation& orientation, const FlakeTable& t
 // lobe too narrow to resolve reflects as horizontal flakes do). Energy is
 // therefore exact for any spread, from the delta (all of it deficit) to the
 // random hemisphere.
-//
-// (An earlier version binned the mirrored directions of the sampled normals
-// into quadrature cells: a piecewise-constant, noisy estimate of the lobe in
-// mu that converged slowly and aliased in the high Fourier orders.)
 void addFlakes(const std::vector<FlakeKind>& kinds, const layered::Quadrature& q,
                const FlakeSampling& sampling, SlabKernels& k) {
     const int n = q.size();

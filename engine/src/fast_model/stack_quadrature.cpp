@@ -26,8 +26,7 @@ StackQuadrature::StackQuadrature(int n_nodes, const std::vector<double>& indices
     // slab quadrature does, quadrature.h), at least two per interval, by
     // largest remainders. The interval towards the normal is the escape cone of
     // the lowest index (the ambient's, in a paint): the only directions the
-    // outside sees, where the BRDF is evaluated and its lobes are; a share
-    // by length gave it about 26 % of the nodes under a 1.5 coat, by flux 45 %.
+    // outside sees, where the BRDF is evaluated and its lobes are.
     std::vector<int> counts(static_cast<std::size_t>(intervals), 2);
     const int spare = std::max(0, n_nodes - 2 * intervals);
     std::vector<std::pair<double, int>> remainders;

@@ -9,18 +9,11 @@
 //     D(mu) = kappa exp(kappa (mu - 1)) / (2 pi (1 - exp(-kappa)))   [1/sr],
 //     kappa = 1 / sigma^2 - 1 / (pi/2)^2,   sigma = spread in radians,
 //
-// normalised so that the integral of D over the upper hemisphere is 1.
-// Why this form: for small sigma, exp(kappa (mu - 1)) ~ exp(-alpha^2 / (2 sigma^2)),
-// i.e. the tilt vector (alpha cos phi, alpha sin phi) is a 2-D Gaussian with
-// standard deviation sigma per axis (the usual description of flake
-// alignment in effect coatings by a tilt-angle spread); the
-// -1/(pi/2)^2 shift makes sigma = 90 deg exactly the uniform (random)
-// hemisphere, so the range 0..90 deg spans "perfectly aligned" to "random";
-// and the hemispherical normalisation, the inverse-CDF sampling and the mean
-// cosine all have closed forms that stay stable from 0.1 deg (kappa ~ 3e5)
-// to 90 deg (kappa = 0). Spread 0 is the exact delta (all flakes parallel
-// to the surface). Between these limits sigma is a shape parameter: at
-// 30 deg kappa is 11 % below 1/sigma^2.
+// normalised over the upper hemisphere. Why this form: for small sigma the
+// tilt is a 2-D Gaussian of sigma per axis (how effect coatings describe
+// flake alignment); the -1/(pi/2)^2 shift makes sigma = 90 deg exactly the
+// uniform hemisphere; normalisation, inverse-CDF sampling and mean cosine are
+// closed forms stable from 0.1 to 90 deg. Spread 0 is the exact delta.
 //
 // Never throws; the spread is clamped to [0, 90] degrees (NaN -> 0).
 

@@ -31,20 +31,16 @@ struct FastModelSettings {
     int flake_polar = 12;  // Gauss nodes (tilt x azimuth, per smooth piece) for the flake totals
     int flake_azimuth = 12;
     int flake_table = 129;  // cosines at which the flakes' reflectance is tabulated (cubic in between)
-    // Azimuth points per orientation spread sigma in the Fourier coefficients of
-    // the flake reflection kernel (midpoint rule over [0, pi], at least orders + 8):
-    // 4 resolves the lobe, 1 spaces the points one sigma apart, still below the
-    // lobe's azimuthal width of ~2 sigma (preview: a fifth less work, docs/PERFORMANCE.md).
+    // Azimuth points per orientation spread in the flake kernel's Fourier
+    // coefficients (midpoint rule, at least orders + 8): 4 resolves the lobe.
     double flake_kernel_points_per_spread = 4.0;
-    // Fourier orders beyond the first whose kernels (every slab's largest
-    // |K^m| relative to its |K^0|) fall below this are not computed (their
-    // f^m are zero), unless the substrate reflects in that order (a mirror).
+    // Orders whose kernels fall below this (relative to order 0) are not
+    // computed, unless the substrate reflects in that order (a mirror).
     double order_tolerance = 1e-6;
-    // When larger than `bands`: the model runs at `bands` wavelengths and the
-    // tables are then interpolated (cubic in wavelength) to this many, which
-    // are what wavelengthsNm() and bands() report. Reflectance spectra of
-    // paints are smooth on the scale of the band spacing, while colour from a
-    // linearly interpolated coarse spectrum is not accurate (8 bands: dE ~1).
+    // When larger than `bands`: the tables are interpolated (cubic in
+    // wavelength) to this many bands, which wavelengthsNm() reports. Paint
+    // spectra are smooth, but colour from a linearly interpolated coarse
+    // spectrum is not accurate.
     int output_bands = 0;
 };
 
@@ -69,19 +65,17 @@ public:
     std::vector<double> specularReflectance(double cos_theta) const;
 
     // The azimuthal Fourier series of eval() between two polar directions
-    // (cosines in the ambient medium): f(wi, wo) = sum over m of
-    // out[m * bands + b] cos(m (phi_o - phi_i)), for m < orders(), per band b,
-    // 1/sr. One matrix-vector product per order and band instead of sampling
-    // eval() over the azimuth: what a renderer's tables need. Unlike eval(),
-    // the series is not clipped at zero where truncation makes it ring.
+    // (cosines in the ambient medium): f(wi, wo) = sum over m < orders() of
+    // out[m * bands + b] cos(m (phi_o - phi_i)), per band b, 1/sr; what a
+    // renderer's tables need. Not clipped at zero, unlike eval()
+    // (clippedFourierSum, fast_model/fourier_series.h, sums it as eval() does).
     void fourierCoefficients(double cos_o, double cos_i, std::span<double> out) const;
     // fourierCoefficients() on a grid of direction pairs, reduced over the
-    // bands by `weights` (bands() x C, e.g. the band -> linear sRGB weights):
+    // bands by `weights` (bands() x C, e.g. band -> linear sRGB):
     // out[((o * cos_i.size() + i) * orders() + m) * C + c] =
-    //   sum_b weights(b, c) f^m_b(cos_o[o], cos_i[i]). Each cosine's
-    // interpolation basis is computed once and each f^m applied once per
-    // (cos_o, band): what a renderer's tables need (33 x 33 pairs: ~20x
-    // faster than pair by pair). Throws InputError if the sizes do not fit.
+    //   sum_b weights(b, c) f^m_b(cos_o[o], cos_i[i]). Each interpolation
+    // basis is computed once, so it is much faster than pair by pair.
+    // Throws InputError if the sizes do not fit.
     void fourierCoefficientsGrid(std::span<const double> cos_o, std::span<const double> cos_i,
                                  const Eigen::MatrixXd& weights, std::span<double> out) const;
     // Orders in fourierCoefficients(): the largest computed in any band.
@@ -102,19 +96,14 @@ public:
         Eigen::VectorXd specular;        // top-interface reflectance at mu
         Eigen::VectorXd albedo;          // directional-hemispherical, incl. specular
         Eigen::VectorXd flux_weight;     // of mu in the ambient medium (sum 1)
-        // Interpolation (eval, albedo): f^m is analytic in the polar angle
-        // theta_ref that a direction has in the stack's densest medium (index
-        // reference_index), sin^m theta times a smooth function, and every
-        // quadrature interval of the grid is one Gauss rule; so within each
-        // interval f^m is interpolated by the polynomial through its nodes in
-        // theta_ref (barycentric form). Nodes [piece_begin[p], piece_begin[p+1])
-        // form interval p, whose lower end is piece_mu_low[p] (cosine in the
-        // reference medium). The interval that reaches the normal (theta 0) is
-        // extended to negative angles by the parity of f^m (even for even m,
-        // odd for odd m): its Gauss nodes, clustered in mu, are evenly spread
-        // in theta near 0, and a polynomial through them alone would suffer
-        // Runge's phenomenon there; mirrored, the node set is clustered at both
-        // of its ends, as interpolation needs.
+        // Interpolation (eval, albedo): f^m is smooth in the polar angle
+        // theta_ref in the stack's densest medium (index reference_index), so
+        // within each quadrature interval it is the polynomial through the
+        // interval's nodes in theta_ref (barycentric form). Nodes
+        // [piece_begin[p], piece_begin[p+1]) form interval p, whose lower end
+        // is piece_mu_low[p]. The interval at the normal is mirrored to
+        // negative angles by the parity of f^m, which avoids Runge's
+        // phenomenon there.
         double reference_index = 1.0;
         std::vector<double> node_angle;   // theta_ref of each node (rad)
         std::vector<double> node_bary;    // barycentric weights within its (extended) piece
@@ -124,11 +113,10 @@ public:
     };
     const std::vector<BandTable>& bands() const { return m_bands; }
 
-    // The same wavelengths, grid, interpolation and mirror term as `grid`,
-    // with each band's f^m and albedo replaced by `tables` (same node counts:
-    // InputError otherwise). This is how another estimator of the same paint
-    // (the full model's projection on this basis, montecarlo/mc_table.h)
-    // becomes a LayeredBrdf that every tool (eval, multiangle, relight) takes.
+    // The wavelengths, grid, interpolation and mirror term of `grid` with
+    // each band's f^m and albedo from `tables` (same node counts: InputError
+    // otherwise): how the full model's tables (montecarlo/mc_table.h) become
+    // a LayeredBrdf that every tool takes.
     static LayeredBrdf withTables(const LayeredBrdf& grid, std::vector<BandTable> tables, double seconds);
 
 private:

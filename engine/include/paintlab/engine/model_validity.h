@@ -1,26 +1,14 @@
 #pragma once
 // Where the fast model's continuum of flakes stops standing for real flat
-// flakes: the boundary measured by the fast-vs-full comparison report
-// (docs/VALIDATION.md, "Fast vs full model: comparison report";
-// docs/fast_vs_full.csv), as a number the effect planner can use
-// (shared/ARCHITECTURE.md, "Effect planner": the full model only outside the
-// fast model's validity).
-//
-// What breaks: the fast model treats flakes as independent infinitesimal
-// reflectors spread evenly through the film's depth. Real flakes are large,
-// and two things follow (model_validity.cpp derives both):
-// - Hiding: the light a flake reflects leaves along a way close to the way
-//   in, which was just found free of flakes: light escapes more easily (the
-//   hiding or opposition effect of dense media of large scatterers), and the
-//   full model is brighter, by up to a factor of two in single scattering.
-// - Surface depletion: a tilted flake cannot poke out of its film, so its
-//   centre keeps r sin(tilt) from each face and the film's top holds fewer
-//   tilted flakes than the continuum's even spread. Where the film absorbs
-//   (carbon black under a pearl), the top is what the viewer sees, and the
-//   full model is the darker at the geometries that need tilted flakes (the
-//   demo pearlescent: -11 % near the specular to -35 % at 45as75).
-// The rule is the two mechanisms, the hiding with three constants fitted to
-// the report's points geometry by geometry, the depletion in closed form.
+// flakes, as a number the effect planner can use: the boundary measured by
+// the fast-vs-full comparison report (docs/VALIDATION.md). Large flakes
+// differ from the continuum in two ways (model_validity.cpp derives both):
+// - hiding: light leaves along a way close to the way in, just found free
+//   of flakes, so the full model is brighter (up to 2x in single scattering);
+// - surface depletion: a tilted flake cannot poke out of its film, so the
+//   top of an absorbing film holds fewer tilted flakes and the full model is
+//   darker where they are needed.
+// Hiding has three constants fitted to the report; depletion is closed form.
 
 #include "paintlab/engine/recipe.h"
 

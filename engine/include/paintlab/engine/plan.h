@@ -1,24 +1,15 @@
 #pragma once
-// The effect planner (shared/ARCHITECTURE.md, "Effect planner"; issue 7):
-// from the recipe, a summary of how the scene lights and sees the paint, and
-// an accuracy preset, decide what to simulate, each decision with its reason
-// and the error it accepts.
+// The effect planner (issue 7): from the recipe, a summary of how the scene
+// lights and sees the paint (PlanScene; raymaps/plan_scene.h makes one from a
+// scene, since the engine knows no scenes) and an accuracy preset, decide
+// what to simulate, each decision with its reason and the error it accepts.
 //
-// The engine does not know scenes (raymaps depends on the engine, not the
-// other way round), so the lighting and viewing come as a PlanScene; the
-// raymaps library summarises its Scene into one (raymaps/plan_scene.h) and
-// offers plan(const Recipe&, const raymaps::Scene&, Preset).
-//
-// Errors are CIEDE2000 colour differences per pixel (the 99th percentile
-// over the paint's pixels is what the planner's honesty tests measure). A
-// relative change delta of a pixel's radiance changes its CIELAB lightness
-// by 116 |(1 + delta)^(1/3) - 1| (Y/Y_white)^(1/3) and its chroma in the same
-// ratio; with S_L >= 1 and S_C = 1 + 0.045 C* >= 1 (CIE 142-2001) the
-// lightness part bounds Delta E_00 for pixels no brighter than white, which
-// is what the plan claims (deltaEForRelativeChange). A decision is
-// "skip/reduce" only when its claimed error is below half the preset's
-// tolerance (preview 2, standard 1, reference 0.3), so that two accepted
-// errors together stay within it.
+// Errors are CIEDE2000 differences per pixel (99th percentile over the
+// paint). A relative radiance change delta changes L* by at most
+// 116 |(1 + delta)^(1/3) - 1| for pixels no brighter than white, which bounds
+// Delta E_00 (S_L, S_C >= 1, CIE 142-2001): deltaEForRelativeChange. An
+// effect is skipped or reduced only when its claimed error is below half the
+// preset's tolerance, so that two accepted errors together stay within it.
 
 #include "paintlab/engine/layered_brdf.h"
 #include "paintlab/engine/recipe.h"

@@ -1,74 +1,34 @@
 #pragma once
-// Sparkle: the glints of individual flakes (shared/ARCHITECTURE.md,
-// "Sparkle"; issue 7). The fast model treats flakes as a continuum, so its
-// BRDF is the *mean* over many flakes. A surface element seen by one pixel
-// (or by the eye at its angular resolution) holds a finite number of
-// flakes; only those whose normal lies within the angular resolution of the
-// half vector of a bright light and the view reflect the light towards the
-// eye, and they do so brightly. This file gives the statistics of that
-// count and of its radiance; sparkle_texture.h draws a deterministic texture
-// from them.
+// Sparkle: the glints of individual flakes (issue 7). The fast model's BRDF
+// is the mean over many flakes; a surface element seen by one pixel holds a
+// finite number, and only those whose normal lies within the angular
+// resolution of light and eye around the half vector glint. This file gives
+// the statistics of that count and its radiance; sparkle_texture.h draws a
+// texture from them. Inside the flakes' layer (primes: refracted into the
+// binder, n_r = n / n0):
 //
-// Definitions (all inside the layer that holds the flakes, primes: in the
-// binder of index n, below a stack of smooth interfaces from the ambient n0):
-//
-//   rho   = A / a_f            flakes per unit volume: A the flake area per
-//                              unit volume (one face, layer_optics.h), a_f = pi d^2 / 4
-//   h'    = (wi' + wo') / |.|  half vector of the refracted light and view
-//   c_d   = wi' . h'           local cosine on the flake
+//   rho = A / a_f (flakes per volume; A area per volume, a_f = pi d^2 / 4),
+//   h' = (wi' + wo') / |.|, c_d = wi' . h',
 //   Omega_w' = Omega_L mu_i / (n_r^2 mu_i') + Omega_V mu_o / (n_r^2 mu_o') + pi (2 beta)^2
-//                              the angular resolution (solid angle) of light +
-//                              eye refracted into the binder (dw' = dw mu / (n_r^2 mu'),
-//                              n_r = n / n0; radiance invariance L / n^2), widened by
-//                              each flake's own reflection lobe: a real flake is not
-//                              flat (waviness, edges; "cornflake" aluminium most), its
-//                              normals spread by beta (SparkleSettings::flake_lobe_deg)
-//                              and its reflection by 2 beta. Adding solid angles is
-//                              exact for Gaussian angular profiles (their variances
-//                              add under convolution).
-//   Omega_h' = Omega_w' / (4 c_d)  the window of normals that reflect the light
-//                              into the view: dw_h = dw_o / (4 |wi . h|) (Walter et al.,
-//                              EGSR 2007, eq. 14)
-//   A_el  = max(element area, a_f c_d / mu_o')   a flake larger than the element
-//                              covers it (the glint is then capped at full coverage)
-//
-// Poisson mean of glinting flakes in one homogeneous depth slice of height H:
+//     (light + eye refracted into the binder, widened by the flake's own
+//     lobe beta; Gaussian profiles add their variances),
+//   Omega_h' = Omega_w' / (4 c_d) (Walter et al., EGSR 2007, eq. 14),
+//   A_el = max(element area, a_f c_d / mu_o') (a flake larger than the element covers it).
 //
 //   Lambda = rho A_el D(h'_z) Omega_h' H                                    (1)
-//
-// with D the normal density (flake_orientation.h). A flake at depth z below
-// the slice's top glints with the element-averaged ambient radiance
-//
 //   L_g(z) = E U_i U_o (mu_i / mu_i') R(c_d) / Omega_w' * a_f c_d / (mu_o' A_el) * w(z),
-//   w(z)   = exp(-sigma_e z),  sigma_e = sigma_t(mu_i') / mu_i' + sigma_t(mu_o') / mu_o'  (2)
-//
-// E the light's irradiance (normal to its beam), R the flake reflectance at
-// the local angle (thin_film.h), sigma_t the fast model's extinction of the
-// unscattered beam (binder and pigment absorption, pigment scattering, and
-// the flakes' own shadowing A E_D[(1 - T)|v.n|]), U_i the flux transmittance
-// from the ambient into the slice along wi (coat Fresnel transmission and the
-// attenuation by every slice above, multiple reflections between parallel
-// interfaces included: the full model's exit chain, mc_stack.h, used both
-// ways by reciprocity), U_o the radiance transmittance of the way out (the
-// same chain, which carries the factor (n0/n)^2 of radiance leaving a denser medium).
-// Summed over the Poisson number of flakes (uniform in depth within the
-// slice) the expected radiance is
-//
-//   E[S] = Lambda E[w] L_g(0) = E mu_i f_flake(wi, wo),
-//   f_flake = sum over slices of U_i U_o K / (mu_i' mu_o') int_0^H w dz,
+//   w(z) = exp(-sigma_e z), sigma_e = sigma_t(mu_i') / mu_i' + sigma_t(mu_o') / mu_o'  (2)
+//   E[S] = E mu_i f_flake, f_flake = sum over slices of U_i U_o K / (mu_i' mu_o') int_0^H w dz,
 //   K = A R(c_d) D(h'_z) / 4                                                (3)
+//   Var[S] / E[S]^2 = E[w^2] / (Lambda E[w]^2)                              (4)
 //
-// which is exactly the single-scattering flake term of the fast model (the
-// kernel of slab_operator.cpp / mc_stack.h): the texture moves energy
-// between elements, it does not create it. The relative variance of the
-// compound Poisson sum S,
-//
-//   Var[S] / E[S]^2 = E[w^2] / (Lambda E[w]^2),                             (4)
-//
-// is the sparkle's contrast: it vanishes as flakes get smaller than the
-// element (Lambda grows as 1/a_f at a fixed concentration while each glint
-// dims as a_f) or denser (more glints per element average into the BRDF), the
-// seed's rule, and grows with bright compact lights and sharp alignment.
+// Lambda is the Poisson mean of glinting flakes in a depth slice of height H
+// (D: flake_orientation.h), L_g the radiance of one glint at depth z (E the
+// light's irradiance, R the flake reflectance (thin_film.h), U_i and U_o the
+// flux and radiance transmittances of the exit chain (mc_stack.h), sigma_t
+// the fast model's extinction). (3) is the fast model's single-scattering
+// flake term, so the texture moves energy between elements without creating
+// it; (4) is the sparkle's contrast.
 //
 // Units: lengths in µm, solid angles in sr, radiance per unit irradiance in 1/sr.
 
@@ -91,10 +51,9 @@ struct SparkleSettings {
     // effect planner's quick estimate takes fewer (its thin-film work is most
     // of a plan's time).
     int flake_table_cosines = 257;
-    // beta: the spread of one flake's own normals (degrees, in the binder). It
-    // leaves the mean (the BRDF) alone and sets how many flakes share a glint.
-    // 1 deg is our assumption for wavy milled aluminium, not a measured value;
-    // 0 makes every flake a perfect plane mirror.
+    // beta: the spread of one flake's own normals (degrees, in the binder):
+    // sets how many flakes share a glint, not the BRDF. 1 deg is an assumption
+    // for wavy milled aluminium, not a measurement; 0: plane mirrors.
     double flake_lobe_deg = 1.0;
 };
 

@@ -13,20 +13,13 @@
 // from the gamma distribution of the same mean and variance (eq. (4)):
 // non-negative and skewed like the sum, a few hundred times cheaper.
 //
-// Where the random numbers come from (stable under everything that does not
-// move the flakes): a key of the surface position (a cell of a power-of-two
-// side near the element's, so that a camera move keeps most cells), of the
-// term (layer, component, slice: not its index, so adding another layer
-// keeps the rest) and of the window of normals: the half vector's tilt
-// vector alpha (cos phi, sin phi) binned at a power-of-sqrt(2) width near the
-// window's angular diameter. As the light or the view moves, the window
-// moves to other bins, i.e. to other flakes (glints flash on and off and come
-// back when the geometry does); recipe, exposure or camera changes keep the
-// keys and change only the Poisson means (a denser paint turns more of the
-// same draws into glints). After the discrete stochastic microfacet models
-// of Jakob et al., "Discrete stochastic microfacet models", SIGGRAPH 2014,
-// and the position x slope grid of Zirr and Kaplanyan, "Real-time rendering
-// of procedural multiscale materials", I3D 2016.
+// The random numbers are keyed by the surface cell (power-of-two side near
+// the element's), the term (layer, component, slice) and the half vector's
+// tilt binned near the window's width: moving light or view reaches other
+// flakes, while recipe, exposure or camera changes keep the draws and change
+// only the Poisson means. After Jakob et al., "Discrete stochastic
+// microfacet models", SIGGRAPH 2014, and Zirr and Kaplanyan, "Real-time
+// rendering of procedural multiscale materials", I3D 2016.
 
 #include "paintlab/engine/sparkle.h"
 

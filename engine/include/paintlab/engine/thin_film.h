@@ -56,36 +56,24 @@ struct InterferenceFlakeOptics {
     double tio2_thickness_spread_nm = 0.0;  // standard deviation
 };
 
-// How the thickness averages are computed (thin_film.cpp has the derivation).
-// R and T depend on a layer's thickness d only through the phase
-// beta = 2 pi d n cos / lambda and are pi-periodic in beta for a non-absorbing
-// layer, with harmonics that decay like rho^m, rho ~ the largest interface
-// reflection amplitude (slowly near grazing incidence, where rho -> 1).
-// Gauss-Hermite in d converges poorly for spreads of a period or more (see the
-// convergence test), so by default:
-//  - mica (lossless, mean > ~6.4 spreads): exact average over its phase
-//    through the geometric Fourier series of R (analytic_mica below);
-//  - otherwise, per layer: fold the truncated Gaussian onto one period (the
-//    wrapped density) and use the trapezoid rule on K equispaced phases,
-//    spectrally accurate for periodic integrands and no costlier for wide
-//    spreads than for narrow ones; weakly absorbing layers (|Im| <= 0.1 Re of
-//    n cos) use the same grid over the whole Gaussian without folding;
-//  - strongly absorbing or evanescent layers, and spreads too narrow for
-//    max_period_nodes phases: Gauss-Hermite (truncated to d > 0).
+// How the thickness averages are computed (thin_film.cpp derives it). R and
+// T are pi-periodic in a lossless layer's phase beta = 2 pi d n cos / lambda,
+// where Gauss-Hermite in d converges poorly for wide spreads, so: lossless
+// mica is averaged exactly (analytic_mica); other layers fold the Gaussian
+// onto one period and take the trapezoid rule on K phases (weakly absorbing
+// ones: the same grid without folding); strongly absorbing layers and spreads
+// too narrow for the grid take Gauss-Hermite (truncated to d > 0).
 struct ThicknessQuadrature {
     // Phases per period K: the largest of min_period_nodes, ln(tolerance) / ln(rho)
-    // (rho ~ largest interface reflection amplitude: harmonics of R decay like
-    // rho^m) and 6.44 / sigma_beta (resolves the Gaussian), capped at
-    // max_period_nodes. tolerance is the aimed-at error in R; it is not met
-    // within the cap at very grazing incidence (cos < ~0.05 with 256 nodes).
+    // (rho ~ the largest interface reflection amplitude) and 6.44 / sigma_beta,
+    // capped at max_period_nodes. tolerance (the error aimed at in R) is not
+    // met within the cap at very grazing incidence (cos < ~0.05).
     int min_period_nodes = 16;
     int max_period_nodes = 256;
     double tolerance = 1e-6;
-    // Lossless mica with a spread: average over its thickness analytically (the
-    // flake's R is a Moebius function of exp(2 i beta_mica), whose Fourier series
-    // is geometric), leaving a 1-D quadrature over the TiO2 thickness. Used when
-    // the mica mean exceeds ~6.4 spreads (else the truncation at 0 makes the 2-D
-    // quadrature cheaper). false: always the 2-D quadrature (reference for tests).
+    // Lossless mica with a spread: averaged analytically (R is a Moebius
+    // function of exp(2 i beta_mica), whose Fourier series is geometric) when
+    // its mean exceeds ~6.4 spreads. false: always the 2-D quadrature (tests).
     bool analytic_mica = true;
     int gauss_hermite_nodes = 0;       // when Gauss-Hermite is used: 0 = automatic
     bool force_gauss_hermite = false;  // for convergence studies
@@ -103,11 +91,7 @@ FlakeRT interferenceFlakeRT(const InterferenceFlakeOptics& flake, double cos_the
                             ThicknessQuadrature quadrature = {});
 
 // Tabulates R(cos) and T(cos) at one wavelength on the given cosine grid;
-// writes min(cos_grid, R_out, T_out sizes) entries. Workspace is allocated
-// once per call; the loops over cosines and thickness nodes do not allocate.
-// Cost per cosine: (active TiO2 nodes) x (a few series terms) with the analytic
-// mica average; (active mica nodes) x (active TiO2 nodes) 3-layer products
-// without it (~16 x 16 near normal incidence, up to K x K near grazing).
+// writes min(cos_grid, R_out, T_out sizes) entries, allocating once per call.
 void tabulateInterferenceFlake(const InterferenceFlakeOptics& flake, double wavelength_nm,
                                std::span<const double> cos_grid, std::span<double> R_out,
                                std::span<double> T_out, ThicknessQuadrature quadrature = {});
@@ -132,15 +116,11 @@ GaussHermiteRule gaussHermiteRule(int n);
 // from the metal's complex index: Fresnel (fresnel.h) from binder_n into metal_n.
 double metalFlakeReflectance(double cos_theta, std::complex<double> metal_n, double binder_n);
 
-// Mirror flake reflectance from a reflectance R0 measured at normal incidence
-// (in the binder). The angular dependence is that of an effective metal whose
-// index relative to the binder is 1 + i k_eff with k_eff = 2 sqrt(R0 / (1 - R0)),
-// the only such index with real part equal to the binder's that gives
-// R(normal) = |ik / (2 + ik)|^2 = R0 exactly. It reflects like a metal
-// (rises to 1 at grazing with a shallow p-polarised dip) and obeys Fresnel's
-// equations, so it stays energy-consistent. For aluminium in a 1.5 binder it
-// is within 0.035 of the full complex Fresnel at every angle (Schlick's
-// approximation: 0.066). R0 is clamped to [0, 1].
+// Mirror flake reflectance from its reflectance R0 at normal incidence (in
+// the binder): Fresnel of an effective metal of relative index 1 + i k_eff,
+// k_eff = 2 sqrt(R0 / (1 - R0)), which gives R0 exactly at the normal and
+// behaves like a metal (and obeys Fresnel) elsewhere; for aluminium in a 1.5
+// binder within 0.035 of the full complex Fresnel. R0 is clamped to [0, 1].
 double mirrorFlakeReflectanceFromNormal(double cos_theta, double R0_normal);
 
 }  // namespace paintlab

@@ -4,6 +4,7 @@
 // image (RelightTables); per image: one pass over the paint records,
 // composited over the baked radiance (relight).
 
+#include "paintlab/engine/colour/band_weights.h"
 #include "paintlab/raymaps/raymap.h"
 
 #include <filesystem>
@@ -68,7 +69,7 @@ private:
     int m_cells;
     int m_orders;
     double m_seconds = 0.0;
-    std::vector<double> m_weights;  // per band, 3 channels
+    BandColourWeights m_weights;  // linear sRGB per band
     std::vector<float> m_light;
     std::vector<float> m_moments;
     std::vector<float> m_coat;

@@ -17,9 +17,8 @@
 // The escape cone gets a share of the nodes proportional to the flux it carries,
 // 1 - mu_c^2 = 1/eta^2 (at least 2, 3 for oblique incidence), rather than to its length
 // as in Prahl's program: the outside world sees only these directions and the Fresnel
-// reflectance varies fastest there. Measured for a 0.5, b inf, g 0.9, n 1.4, slides 1.5:
-// URU error at 32 nodes 1.1e-4 instead of 4.2e-4; at 4 nodes the layouts coincide.
-// Every sub-interval integrates 2 mu exactly, so the escape cone carries exactly 1/eta^2.
+// reflectance varies fastest there. Every sub-interval integrates 2 mu exactly, so the
+// escape cone carries exactly 1/eta^2.
 
 #include <vector>
 
