@@ -22,7 +22,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -184,10 +183,7 @@ void emit(const McOptions& o, const std::string& text) {
         std::cout << text;
         return;
     }
-    std::ofstream file(o.out, std::ios::binary | std::ios::trunc);
-    if (!file) throw InputError(o.out, "--out", "cannot open for writing");
-    file << text;
-    if (!file.flush()) throw Error(o.out + ": write failed");
+    writeTextFile(o.out, text, "--out");
     std::cerr << "wrote " << o.out << '\n';
 }
 
