@@ -4,8 +4,8 @@
 
 #include "commands.h"
 
-#include "paintlab/engine/ciede2000.h"
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/colour/ciede2000.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/multiangle.h"
 #include "paintlab/engine/recipe_json.h"
 

@@ -5,7 +5,7 @@
 #include "commands.h"
 
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/multiangle.h"
 #include "paintlab/engine/recipe_json.h"
 

@@ -2,7 +2,7 @@
 // The CLI's side of the tabulated-BRDF file (the format itself is the
 // engine's, fast_model/brdf_table_io.h) and of writing --out files.
 
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 
 #include <nlohmann/json.hpp>
 

@@ -6,7 +6,7 @@
 #include "commands.h"
 
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/montecarlo/cone_average.h"
 #include "paintlab/engine/montecarlo/mc_table.h"
 #include "paintlab/engine/montecarlo/monte_carlo.h"

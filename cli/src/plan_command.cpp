@@ -4,7 +4,7 @@
 
 #include "commands.h"
 
-#include "paintlab/engine/plan.h"
+#include "paintlab/engine/plan/plan.h"
 #include "paintlab/engine/recipe_json.h"
 #include "paintlab/raymaps/plan_scene.h"
 #include "paintlab/raymaps/scene.h"

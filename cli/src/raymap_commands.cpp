@@ -5,8 +5,8 @@
 #include "sparkle_option.h"
 
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/layered_brdf.h"
-#include "paintlab/engine/plan.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
+#include "paintlab/engine/plan/plan.h"
 #include "paintlab/engine/recipe_json.h"
 #include "paintlab/raymaps/paint_proxy.h"
 #include "paintlab/raymaps/planned_relight.h"

@@ -7,8 +7,8 @@
 // the fast model at the plan's settings (engine/plan.h, applyPlan) and
 // sparkle as the plan says (unless --sparkle is given too: then --sparkle wins).
 
-#include "paintlab/engine/layered_brdf.h"
-#include "paintlab/engine/plan.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
+#include "paintlab/engine/plan/plan.h"
 #include "paintlab/engine/recipe.h"
 #include "paintlab/raymaps/raymap.h"
 #include "paintlab/raymaps/relight.h"

@@ -51,11 +51,11 @@
 #include "paintlab/engine/model_validity.h"
 
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/flake_orientation.h"
 #include "paintlab/engine/layer_optics.h"
 #include "paintlab/engine/multiangle.h"
+#include "paintlab/engine/optics/flake_orientation.h"
+#include "paintlab/engine/optics/thin_film.h"
 #include "paintlab/engine/recipe_validation.h"
-#include "paintlab/engine/thin_film.h"
 
 #include "montecarlo/flake_polygon.h"
 

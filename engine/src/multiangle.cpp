@@ -1,6 +1,6 @@
 #include "paintlab/engine/multiangle.h"
 
-#include "paintlab/engine/brdf_colour.h"
+#include "paintlab/engine/fast_model/brdf_colour.h"
 
 #include <cmath>
 #include <numbers>

@@ -1,6 +1,6 @@
 #include "full_model_job.h"
 
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/montecarlo/mc_table.h"
 #include "paintlab/engine/recipe.h"
 

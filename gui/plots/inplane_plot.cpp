@@ -1,6 +1,6 @@
 #include "inplane_plot.h"
 
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 
 #include <vtkAxis.h>
 #include <vtkChartXY.h>

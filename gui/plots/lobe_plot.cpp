@@ -1,6 +1,6 @@
 #include "lobe_plot.h"
 
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 
 #include <QElapsedTimer>
 #include <QMouseEvent>

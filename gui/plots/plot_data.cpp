@@ -3,7 +3,7 @@
 #include "paintlab/engine/colour/band_weights.h"
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/fast_model/fourier_series.h"
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 
 #include <Eigen/Dense>
 

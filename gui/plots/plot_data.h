@@ -13,7 +13,7 @@
 // Colours weight every direction's spectrum by the colours of the bands
 // (colour/band_weights.h).
 
-#include "paintlab/engine/brdf_colour.h"
+#include "paintlab/engine/fast_model/brdf_colour.h"
 #include "paintlab/engine/multiangle.h"
 #include "paintlab/engine/recipe.h"
 #include "paintlab/engine/spectrum.h"

@@ -6,7 +6,7 @@
 #include "plot_data.h"
 #include "spectra_plot.h"
 
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/recipe.h"
 
 #include <QCheckBox>

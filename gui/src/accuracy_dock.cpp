@@ -1,6 +1,6 @@
 #include "accuracy_dock.h"
 
-#include "paintlab/engine/plan.h"
+#include "paintlab/engine/plan/plan.h"
 
 #include <QCheckBox>
 #include <QComboBox>

@@ -8,7 +8,7 @@
 // sparkle decision then assumes a close inspection (plan.h), and nothing
 // draws glints without an image anyway.
 
-#include "paintlab/engine/plan.h"
+#include "paintlab/engine/plan/plan.h"
 
 namespace paintlab::gui {
 

@@ -17,8 +17,8 @@
 // open map (shareRayMap): its records are decoded, and the plan's summary of
 // it made, once.
 
-#include "paintlab/engine/layered_brdf.h"
-#include "paintlab/engine/plan.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
+#include "paintlab/engine/plan/plan.h"
 #include "paintlab/engine/recipe.h"
 #include "paintlab/raymaps/raymap.h"
 #include "paintlab/raymaps/relight_input.h"

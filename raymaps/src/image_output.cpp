@@ -1,7 +1,7 @@
 // Writing relit images: linear EXR, tone-mapped sRGB PNG (OpenImageIO),
 // encoded in memory and then written with the one atomic file writer.
 
-#include "paintlab/engine/colour.h"
+#include "paintlab/engine/colour/colour.h"
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/io/atomic_file.h"
 #include "paintlab/raymaps/display_image.h"

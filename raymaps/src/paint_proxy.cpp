@@ -2,8 +2,8 @@
 
 #include "paintlab/raymaps/paint_proxy.h"
 
-#include "paintlab/engine/brdf_colour.h"
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/brdf_colour.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 
 #include <algorithm>
 

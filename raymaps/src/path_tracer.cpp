@@ -1,6 +1,6 @@
 #include "path_tracer.h"
 
-#include "paintlab/engine/fresnel.h"
+#include "paintlab/engine/optics/fresnel.h"
 #include "paintlab/raymaps/relight.h"
 
 #include <algorithm>

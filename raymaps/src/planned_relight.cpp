@@ -2,7 +2,7 @@
 
 #include "paintlab/raymaps/planned_relight.h"
 
-#include "paintlab/engine/sparkle.h"
+#include "paintlab/engine/sparkle/sparkle.h"
 
 namespace paintlab::raymaps {
 

@@ -5,7 +5,7 @@
 #include "sampling.h"
 
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/raymaps/relight.h"
 #include "paintlab/raymaps/relight_input.h"
 

@@ -7,7 +7,7 @@
 
 #include "paintlab/engine/colour/band_weights.h"
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/sparkle_texture.h"
+#include "paintlab/engine/sparkle/sparkle_texture.h"
 
 #include <Imath/half.h>
 #include <tbb/parallel_for.h>

@@ -2,10 +2,10 @@
 // grows with nodes, Fourier orders, bands and layers, and the cost of one doubling
 // step per node count (issue 3, "Speed"). Figures for docs/PERFORMANCE.md come
 // from running bench_engine directly; the smoke test only checks they run.
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/layered/layer_operator.h"
 #include "paintlab/engine/layered/phase_function.h"
 #include "paintlab/engine/layered/quadrature.h"
-#include "paintlab/engine/layered_brdf.h"
 #include "paintlab/engine/recipe_json.h"
 
 #include <benchmark/benchmark.h>

@@ -2,11 +2,11 @@
 // settings against the plan's, for the demo recipes in a sunny and an
 // overcast scene summary; the plan's own cost; the sparkle statistics per
 // pixel (what the sparkle pass pays per paint pixel and light).
-#include "paintlab/engine/layered_brdf.h"
-#include "paintlab/engine/plan.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
+#include "paintlab/engine/plan/plan.h"
 #include "paintlab/engine/recipe_json.h"
-#include "paintlab/engine/sparkle.h"
-#include "paintlab/engine/sparkle_texture.h"
+#include "paintlab/engine/sparkle/sparkle.h"
+#include "paintlab/engine/sparkle/sparkle_texture.h"
 
 #include <benchmark/benchmark.h>
 

@@ -13,10 +13,10 @@
 #include "temp_dir.h"
 #include "test_scenes.h"
 
-#include "paintlab/engine/layered_brdf.h"
-#include "paintlab/engine/plan.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
+#include "paintlab/engine/plan/plan.h"
 #include "paintlab/engine/recipe_json.h"
-#include "paintlab/engine/sparkle.h"
+#include "paintlab/engine/sparkle/sparkle.h"
 #include "paintlab/raymaps/plan_scene.h"
 #include "paintlab/raymaps/raymap.h"
 #include "paintlab/raymaps/relight.h"

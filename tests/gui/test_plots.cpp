@@ -21,9 +21,9 @@
 #include "plots_dock.h"
 #include "spectra_plot.h"
 
-#include "paintlab/engine/brdf_colour.h"
+#include "paintlab/engine/fast_model/brdf_colour.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/io/csv.h"
-#include "paintlab/engine/layered_brdf.h"
 #include "paintlab/engine/multiangle.h"
 #include "paintlab/engine/recipe_json.h"
 

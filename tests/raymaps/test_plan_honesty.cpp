@@ -9,14 +9,14 @@
 // brighter than white). The numbers are printed for docs/VALIDATION.md's
 // honesty table.
 
-#include "paintlab/engine/ciede2000.h"
-#include "paintlab/engine/colour.h"
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/colour/ciede2000.h"
+#include "paintlab/engine/colour/colour.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/model_validity.h"
 #include "paintlab/engine/montecarlo/mc_table.h"
-#include "paintlab/engine/plan.h"
+#include "paintlab/engine/plan/plan.h"
 #include "paintlab/engine/recipe_json.h"
-#include "paintlab/engine/sparkle.h"
+#include "paintlab/engine/sparkle/sparkle.h"
 #include "paintlab/raymaps/plan_scene.h"
 #include "paintlab/raymaps/raymap.h"
 #include "paintlab/raymaps/relight.h"

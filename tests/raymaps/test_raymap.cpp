@@ -5,7 +5,7 @@
 #include "temp_dir.h"
 
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/recipe_json.h"
 #include "paintlab/raymaps/chunk_file.h"
 #include "paintlab/raymaps/environment_map.h"

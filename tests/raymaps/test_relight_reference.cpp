@@ -9,7 +9,7 @@
 #include "paint_comparison.h"
 #include "temp_dir.h"
 
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/recipe_json.h"
 #include "paintlab/raymaps/paint_proxy.h"
 #include "paintlab/raymaps/raymap.h"

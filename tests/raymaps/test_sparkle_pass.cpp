@@ -7,8 +7,8 @@
 #include "test_recipes.h"
 
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/layered_brdf.h"
-#include "paintlab/engine/sparkle.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
+#include "paintlab/engine/sparkle/sparkle.h"
 #include "paintlab/raymaps/plan_scene.h"
 #include "paintlab/raymaps/raymap.h"
 #include "paintlab/raymaps/relight.h"

@@ -2,7 +2,7 @@
 // named; every one asserts: all values finite, albedo <= 1 + 1e-6 (no energy
 // created; 1e-6 allows round-off of the LU solves), reciprocity of the BRDF,
 // and, where cheap, that refining the grid changes the answer little.
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/recipe_validation.h"
 
 #include "test_recipes.h"

@@ -156,7 +156,7 @@ def geometry(aspecular_deg):
 
 
 def vmf(spread_deg, tilt):
-    """Unnormalised flake-normal density (engine/include/paintlab/engine/flake_orientation.h)."""
+    """Unnormalised flake-normal density (engine/include/paintlab/engine/optics/flake_orientation.h)."""
     sigma = math.radians(spread_deg)
     kappa = 1 / sigma**2 - 1 / (math.pi / 2) ** 2
     return math.exp(kappa * (math.cos(tilt) - 1))

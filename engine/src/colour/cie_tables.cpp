@@ -1,4 +1,4 @@
-#include "paintlab/engine/cie_tables.h"
+#include "paintlab/engine/colour/cie_tables.h"
 
 #include "colour/cgats.h"
 #include "paintlab/engine/error.h"

@@ -1,4 +1,4 @@
-#include "paintlab/engine/ciede2000.h"
+#include "paintlab/engine/colour/ciede2000.h"
 
 #include <cmath>
 #include <numbers>

@@ -1,4 +1,4 @@
-#include "paintlab/engine/colour.h"
+#include "paintlab/engine/colour/colour.h"
 
 #include <array>
 #include <cmath>

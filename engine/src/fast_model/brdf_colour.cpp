@@ -1,7 +1,7 @@
-#include "paintlab/engine/brdf_colour.h"
+#include "paintlab/engine/fast_model/brdf_colour.h"
 
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/spectrum.h"
 
 #include <numbers>

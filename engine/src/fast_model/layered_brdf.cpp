@@ -1,10 +1,10 @@
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 
 #include "stack_assembly.h"
 
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/fast_model/fourier_series.h"
-#include "paintlab/engine/fresnel.h"
+#include "paintlab/engine/optics/fresnel.h"
 
 #include <tbb/parallel_for.h>
 

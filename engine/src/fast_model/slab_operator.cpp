@@ -1,8 +1,8 @@
 #include "slab_operator.h"
 
-#include "paintlab/engine/flake_orientation.h"
 #include "paintlab/engine/layered/phase_function.h"
-#include "paintlab/engine/thin_film.h"
+#include "paintlab/engine/optics/flake_orientation.h"
+#include "paintlab/engine/optics/thin_film.h"
 
 #include <algorithm>
 #include <cmath>

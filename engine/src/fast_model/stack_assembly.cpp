@@ -1,7 +1,7 @@
 #include "stack_assembly.h"
 
-#include "paintlab/engine/fresnel.h"
 #include "paintlab/engine/layer_optics.h"
+#include "paintlab/engine/optics/fresnel.h"
 
 #include <algorithm>
 #include <cmath>

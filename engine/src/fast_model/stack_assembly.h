@@ -7,7 +7,7 @@
 #include "slab_operator.h"
 #include "stack_quadrature.h"
 
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 
 #include <Eigen/Dense>
 

@@ -1,6 +1,6 @@
 #include "paintlab/engine/layered/boundary.h"
 
-#include "paintlab/engine/fresnel.h"
+#include "paintlab/engine/optics/fresnel.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #include "mc_glints.h"
 
-#include "paintlab/engine/fresnel.h"
+#include "paintlab/engine/optics/fresnel.h"
 
 #include <algorithm>
 #include <cmath>

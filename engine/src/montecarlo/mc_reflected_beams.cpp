@@ -1,6 +1,6 @@
 #include "mc_reflected_beams.h"
 
-#include "paintlab/engine/fresnel.h"
+#include "paintlab/engine/optics/fresnel.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,8 +1,8 @@
 #include "mc_stack.h"
 
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/fresnel.h"
-#include "paintlab/engine/thin_film.h"
+#include "paintlab/engine/optics/fresnel.h"
+#include "paintlab/engine/optics/thin_film.h"
 
 #include <algorithm>
 #include <cmath>

@@ -5,8 +5,8 @@
 // specular "exit chain" used by next-event estimation.
 
 #include "paintlab/engine/brdf.h"
-#include "paintlab/engine/flake_orientation.h"
 #include "paintlab/engine/layer_optics.h"
+#include "paintlab/engine/optics/flake_orientation.h"
 #include "paintlab/engine/recipe.h"
 
 #include <algorithm>

@@ -2,7 +2,7 @@
 
 #include "mc_reflected_beams.h"
 
-#include "paintlab/engine/fresnel.h"
+#include "paintlab/engine/optics/fresnel.h"
 
 #include <algorithm>
 #include <cmath>

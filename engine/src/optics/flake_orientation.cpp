@@ -1,4 +1,4 @@
-#include "paintlab/engine/flake_orientation.h"
+#include "paintlab/engine/optics/flake_orientation.h"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "paintlab/engine/fresnel.h"
+#include "paintlab/engine/optics/fresnel.h"
 
 #include <algorithm>
 #include <cmath>

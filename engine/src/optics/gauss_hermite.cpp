@@ -1,6 +1,6 @@
 // Gauss-Hermite quadrature rules (the fallback thickness average of
 // thin_film.cpp, for narrow spreads and strongly absorbing layers).
-#include "paintlab/engine/thin_film.h"
+#include "paintlab/engine/optics/thin_film.h"
 
 #include <algorithm>
 #include <array>

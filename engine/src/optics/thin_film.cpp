@@ -1,6 +1,6 @@
-#include "paintlab/engine/thin_film.h"
+#include "paintlab/engine/optics/thin_film.h"
 
-#include "paintlab/engine/fresnel.h"
+#include "paintlab/engine/optics/fresnel.h"
 
 #include <algorithm>
 #include <array>

@@ -4,15 +4,15 @@
 // colour tolerance; the error it claims is its own estimate of that
 // difference, checked by the honesty tests (tests/engine/plan).
 
-#include "paintlab/engine/plan.h"
+#include "paintlab/engine/plan/plan.h"
 
 #include "plan_spectra.h"
 
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/model_validity.h"
 #include "paintlab/engine/recipe_validation.h"
-#include "paintlab/engine/sparkle.h"
-#include "paintlab/engine/sparkle_texture.h"
+#include "paintlab/engine/sparkle/sparkle.h"
+#include "paintlab/engine/sparkle/sparkle_texture.h"
 
 #include <algorithm>
 #include <array>

@@ -1,6 +1,6 @@
 // Sparkle area, intensity, grade and graininess of a texture (definitions in sparkle_grades.h).
 
-#include "paintlab/engine/sparkle_grades.h"
+#include "paintlab/engine/sparkle/sparkle_grades.h"
 
 #include "paintlab/engine/error.h"
 

@@ -9,7 +9,7 @@
 // reflections between parallel interfaces). By reciprocity the chain of the
 // light's direction gives the flux that reaches a slice from the light.
 
-#include "paintlab/engine/sparkle.h"
+#include "paintlab/engine/sparkle/sparkle.h"
 
 #include "montecarlo/mc_stack.h"
 

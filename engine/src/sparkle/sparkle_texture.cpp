@@ -1,6 +1,6 @@
 // The sparkle texture's draws (sparkle_texture.h).
 
-#include "paintlab/engine/sparkle_texture.h"
+#include "paintlab/engine/sparkle/sparkle_texture.h"
 
 #include "montecarlo/mc_random.h"
 

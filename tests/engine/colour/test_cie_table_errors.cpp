@@ -2,7 +2,7 @@
 // missing, truncated, garbage or inconsistent tables must give a
 // paintlab::Error that names the file, never a crash or a silent wrong table.
 
-#include "paintlab/engine/cie_tables.h"
+#include "paintlab/engine/colour/cie_tables.h"
 #include "paintlab/engine/error.h"
 
 #include <gtest/gtest.h>

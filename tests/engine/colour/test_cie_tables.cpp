@@ -1,7 +1,7 @@
 // The CIE tables as read from colord-data, and what is computed from them:
 // white points against published values, and spectral integration.
 
-#include "paintlab/engine/cie_tables.h"
+#include "paintlab/engine/colour/cie_tables.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // CIEDE2000 against the published test data, against an independent
 // implementation (Little CMS 2), and for the properties of a distance.
 
-#include "paintlab/engine/ciede2000.h"
+#include "paintlab/engine/colour/ciede2000.h"
 
 #include <gtest/gtest.h>
 #include <lcms2.h>

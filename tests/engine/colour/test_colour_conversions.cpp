@@ -1,8 +1,8 @@
 // CIELAB and sRGB conversions: closed forms, round trips, and the anchors the
 // standards define (CIE 15:2004 section 8.2.1, IEC 61966-2-1:1999).
 
-#include "paintlab/engine/cie_tables.h"
-#include "paintlab/engine/colour.h"
+#include "paintlab/engine/colour/cie_tables.h"
+#include "paintlab/engine/colour/colour.h"
 
 #include <gtest/gtest.h>
 

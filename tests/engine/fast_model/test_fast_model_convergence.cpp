@@ -1,7 +1,7 @@
 // The fast model converges under refinement, and the flake kernels keep
 // energy and reciprocity exact over the whole range of orientation spreads.
-#include "paintlab/engine/ciede2000.h"
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/colour/ciede2000.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/multiangle.h"
 #include "paintlab/engine/recipe_json.h"
 

@@ -1,10 +1,10 @@
 // The fast model against closed forms, energy conservation and reciprocity.
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/fresnel.h"
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
+#include "paintlab/engine/optics/fresnel.h"
+#include "paintlab/engine/optics/thin_film.h"
 #include "paintlab/engine/recipe_json.h"
 #include "paintlab/engine/recipe_validation.h"
-#include "paintlab/engine/thin_film.h"
 
 #include "paintlab/engine/layered/layer_operator.h"
 #include "paintlab/engine/layered/phase_function.h"

@@ -21,11 +21,11 @@
 // factor) or the BTDF, and a flux divided by pi is Prahl's UR1 / UT1. For isotropic incidence of
 // unit intensity, the reflected intensity in direction mu is the directional albedo at mu
 // (reciprocity), and the upward flux over pi is URU.
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/layered/layer_operator.h"
 #include "paintlab/engine/layered/phase_function.h"
 #include "paintlab/engine/layered/quadrature.h"
 #include "paintlab/engine/layered/slab_totals.h"
-#include "paintlab/engine/layered_brdf.h"
 
 #include "test_recipes.h"
 

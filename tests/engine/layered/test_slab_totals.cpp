@@ -1,8 +1,8 @@
 // Slab totals against closed forms and published values.
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/fresnel.h"
 #include "paintlab/engine/layered/quadrature.h"
 #include "paintlab/engine/layered/slab_totals.h"
+#include "paintlab/engine/optics/fresnel.h"
 
 #include <gtest/gtest.h>
 

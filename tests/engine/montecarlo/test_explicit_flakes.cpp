@@ -3,10 +3,10 @@
 // standard errors.
 
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/montecarlo/cone_average.h"
 #include "paintlab/engine/montecarlo/monte_carlo.h"
-#include "paintlab/engine/thin_film.h"
+#include "paintlab/engine/optics/thin_film.h"
 
 #include "test_recipes.h"
 #include "z_test.h"

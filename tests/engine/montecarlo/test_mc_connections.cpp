@@ -7,9 +7,9 @@
 // over 16 batches, Student t with 15 degrees of freedom, ~1e-3), so the ~20
 // comparisons of this file fail by chance with probability ~2e-2 at worst.
 
-#include "paintlab/engine/fresnel.h"
 #include "paintlab/engine/montecarlo/monte_carlo.h"
-#include "paintlab/engine/thin_film.h"
+#include "paintlab/engine/optics/fresnel.h"
+#include "paintlab/engine/optics/thin_film.h"
 
 #include "test_recipes.h"
 #include "z_test.h"

@@ -14,8 +14,8 @@
 #include "mc_random.h"
 #include "mc_reflected_beams.h"
 
-#include "paintlab/engine/fresnel.h"
 #include "paintlab/engine/montecarlo/monte_carlo.h"
+#include "paintlab/engine/optics/fresnel.h"
 
 #include "test_recipes.h"
 #include "z_test.h"

@@ -11,12 +11,12 @@
 // (32 nodes) pushed through the same projection (cellAveragedTables below),
 // added in quadrature as in test_monte_carlo.cpp.
 
-#include "paintlab/engine/fresnel.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/layered/quadrature.h"
-#include "paintlab/engine/layered_brdf.h"
 #include "paintlab/engine/montecarlo/mc_table.h"
 #include "paintlab/engine/montecarlo/monte_carlo.h"
 #include "paintlab/engine/multiangle.h"
+#include "paintlab/engine/optics/fresnel.h"
 
 #include "test_recipes.h"
 #include "z_test.h"

@@ -8,11 +8,11 @@
 // |x - y| <= kZ sqrt(s^2 + e_fast^2).
 
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/fresnel.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/layered/quadrature.h"
-#include "paintlab/engine/layered_brdf.h"
 #include "paintlab/engine/montecarlo/monte_carlo.h"
-#include "paintlab/engine/thin_film.h"
+#include "paintlab/engine/optics/fresnel.h"
+#include "paintlab/engine/optics/thin_film.h"
 
 #include "test_recipes.h"
 #include "z_test.h"

@@ -1,4 +1,4 @@
-#include "paintlab/engine/fresnel.h"
+#include "paintlab/engine/optics/fresnel.h"
 
 #include <gtest/gtest.h>
 

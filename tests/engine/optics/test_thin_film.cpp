@@ -1,5 +1,5 @@
-#include "paintlab/engine/fresnel.h"
-#include "paintlab/engine/thin_film.h"
+#include "paintlab/engine/optics/fresnel.h"
+#include "paintlab/engine/optics/thin_film.h"
 
 #include <gtest/gtest.h>
 

@@ -5,14 +5,14 @@
 // directions over the paint (one pixel per direction) lit as the scene
 // summary says; colour as a radiance factor relative to the brightest pixel.
 
-#include "paintlab/engine/brdf_colour.h"
-#include "paintlab/engine/ciede2000.h"
+#include "paintlab/engine/colour/ciede2000.h"
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/layered_brdf.h"
-#include "paintlab/engine/plan.h"
+#include "paintlab/engine/fast_model/brdf_colour.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
+#include "paintlab/engine/plan/plan.h"
 #include "paintlab/engine/recipe_json.h"
-#include "paintlab/engine/sparkle.h"
-#include "paintlab/engine/sparkle_texture.h"
+#include "paintlab/engine/sparkle/sparkle.h"
+#include "paintlab/engine/sparkle/sparkle_texture.h"
 
 #include <gtest/gtest.h>
 

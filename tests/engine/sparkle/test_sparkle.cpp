@@ -6,10 +6,10 @@
 #include "flake_tile.h"
 
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/flake_orientation.h"
-#include "paintlab/engine/layered_brdf.h"
-#include "paintlab/engine/sparkle.h"
-#include "paintlab/engine/sparkle_texture.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
+#include "paintlab/engine/optics/flake_orientation.h"
+#include "paintlab/engine/sparkle/sparkle.h"
+#include "paintlab/engine/sparkle/sparkle_texture.h"
 #include "test_recipes.h"
 
 #include <gtest/gtest.h>

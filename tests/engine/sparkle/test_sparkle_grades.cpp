@@ -2,7 +2,7 @@
 // textures whose numbers follow from the definitions by hand.
 
 #include "paintlab/engine/error.h"
-#include "paintlab/engine/sparkle_grades.h"
+#include "paintlab/engine/sparkle/sparkle_grades.h"
 
 #include <gtest/gtest.h>
 

@@ -7,8 +7,8 @@
 // factor at a geometry is pi * f(wi, wo): 1 for the perfect diffuser.
 
 #include "paintlab/engine/brdf.h"
-#include "paintlab/engine/cie_tables.h"
-#include "paintlab/engine/colour.h"
+#include "paintlab/engine/colour/cie_tables.h"
+#include "paintlab/engine/colour/colour.h"
 
 #include <array>
 #include <vector>

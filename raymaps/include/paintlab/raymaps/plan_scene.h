@@ -21,7 +21,7 @@
 // distance as the 1st-percentile footprint / the header's pixel angle
 // (version-1 maps, without a camera: unknown, 0).
 
-#include "paintlab/engine/plan.h"
+#include "paintlab/engine/plan/plan.h"
 
 #include "paintlab/raymaps/raymap.h"
 #include "paintlab/raymaps/scene.h"

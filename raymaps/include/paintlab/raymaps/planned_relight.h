@@ -6,8 +6,8 @@
 // settings (applyPlan on the preset's); the sparkle pass runs after the
 // relight where the plan finds glints visible (EffectPlan::sparkle).
 
-#include "paintlab/engine/layered_brdf.h"
-#include "paintlab/engine/plan.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
+#include "paintlab/engine/plan/plan.h"
 #include "paintlab/engine/recipe.h"
 #include "paintlab/raymaps/plan_scene.h"
 #include "paintlab/raymaps/raymap.h"

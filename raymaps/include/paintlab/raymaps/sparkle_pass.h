@@ -19,7 +19,7 @@
 // records do not store: footprint / pixel angle (the header's, or the
 // settings'), else (a version-1 map) a fixed viewing distance.
 
-#include "paintlab/engine/sparkle.h"
+#include "paintlab/engine/sparkle/sparkle.h"
 #include "paintlab/raymaps/raymap.h"
 #include "paintlab/raymaps/relight.h"
 

@@ -6,8 +6,8 @@
 // its colour with one product per sample: what the plots, the relight tables
 // and the sparkle pass apply to thousands of spectra.
 
-#include "paintlab/engine/brdf_colour.h"
-#include "paintlab/engine/colour.h"
+#include "paintlab/engine/colour/colour.h"
+#include "paintlab/engine/fast_model/brdf_colour.h"
 
 #include <span>
 #include <vector>

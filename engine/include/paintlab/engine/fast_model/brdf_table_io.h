@@ -5,7 +5,7 @@
 // excluded) per band; JSON (with the settings and the top interface's mirror
 // reflectance) or CSV (one row per direction pair).
 
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 
 #include <string>
 #include <string_view>

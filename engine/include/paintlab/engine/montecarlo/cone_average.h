@@ -4,7 +4,7 @@
 // models can be compared.
 
 #include "paintlab/engine/brdf.h"
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 
 #include <vector>
 

@@ -38,7 +38,7 @@
 // (batchEstimate), which accounts for the correlation between the entries
 // that one path feeds.
 
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/montecarlo/monte_carlo.h"
 #include "paintlab/engine/recipe.h"
 

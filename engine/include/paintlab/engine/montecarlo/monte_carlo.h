@@ -31,7 +31,7 @@
 // process-wide parallelism for the duration of the call.
 
 #include "paintlab/engine/brdf.h"
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/recipe.h"
 
 #include <cmath>

@@ -6,7 +6,7 @@
 // angle: h' = 0 when a' = b' = 0, and when C1' C2' = 0 the hue difference is 0
 // and the mean hue is h1' + h2'.
 
-#include "paintlab/engine/colour.h"
+#include "paintlab/engine/colour/colour.h"
 
 namespace paintlab {
 

@@ -11,7 +11,7 @@
 // process (function-local statics: thread-safe, and a failed load is retried
 // on the next call rather than cached).
 
-#include "paintlab/engine/colour.h"
+#include "paintlab/engine/colour/colour.h"
 #include "paintlab/engine/spectrum.h"
 
 #include <filesystem>

@@ -21,7 +21,7 @@
 // microfacet models", SIGGRAPH 2014, and Zirr and Kaplanyan, "Real-time
 // rendering of procedural multiscale materials", I3D 2016.
 
-#include "paintlab/engine/sparkle.h"
+#include "paintlab/engine/sparkle/sparkle.h"
 
 #include <cstdint>
 #include <span>

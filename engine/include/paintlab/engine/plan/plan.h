@@ -11,7 +11,7 @@
 // effect is skipped or reduced only when its claimed error is below half the
 // preset's tolerance, so that two accepted errors together stay within it.
 
-#include "paintlab/engine/layered_brdf.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/recipe.h"
 
 #include <string>

@@ -18,8 +18,8 @@
 // adaptation transform has to be chosen. Channels are not clipped.
 
 #include "paintlab/engine/brdf.h"
-#include "paintlab/engine/cie_tables.h"
-#include "paintlab/engine/colour.h"
+#include "paintlab/engine/colour/cie_tables.h"
+#include "paintlab/engine/colour/colour.h"
 
 #include <span>
 #include <vector>
