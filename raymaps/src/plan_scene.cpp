@@ -10,11 +10,8 @@
 #include "paintlab/raymaps/environment_map.h"
 #include "paintlab/raymaps/scene_geometry.h"
 
-#include <Imath/half.h>
-
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <string>
 #include <variant>
 
@@ -153,23 +150,15 @@ PlanScene summariseRayMap(const RayMap& map, const PlanSceneOptions& options) {
         const RayMapBand& band = map.band(b);
         for (std::size_t r = 0; r < band.record_count; ++r) {
             const std::byte* rec = band.records.data() + r * layout.bytes();
-            std::uint16_t bits = 0;
-            std::memcpy(&bits, rec + RecordLayout::kFootprint, sizeof bits);
-            Imath::half f;
-            f.setBits(bits);
-            footprints.push_back(static_cast<double>(static_cast<float>(f)));
+            footprints.push_back(static_cast<double>(recordHalf(rec + RecordLayout::kFootprint)));
             // l^0_j summed over the cells is the irradiance of the rest of the
             // light (pi L for a uniform radiance L).
             Rgb3 e = Rgb3::Zero();
             for (int j = 0; j < h.cells; ++j)
-                for (int c = 0; c < 3; ++c) {
-                    std::memcpy(&bits,
-                                rec + RecordLayout::kMoments0 + 6 * static_cast<std::size_t>(j) +
-                                    2 * static_cast<std::size_t>(c),
-                                sizeof bits);
-                    f.setBits(bits);
-                    e[c] += static_cast<double>(static_cast<float>(f));
-                }
+                for (int c = 0; c < 3; ++c)
+                    e[c] += static_cast<double>(recordHalf(rec + RecordLayout::kMoments0 +
+                                                           6 * static_cast<std::size_t>(j) +
+                                                           2 * static_cast<std::size_t>(c)));
             moment_sum += luminance(e) / kPi;
         }
     }

@@ -14,7 +14,14 @@
 //   ..      J x (M_L-1) x 3 x i8   l^m_j / l^0_j x 127 (|l^m| <= l^0)
 //   ..      K x u8      visibility of each explicit light x 255
 
+#include "sampling.h"
+
+#include <Eigen/Core>
+#include <Imath/half.h>
+
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 
 namespace paintlab::raymaps {
 
@@ -36,5 +43,24 @@ struct RecordLayout {
     }
     std::size_t bytes() const { return visibility() + static_cast<std::size_t>(lights); }
 };
+
+// Reading a record's fields (records are unaligned bytes: memcpy, never a cast).
+template <typename T> T recordField(const std::byte* at) {
+    T value;
+    std::memcpy(&value, at, sizeof(T));
+    return value;
+}
+
+inline float recordHalf(const std::byte* at) {
+    Imath::half h;
+    h.setBits(recordField<std::uint16_t>(at));
+    return static_cast<float>(h);
+}
+
+// An octahedral-encoded unit vector (the normal or the view direction).
+inline Eigen::Vector3d recordDirection(const std::byte* at) {
+    return decodeOctahedral(recordField<std::uint16_t>(at), recordField<std::uint16_t>(at + 2))
+        .cast<double>();
+}
 
 }  // namespace paintlab::raymaps

@@ -12,29 +12,8 @@
 #include <tbb/parallel_for.h>
 
 #include <chrono>
-#include <cstring>
 
 namespace paintlab::raymaps {
-
-namespace {
-
-template <typename T> T get(const std::byte* at) {
-    T value;
-    std::memcpy(&value, at, sizeof(T));
-    return value;
-}
-
-float halfAt(const std::byte* at) {
-    Imath::half h;
-    h.setBits(get<std::uint16_t>(at));
-    return static_cast<float>(h);
-}
-
-Eigen::Vector3d octahedralAt(const std::byte* at) {
-    return decodeOctahedral(get<std::uint16_t>(at), get<std::uint16_t>(at + 2)).cast<double>();
-}
-
-}  // namespace
 
 PaintSample decodePaintSample(const RayMap& map, const RayMapBand& band, std::size_t index) {
     const RayMapHeader& h = map.header();
@@ -44,17 +23,18 @@ PaintSample decodePaintSample(const RayMap& map, const RayMapBand& band, std::si
                     std::to_string(band.record_count));
     const std::byte* rec = band.records.data() + index * layout.bytes();
     PaintSample s;
-    s.pixel = get<std::uint32_t>(rec + RecordLayout::kPixel);
-    s.normal = octahedralAt(rec + RecordLayout::kNormal).cast<float>();
-    s.view = octahedralAt(rec + RecordLayout::kView).cast<float>();
+    s.pixel = recordField<std::uint32_t>(rec + RecordLayout::kPixel);
+    s.normal = recordDirection(rec + RecordLayout::kNormal).cast<float>();
+    s.view = recordDirection(rec + RecordLayout::kView).cast<float>();
     for (std::size_t c = 0; c < 3; ++c) {
         const auto e = static_cast<Eigen::Index>(c);
-        s.position[e] = get<float>(rec + RecordLayout::kPosition + 4 * c);
-        s.weight[e] = halfAt(rec + RecordLayout::kWeight + 2 * c);
+        s.position[e] = recordField<float>(rec + RecordLayout::kPosition + 4 * c);
+        s.weight[e] = recordHalf(rec + RecordLayout::kWeight + 2 * c);
     }
-    s.footprint = halfAt(rec + RecordLayout::kFootprint);
+    s.footprint = recordHalf(rec + RecordLayout::kFootprint);
     for (std::size_t k = 0; k < h.lights.size(); ++k)
-        s.visibility.push_back(static_cast<float>(get<std::uint8_t>(rec + layout.visibility() + k)) / 255.0F);
+        s.visibility.push_back(static_cast<float>(recordField<std::uint8_t>(rec + layout.visibility() + k)) /
+                               255.0F);
     return s;
 }
 
@@ -103,16 +83,17 @@ RelightInput::RelightInput(const RayMap& map) {
         for (std::size_t r = 0; r < band.record_count; ++r) {
             const std::size_t i = band_start[static_cast<std::size_t>(b)] + r;
             const std::byte* rec = band.records.data() + r * stride;
-            m_pixel[i] = get<std::uint32_t>(rec + RecordLayout::kPixel);
-            const Eigen::Vector3d nrm = octahedralAt(rec + RecordLayout::kNormal);
-            const Eigen::Vector3d view = octahedralAt(rec + RecordLayout::kView);
-            const Eigen::Vector3d position = Eigen::Vector3f(get<float>(rec + RecordLayout::kPosition),
-                                                             get<float>(rec + RecordLayout::kPosition + 4),
-                                                             get<float>(rec + RecordLayout::kPosition + 8))
-                                                 .cast<double>();
+            m_pixel[i] = recordField<std::uint32_t>(rec + RecordLayout::kPixel);
+            const Eigen::Vector3d nrm = recordDirection(rec + RecordLayout::kNormal);
+            const Eigen::Vector3d view = recordDirection(rec + RecordLayout::kView);
+            const Eigen::Vector3d position =
+                Eigen::Vector3f(recordField<float>(rec + RecordLayout::kPosition),
+                                recordField<float>(rec + RecordLayout::kPosition + 4),
+                                recordField<float>(rec + RecordLayout::kPosition + 8))
+                    .cast<double>();
             Eigen::Vector3f w;
             for (std::size_t c = 0; c < 3; ++c)
-                w[static_cast<Eigen::Index>(c)] = halfAt(rec + RecordLayout::kWeight + 2 * c);
+                w[static_cast<Eigen::Index>(c)] = recordHalf(rec + RecordLayout::kWeight + 2 * c);
             const double mu_o = std::clamp(nrm.dot(view), 0.0, 1.0);
             int ko = 0;
             float to = 0.0F;
@@ -128,17 +109,17 @@ RelightInput::RelightInput(const RayMap& map) {
                 const float wc = w[static_cast<Eigen::Index>(c)];
                 for (std::size_t j = 0; j < cells; ++j) {
                     m_l0[(i * 3 + c) * cells + j] =
-                        wc * halfAt(rec + RecordLayout::kMoments0 + 6 * j + 2 * c);
+                        wc * recordHalf(rec + RecordLayout::kMoments0 + 6 * j + 2 * c);
                     for (std::size_t m = 1; m < orders; ++m)
                         m_q[((i * 3 + c) * (orders - 1) + m - 1) * cells + j] =
                             q[3 * ((orders - 1) * j + (m - 1)) + c];
                 }
-                m_mirror[i * 3 + c] = wc * get<float>(rec + RecordLayout::kMirror + 4 * c);
+                m_mirror[i * 3 + c] = wc * recordField<float>(rec + RecordLayout::kMirror + 4 * c);
             }
             // Explicit lights: V f(wi, wo) E cos(theta_i); an unlit or
             // shadowed light gets factor 0 at a valid corner (no branch later).
             for (std::size_t k = 0; k < lights; ++k) {
-                const auto vis = get<std::uint8_t>(rec + layout.visibility() + k);
+                const auto vis = recordField<std::uint8_t>(rec + layout.visibility() + k);
                 const ExplicitLight& light = m_light_list[k];
                 Eigen::Vector3d wi = light.vector;
                 Eigen::Vector3d e = light.power;

@@ -9,33 +9,15 @@
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/sparkle/sparkle_texture.h"
 
-#include <Imath/half.h>
 #include <tbb/parallel_for.h>
 
 #include <atomic>
 #include <chrono>
-#include <cstring>
 #include <string>
 
 namespace paintlab::raymaps {
 
 namespace {
-
-template <typename T> T get(const std::byte* at) {
-    T value;
-    std::memcpy(&value, at, sizeof(T));
-    return value;
-}
-
-double halfAt(const std::byte* at) {
-    Imath::half h;
-    h.setBits(get<std::uint16_t>(at));
-    return static_cast<double>(static_cast<float>(h));
-}
-
-Vec3 decode(const std::byte* at) {
-    return decodeOctahedral(get<std::uint16_t>(at), get<std::uint16_t>(at + 2)).cast<double>();
-}
 
 void checkSetting(double value, bool zero_ok, const char* name) {
     if (!std::isfinite(value) || value < 0.0 || (!zero_ok && value == 0.0))
@@ -98,19 +80,21 @@ SparklePassStats addSparkle(const RayMap& map, const SparkleModel& model, RgbIma
                 double local_glints = 0.0;
                 for (std::size_t r = range.begin(); r != range.end(); ++r) {
                     const std::byte* rec = band.records.data() + r * stride;
-                    const auto pixel = get<std::uint32_t>(rec + RecordLayout::kPixel);
-                    const Vec3 n = decode(rec + RecordLayout::kNormal);
-                    const Vec3 v = decode(rec + RecordLayout::kView);
+                    const auto pixel = recordField<std::uint32_t>(rec + RecordLayout::kPixel);
+                    const Vec3 n = recordDirection(rec + RecordLayout::kNormal);
+                    const Vec3 v = recordDirection(rec + RecordLayout::kView);
                     const double mu_o = n.dot(v);
                     if (!(mu_o > 1e-3)) continue;
-                    const Vec3 position(static_cast<double>(get<float>(rec + RecordLayout::kPosition)),
-                                        static_cast<double>(get<float>(rec + RecordLayout::kPosition + 4)),
-                                        static_cast<double>(get<float>(rec + RecordLayout::kPosition + 8)));
-                    const double footprint_um = halfAt(rec + RecordLayout::kFootprint) * unit_um;
+                    const Vec3 position(
+                        static_cast<double>(recordField<float>(rec + RecordLayout::kPosition)),
+                        static_cast<double>(recordField<float>(rec + RecordLayout::kPosition + 4)),
+                        static_cast<double>(recordField<float>(rec + RecordLayout::kPosition + 8)));
+                    const double footprint_um =
+                        static_cast<double>(recordHalf(rec + RecordLayout::kFootprint)) * unit_um;
                     if (!(footprint_um > 0.0)) continue;
-                    const Rgb3 weight(halfAt(rec + RecordLayout::kWeight),
-                                      halfAt(rec + RecordLayout::kWeight + 2),
-                                      halfAt(rec + RecordLayout::kWeight + 4));
+                    const Rgb3 weight(static_cast<double>(recordHalf(rec + RecordLayout::kWeight)),
+                                      static_cast<double>(recordHalf(rec + RecordLayout::kWeight + 2)),
+                                      static_cast<double>(recordHalf(rec + RecordLayout::kWeight + 4)));
                     // The texture's frame from the normal alone: it must not turn with the view.
                     const Frame frame = Frame::fromNormal(n);
                     const Vec3 wo = frame.toLocal(v);
@@ -126,7 +110,7 @@ SparklePassStats addSparkle(const RayMap& map, const SparkleModel& model, RgbIma
                     Rgb3 add = Rgb3::Zero();
                     bool glint = false;
                     for (std::size_t k = 0; k < h.lights.size(); ++k) {
-                        const auto vis = get<std::uint8_t>(rec + layout.visibility() + k);
+                        const auto vis = recordField<std::uint8_t>(rec + layout.visibility() + k);
                         if (vis == 0) continue;
                         const ExplicitLight& light = h.lights[k];
                         Vec3 wi = light.vector;

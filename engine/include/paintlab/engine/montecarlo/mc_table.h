@@ -4,39 +4,10 @@
 // takes a LayeredBrdf (eval, albedo, multi-angle colours, plots, relight)
 // works on either model.
 //
-// Method: the fast model's grid for the same settings (computeLayeredBrdf)
-// gives the wavelengths, each band's node cosines mu_j (ambient) and the
-// Fourier orders m < M. For every band and node the full model is run with a
-// collimated beam at mu_j (exact in the incidence), and what escapes is
-// projected: the ambient cosines are cut into cells at the midpoints between
-// adjacent nodes (0 and 1 at the ends), and an escape at (mu_o, delta) in
-// cell i adds w cos(m delta) / T(mu_o) / (2 pi T(mu_j) int_cell mu dmu) to
-// f^m(i, j), the LayeredBrdf::BandTable convention (f divided by the top
-// interface's transmittances T). The albedo at mu_j is the full model's.
-//
-// Why cells rather than next-event estimates at the node directions: one
-// escape costs O(M) (a Chebyshev recurrence), where next-event estimation
-// would evaluate the scattering kernel at every node direction and 2M
-// azimuths at every collision (~M N times the work), and it does not see
-// light whose last bounce is a mirror-like flake (explicit flakes, spread
-// 0). The azimuthal projection is exact (no aliasing; orders >= M are
-// dropped, as the fast model drops them).
-//
-// Bias: each f^m(i, j) is the mu-weighted average of f^m(mu_o, mu_j) over
-// cell i, not its value at mu_i: second order in the cell width where f^m is
-// smooth, more where f^m is sharply peaked (near-mirror flakes) or at the
-// cell next to grazing. With the 4 ambient nodes of an 8-node grid under a
-// 1.5 coat it moved eval() by up to 1.3 % (pigment slab) and 1.8 % (15-degree
-// mirror flakes) against the fast model on the same grid
-// (tests/engine/montecarlo/test_mc_table.cpp computes it from a converged
-// fast model pushed through the same projection). It shrinks with more
-// nodes, at the price of more variance per cell.
-//
-// Standard errors: per entry over paths (or over batch means with explicit
-// flakes, monte_carlo.h); for anything derived from the table (eval at a
-// direction pair, colours) from the spread of the per-batch tables
-// (batchEstimate), which accounts for the correlation between the entries
-// that one path feeds.
+// Escapes are projected into cells around the fast model's node cosines
+// (cell averages, not node values: see mc_table.cpp for the method and its
+// bias); standard errors per entry, and per-batch tables for anything
+// derived from the table.
 
 #include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/montecarlo/monte_carlo.h"
