@@ -6,6 +6,7 @@
 #include "paintlab/database/ingredients.h"
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/io/number_format.h"
+#include "paintlab/engine/recipe_paths.h"
 
 #include <cmath>
 
@@ -14,10 +15,6 @@ namespace paintlab::db {
 namespace {
 
 using io::formatNumber;
-
-std::string layerLabel(std::size_t index, const std::string& name) {
-    return "layer " + std::to_string(index + 1) + " '" + name + "'";
-}
 
 // The ingredient of a recipe row, with a density: the one the version was
 // linked to when saved, or, for a row saved unlinked, the ingredient of that
@@ -36,8 +33,8 @@ Ingredient linkedIngredient(Database& db, const std::optional<std::int64_t>& id,
                          "not in the database, so its density is unknown; add the " +
                              std::string(ingredientKindName(kind)) + " '" + name + "' first");
     if (!ingredient->density_g_cm3)
-        throw InputError(file, label + ".density_g_cm3",
-                         "the ingredient has no density; set one to compute its mass");
+        throw InputError(file, label,
+                         "the ingredient has no density (density_g_cm3); set one to compute its mass");
     return std::move(*ingredient);
 }
 
@@ -83,7 +80,6 @@ ProductionSheet productionSheet(Database& db, std::string_view recipe_name, std:
     for (std::size_t i = 0; i < stored.recipe.layers.size(); ++i) {
         const Layer& layer = stored.recipe.layers[i];
         const LayerLink& link = stored.layers.at(i);
-        const std::string label = layerLabel(i, layer.name);
         ProductionLayer out;
         out.name = layer.name;
         out.dry_film_thickness_um = layer.thickness_um;
@@ -95,12 +91,8 @@ ProductionSheet productionSheet(Database& db, std::string_view recipe_name, std:
         for (std::size_t j = 0; j < layer.components.size(); ++j) {
             const Component& component = layer.components[j];
             const std::string kind(componentKind(component));
-            std::string component_label = label;
-            component_label.append(" > ")
-                .append(kind)
-                .append(" '")
-                .append(componentName(component))
-                .append("'");
+            const std::string component_label =
+                ingredientLabel(componentPath(i, j), kind, componentName(component));
             if (std::holds_alternative<RawMedium>(component))
                 throw InputError(
                     file, component_label,
@@ -123,7 +115,7 @@ ProductionSheet productionSheet(Database& db, std::string_view recipe_name, std:
             m_components += line.wet_mass_fraction;
             out.lines.push_back(std::move(line));
         }
-        const std::string binder_label = label + " > binder '" + layer.binder.name + "'";
+        const std::string binder_label = ingredientLabel(binderPath(i), "binder", layer.binder.name);
         const Ingredient binder = linkedIngredient(db, link.binder_ingredient_id, IngredientKind::Binder,
                                                    layer.binder.name, binder_label);
         const double phi_b = 1.0 - phi_components;

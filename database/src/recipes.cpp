@@ -5,6 +5,7 @@
 
 #include "paintlab/database/ingredients.h"
 #include "paintlab/engine/recipe_json.h"
+#include "paintlab/engine/recipe_paths.h"
 #include "paintlab/engine/recipe_validation.h"
 
 #include "sha256.h"
@@ -23,12 +24,6 @@ std::optional<std::int64_t> ingredientId(const Connection& c, std::string_view k
     s.bind(1, kind).bind(2, name);
     if (!s.step()) return std::nullopt;
     return s.integer(0);
-}
-
-std::string layerLabel(std::size_t index, const Layer& layer) {
-    std::string out = "layer ";
-    out.append(std::to_string(index + 1)).append(" '").append(layer.name).append("'");
-    return out;
 }
 
 RecipeVersionInfo versionInfo(const Statement& s, int first_column) {
@@ -130,8 +125,7 @@ SavedVersion saveRecipeVersion(Database& db, const Recipe& recipe, const SaveOpt
     for (std::size_t i = 0; i < recipe.layers.size(); ++i) {
         const Layer& layer = recipe.layers[i];
         const auto binder_id = ingredientId(c, ingredientKindName(IngredientKind::Binder), layer.binder.name);
-        if (!binder_id)
-            saved.unlinked.push_back(layerLabel(i, layer) + " > binder '" + layer.binder.name + "'");
+        if (!binder_id) saved.unlinked.push_back(ingredientLabel(binderPath(i), "binder", layer.binder.name));
         layer_row.reset();
         layer_row.bind(1, version_id)
             .bind(2, static_cast<std::int64_t>(i))
@@ -149,9 +143,7 @@ SavedVersion saveRecipeVersion(Database& db, const Recipe& recipe, const SaveOpt
             std::optional<std::int64_t> id;
             if (parseIngredientKind(kind)) {
                 id = ingredientId(c, kind, name);
-                if (!id)
-                    saved.unlinked.push_back(layerLabel(i, layer) + " > " + std::string(kind) + " '" + name +
-                                             "'");
+                if (!id) saved.unlinked.push_back(ingredientLabel(componentPath(i, j), kind, name));
             }
             component_row.reset();
             component_row.bind(1, layer_id)

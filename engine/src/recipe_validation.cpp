@@ -2,6 +2,7 @@
 
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/io/number_format.h"
+#include "paintlab/engine/recipe_paths.h"
 
 #include <algorithm>
 #include <cmath>
@@ -19,11 +20,6 @@ std::string rangeText(const ParameterDecl& decl) {
     text.append(formatNumber(decl.min)).append(" to ").append(formatNumber(decl.max));
     if (decl.unit != "1") text.append(" ").append(decl.unit);
     return text;
-}
-
-// The path of a field inside `path` ("" for the top level).
-std::string childField(const std::string& path, std::string_view key) {
-    return path.empty() ? std::string(key) : path + " > " + std::string(key);
 }
 
 // The visitor that checks every declared field against its declaration.
@@ -61,7 +57,7 @@ public:
     }
 
 private:
-    std::string field(const ParameterDecl& decl) const { return childField(m_path, decl.key); }
+    std::string field(const ParameterDecl& decl) const { return fieldPath(m_path, decl.key); }
 
     void add(Severity severity, const std::string& where, std::string message) {
         m_problems.push_back({severity, where, std::move(message)});
@@ -97,9 +93,9 @@ private:
 
 void checkDepthProfile(const DepthProfile& profile, const std::string& path, double volume_fraction,
                        double max_volume_fraction, std::vector<RecipeProblem>& problems) {
-    const std::string where = path + " > depth_profile";
+    const std::string where = fieldPath(path, "depth_profile");
     if (RecipeProblem node = depthProfileNodeProblem(profile); !node.message.empty()) {
-        node.field = node.field.empty() ? where : where + " > " + node.field;
+        node.field = node.field.empty() ? where : fieldPath(where, node.field);
         problems.push_back(std::move(node));
         return;
     }
@@ -151,17 +147,18 @@ template <class T> void checkMaterialFields(const T& c, const std::string& path,
         const bool has_nk = c.metal_n.has_value() || c.metal_k.has_value();
         if (c.reflectance.has_value() == has_nk)
             problems.push_back(
-                {Severity::Error, childField(path, "reflectance"),
+                {Severity::Error, fieldPath(path, "reflectance"),
                  "give either 'reflectance' or the metal's 'n' and 'k', exactly one of the two"});
         else if (has_nk && (!c.metal_n || !c.metal_k))
-            problems.push_back({Severity::Error, childField(path, c.metal_n ? "k" : "n"),
+            problems.push_back({Severity::Error, fieldPath(path, c.metal_n ? "k" : "n"),
                                 "a metal's complex index needs both 'n' and 'k'"});
     }
 }
 
 template <class T>
 void checkComponent(const T& c, const std::string& path, std::vector<RecipeProblem>& problems) {
-    if (c.name.empty()) problems.push_back({Severity::Error, path + " > name", "the component needs a name"});
+    if (c.name.empty())
+        problems.push_back({Severity::Error, fieldPath(path, "name"), "the component needs a name"});
     checkMaterialFields(c, path, VolumeFraction::Check, problems);
     if constexpr (requires { c.depth_profile; }) {
         if (c.depth_profile) {
@@ -174,26 +171,25 @@ void checkComponent(const T& c, const std::string& path, std::vector<RecipeProbl
     }
 }
 
-void checkLayer(const Layer& layer, const std::string& path, std::vector<RecipeProblem>& problems) {
-    if (layer.name.empty()) problems.push_back({Severity::Error, path + " > name", "the layer needs a name"});
+void checkLayer(const Layer& layer, std::size_t index, std::vector<RecipeProblem>& problems) {
+    const std::string path = layerPath(index);
+    if (layer.name.empty())
+        problems.push_back({Severity::Error, fieldPath(path, "name"), "the layer needs a name"});
     FieldChecker checker(problems, path);
     Layer::traverse(layer, checker);
-    FieldChecker binder_checker(problems, path + " > binder");
+    FieldChecker binder_checker(problems, binderPath(index));
     Binder::traverse(layer.binder, binder_checker);
     for (std::size_t i = 0; i < layer.components.size(); ++i) {
-        const Component& component = layer.components[i];
-        const std::string where = path + " > component " + std::to_string(i + 1) + " '" +
-                                  componentName(component) + "' (" + std::string(componentKind(component)) +
-                                  ")";
-        std::visit([&](const auto& c) { checkComponent(c, where, problems); }, component);
+        const std::string where = componentPath(index, i);
+        std::visit([&](const auto& c) { checkComponent(c, where, problems); }, layer.components[i]);
     }
     const double total = layer.totalVolumeFraction();
     if (total > 1.0) {
-        problems.push_back({Severity::Error, path + " > components",
+        problems.push_back({Severity::Error, fieldPath(path, "components"),
                             "total volume fraction " + formatNumber(total) + " (" +
                                 formatNumber(100.0 * total) + "%) is above 1 (100%)"});
     } else if (const double peak = peakTotalVolumeFraction(layer); peak > 1.0) {
-        problems.push_back({Severity::Error, path + " > components",
+        problems.push_back({Severity::Error, fieldPath(path, "components"),
                             "with the depth profiles the local total volume fraction reaches " +
                                 formatNumber(peak) + ", above 1 (100%)"});
     }
@@ -208,9 +204,7 @@ std::vector<RecipeProblem> checkRecipe(const Recipe& recipe) {
     if (recipe.layers.empty())
         problems.push_back(
             {Severity::Error, "layers", "the recipe has no layers; a paint needs at least one"});
-    for (std::size_t i = 0; i < recipe.layers.size(); ++i)
-        checkLayer(recipe.layers[i], "layer " + std::to_string(i + 1) + " '" + recipe.layers[i].name + "'",
-                   problems);
+    for (std::size_t i = 0; i < recipe.layers.size(); ++i) checkLayer(recipe.layers[i], i, problems);
     std::visit(
         [&problems](const auto& s) {
             FieldChecker checker(problems, "substrate");
@@ -245,9 +239,7 @@ void validateRecipe(const Recipe& recipe, const std::string& source) {
 
 namespace {
 
-std::string nodeField(const char* field, std::size_t i) {
-    return std::string(field) + " (node " + std::to_string(i + 1) + ")";
-}
+std::string nodeField(const char* field, std::size_t i) { return elementPath("", field, i); }
 
 }  // namespace
 
@@ -271,9 +263,9 @@ RecipeProblem depthProfileNodeProblem(const DepthProfile& profile) {
                        formatNumber(z.back()) + "; the last node must be at 1 (bottom of the layer)");
     for (std::size_t i = 1; i < z.size(); ++i)
         if (!(z[i] > z[i - 1]))
-            return problem(nodeField("depth", i), formatNumber(z[i]) + " is not below node " +
-                                                      std::to_string(i) + " (" + formatNumber(z[i - 1]) +
-                                                      "); depth must increase strictly from 0 to 1");
+            return problem(nodeField("depth", i),
+                           formatNumber(z[i]) + " is not below " + nodeField("depth", i - 1) + " (" +
+                               formatNumber(z[i - 1]) + "); depth must increase strictly from 0 to 1");
     const ParameterDecl& decl = params::kProfileWeight;
     for (std::size_t i = 0; i < w.size(); ++i) {
         if (!std::isfinite(w[i])) return problem(nodeField("weight", i), "not a finite number");

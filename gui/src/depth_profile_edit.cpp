@@ -1,6 +1,7 @@
 #include "depth_profile_edit.h"
 
 #include "paintlab/engine/parameters.h"
+#include "paintlab/engine/recipe_paths.h"
 #include "paintlab/engine/recipe_validation.h"
 
 #include <algorithm>
@@ -57,7 +58,8 @@ DepthProfile shownProfile(const std::optional<DepthProfile>& stored) {
 std::string depthProfileProblem(const DepthProfile& profile) {
     const RecipeProblem p = depthProfileNodeProblem(profile);
     if (p.message.empty()) return {};
-    return "depth_profile" + (p.field.empty() ? std::string() : " > " + p.field) + ": " + p.message;
+    return (p.field.empty() ? std::string("depth_profile") : fieldPath("depth_profile", p.field)) + ": " +
+           p.message;
 }
 
 DepthProfile withNodeMoved(const DepthProfile& profile, std::size_t node, double depth, double weight) {
@@ -119,14 +121,12 @@ Recipe withProfile(const Recipe& recipe, int layer, int component,
 }
 
 std::string profileEditError(const Recipe& current, const Recipe& candidate, int layer) {
-    // The field names as recipe_validation.cpp writes them: "layer 2 'basecoat' > ...".
-    std::string layer_prefix;
-    if (layer >= 0 && layer < static_cast<int>(candidate.layers.size()))
-        layer_prefix = "layer " + std::to_string(layer + 1) + " '" +
-                       candidate.layers[static_cast<std::size_t>(layer)].name + "' > ";
-    auto aboutThisLayersProfiles = [&layer_prefix](const std::string& field) {
-        if (layer_prefix.empty() || field.rfind(layer_prefix, 0) != 0) return false;
-        return field.find("> depth_profile") != std::string::npos || field == layer_prefix + "components";
+    // A component's depth profile in this layer, or the layer's total volume fraction.
+    auto aboutThisLayersProfiles = [layer](const std::string& field) {
+        const std::optional<LayerFieldPath> path = splitLayerPath(field);
+        if (!path || static_cast<int>(path->layer) != layer) return false;
+        if (path->component) return path->rest.starts_with(".depth_profile");
+        return path->rest == ".components";
     };
     std::set<std::pair<std::string, std::string>> already;
     for (const RecipeProblem& p : checkRecipe(current))

@@ -32,7 +32,7 @@ DepthProfile shownProfile(const std::optional<DepthProfile>& stored);
 
 // The first problem of a profile's nodes (the engine's
 // depthProfileNodeProblem, so an edit and a file get the same words), naming
-// the field ("depth_profile > weight (node 2): -0.5 is below 0"); empty when
+// the field ("depth_profile.weight[1]: -0.5 is below 0"); empty when
 // it is well-formed.
 std::string depthProfileProblem(const DepthProfile& profile);
 

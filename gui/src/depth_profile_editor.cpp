@@ -3,6 +3,8 @@
 #include "depth_profile_plot.h"
 #include "set_depth_profile_command.h"
 
+#include "paintlab/engine/recipe_paths.h"
+
 #include <QComboBox>
 #include <QGridLayout>
 #include <QHBoxLayout>
@@ -226,9 +228,9 @@ void DepthProfileEditor::editNode(bool depth_field) {
     bool ok = false;
     const double value = field->text().trimmed().toDouble(&ok);
     if (!ok) {
-        refuse(tr("depth_profile > %1 (node %2): '%3' is not a number")
-                   .arg(depth_field ? QStringLiteral("depth") : QStringLiteral("weight"))
-                   .arg(node + 1)
+        refuse(tr("%1: '%2' is not a number")
+                   .arg(QString::fromStdString(
+                       elementPath("depth_profile", depth_field ? "depth" : "weight", i)))
                    .arg(field->text()));
         return;
     }

@@ -3,6 +3,8 @@
 #include "depth_profile_edit.h"
 #include "spectrum_chart.h"
 
+#include "paintlab/engine/recipe_paths.h"
+
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QPaintEvent>
@@ -107,9 +109,10 @@ void DepthProfilePlot::removeNode(int node) {
     if (node < 0) return;
     const std::optional<DepthProfile> removed = withNodeRemoved(m_profile, static_cast<std::size_t>(node));
     if (!removed) {
-        emit refused(tr("depth_profile > depth (node %1): the nodes at the top (0) and the bottom (1) of the "
-                        "layer stay; drag them to change their weight")
-                         .arg(node + 1));
+        emit refused(tr("%1: the nodes at the top (0) and the bottom (1) of the layer stay; drag them to "
+                        "change their weight")
+                         .arg(QString::fromStdString(
+                             elementPath("depth_profile", "depth", static_cast<std::size_t>(node)))));
         return;
     }
     selectNode(-1);

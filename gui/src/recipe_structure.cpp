@@ -2,6 +2,7 @@
 
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/parameters.h"
+#include "paintlab/engine/recipe_paths.h"
 #include "paintlab/engine/recipe_validation.h"
 
 #include <algorithm>
@@ -13,12 +14,15 @@ namespace paintlab::gui {
 
 namespace {
 
-// The field names as recipe_validation.cpp writes them.
-std::string layerField(const Recipe& recipe, int layer) {
-    std::string field = "layer " + std::to_string(layer + 1);
-    if (layer >= 0 && layer < static_cast<int>(recipe.layers.size()))
-        field += " '" + recipe.layers[static_cast<std::size_t>(layer)].name + "'";
-    return field;
+// A layer's field path (recipe_paths.h); "layers" for a negative index.
+std::string layerField(int layer) {
+    return layer < 0 ? std::string("layers") : layerPath(static_cast<std::size_t>(layer));
+}
+
+// A component's field path; "layers[i].components" for a negative index.
+std::string componentField(int layer, int component) {
+    if (component < 0) return fieldPath(layerField(layer), "components");
+    return elementPath(layerField(layer), "components", static_cast<std::size_t>(component));
 }
 
 // "interference flake 'pearl'", for undo texts.
@@ -30,7 +34,7 @@ std::string componentLabel(const Component& component) {
 
 void checkLayerIndex(const Recipe& recipe, int layer) {
     if (layer < 0 || layer >= static_cast<int>(recipe.layers.size()))
-        throw InputError("", layerField(recipe, layer),
+        throw InputError("", layerField(layer),
                          "the recipe has no such layer (it has " + std::to_string(recipe.layers.size()) +
                              ")");
 }
@@ -39,7 +43,7 @@ void checkComponentIndex(const Recipe& recipe, int layer, int component) {
     checkLayerIndex(recipe, layer);
     const Layer& l = recipe.layers[static_cast<std::size_t>(layer)];
     if (component < 0 || component >= static_cast<int>(l.components.size()))
-        throw InputError("", layerField(recipe, layer) + " > component " + std::to_string(component + 1),
+        throw InputError("", componentField(layer, component),
                          "the layer has no such component (it has " + std::to_string(l.components.size()) +
                              ")");
 }
@@ -61,31 +65,22 @@ std::string trimmed(const std::string& text) {
     return text.substr(first, last - first + 1);
 }
 
-// A problem's field without the numbers and names of its layer and component
-// ("layer 2 'basecoat' > component 1 'Al' (mirror_flake) > volume_fraction"
-// becomes "layer > component (mirror_flake) > volume_fraction").
+// A problem's field without the indices of its layer and component, with
+// the component's kind instead ("layers[1].components[0].volume_fraction"
+// becomes "layers[].components[] (mirror_flake).volume_fraction"), so that
+// the same problem is recognised after a structure edit moved it.
 std::string anonymousField(const Recipe& recipe, const std::string& field) {
-    for (std::size_t l = 0; l < recipe.layers.size(); ++l) {
-        const Layer& layer = recipe.layers[l];
-        const std::string prefix = "layer " + std::to_string(l + 1) + " '" + layer.name + "'";
-        if (field.compare(0, prefix.size(), prefix) != 0) continue;
-        std::string rest = field.substr(prefix.size());
-        if (!rest.empty() && rest.compare(0, 3, " > ") != 0) continue;
-        for (std::size_t c = 0; c < layer.components.size(); ++c) {
-            const Component& component = layer.components[c];
-            const std::string kind = " (" + std::string(componentKind(component)) + ")";
-            const std::string inner =
-                " > component " + std::to_string(c + 1) + " '" + componentName(component) + "'" + kind;
-            if (rest.compare(0, inner.size(), inner) == 0) {
-                std::string anonymous = " > component";
-                anonymous.append(kind).append(rest, inner.size());
-                rest = std::move(anonymous);
-                break;
-            }
-        }
-        return "layer" + rest;
+    const std::optional<LayerFieldPath> path = splitLayerPath(field);
+    if (!path || path->layer >= recipe.layers.size()) return field;
+    std::string anonymous = "layers[]";
+    if (path->component) {
+        const Layer& layer = recipe.layers[path->layer];
+        if (*path->component >= layer.components.size()) return field;
+        anonymous.append(".components[] (")
+            .append(componentKind(layer.components[*path->component]))
+            .append(")");
     }
-    return field;
+    return anonymous + path->rest;
 }
 
 }  // namespace
@@ -137,7 +132,7 @@ StructureEdit withLayerRemoved(const Recipe& recipe, int layer) {
 StructureEdit withLayerMoved(const Recipe& recipe, int layer, int to) {
     checkLayerIndex(recipe, layer);
     if (to < 0 || to >= static_cast<int>(recipe.layers.size()))
-        throw InputError("", layerField(recipe, layer),
+        throw InputError("", layerField(layer),
                          to < 0 ? "it is already the top layer" : "it is already the bottom layer");
     const std::string& name = recipe.layers[static_cast<std::size_t>(layer)].name;
     StructureEdit edit{recipe, "Move layer '" + name + (to < layer ? "' up" : "' down")};
@@ -151,7 +146,7 @@ StructureEdit withLayerRenamed(const Recipe& recipe, int layer, const std::strin
     const std::string& old_name = recipe.layers[static_cast<std::size_t>(layer)].name;
     for (std::size_t l = 0; l < recipe.layers.size(); ++l)
         if (static_cast<int>(l) != layer && recipe.layers[l].name == new_name && !new_name.empty())
-            throw InputError("", layerField(recipe, layer) + " > name",
+            throw InputError("", fieldPath(layerField(layer), "name"),
                              "layer " + std::to_string(l + 1) + " is already called '" + new_name +
                                  "'; layer names must differ");
     StructureEdit edit{recipe, "Rename layer '" + old_name + "' to '" + new_name + "'"};
@@ -173,7 +168,7 @@ StructureEdit withComponentMoved(const Recipe& recipe, int layer, int component,
     checkComponentIndex(recipe, layer, component);
     const Layer& l = recipe.layers[static_cast<std::size_t>(layer)];
     if (to < 0 || to >= static_cast<int>(l.components.size()))
-        throw InputError("", layerField(recipe, layer) + " > component " + std::to_string(component + 1),
+        throw InputError("", componentField(layer, component),
                          to < 0 ? "it is already the first component" : "it is already the last component");
     StructureEdit edit{recipe, "Move " + componentLabel(l.components[static_cast<std::size_t>(component)]) +
                                    (to < component ? " up" : " down") + " in '" + l.name + "'"};

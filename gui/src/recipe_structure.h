@@ -31,8 +31,8 @@ double newLayerThicknessUm();
 // or "clear coat 2", 3, ... when that is taken.
 Layer newClearLayer(const Recipe& recipe);
 
-// The functions below throw InputError naming the field ("layer 3", "layer 2
-// 'basecoat' > component 4") for an index that does not exist or a move
+// The functions below throw InputError naming the field ("layers[2]",
+// "layers[1].components[3]") for an index that does not exist or a move
 // past either end; they do not validate the result (checkStructureEdit does).
 
 // A new clear layer inserted at index `at` (0: on top; layers.size(): at the bottom).

@@ -97,7 +97,8 @@ TEST(Production, BatchByMassMatchesTheHandComputation) {
     EXPECT_NEAR(layer.coating_weight_g_m2, 33.1, 1e-10);
     EXPECT_NEAR(layer.spreading_rate_m2_kg, 1000.0 / (20.0 * 2.675), 1e-10);
     ASSERT_EQ(layer.warnings.size(), 1U);
-    EXPECT_NE(layer.warnings[0].find("'red': volume fraction 0.1 is above its technological maximum 0.08"),
+    EXPECT_NE(layer.warnings[0].find("layers[0].components[0] (pigment 'red'): volume fraction 0.1 is above "
+                                     "its technological maximum 0.08"),
               std::string::npos)
         << layer.warnings[0];
 }
@@ -156,7 +157,8 @@ TEST(Production, MissingDensityUnlinkedIngredientAndRawMediumAreNamed) {
         productionSheet(db, "test basecoat", std::nullopt, options);
         FAIL();
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("p.db: layer 1 'basecoat' > pigment 'red'.density_g_cm3"),
+        EXPECT_NE(std::string(e.what()).find(
+                      "p.db: layers[0].components[0] (pigment 'red'): the ingredient has no density"),
                   std::string::npos)
             << e.what();
     }
@@ -169,7 +171,9 @@ TEST(Production, MissingDensityUnlinkedIngredientAndRawMediumAreNamed) {
         productionSheet(other, "test basecoat", std::nullopt, options);
         FAIL();
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("'red': not in the database"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("layers[0].components[0] (pigment 'red'): not in the database"),
+                  std::string::npos)
+            << e.what();
     }
     // Ingredients added after the version was saved (unlinked) are found by kind and name.
     storeMinimal(other);

@@ -144,8 +144,8 @@ TEST(Recipes, IngredientsAreLinkedByKindAndName) {
     // Default: saved with the recipe's own data; the unknown ones are reported and unlinked.
     const auto saved = saveRecipeVersion(db, test::minimalRecipe("r"), by("alice"));
     ASSERT_EQ(saved.unlinked.size(), 2U);
-    EXPECT_EQ(saved.unlinked[0], "layer 1 'basecoat' > pigment 'red'");
-    EXPECT_EQ(saved.unlinked[1], "layer 1 'basecoat' > mirror_flake 'aluminium'");
+    EXPECT_EQ(saved.unlinked[0], "layers[0].components[0] (pigment 'red')");
+    EXPECT_EQ(saved.unlinked[1], "layers[0].components[1] (mirror_flake 'aluminium')");
     const auto stored = loadRecipeVersion(db, "r");
     ASSERT_EQ(stored.layers.size(), 1U);
     EXPECT_EQ(stored.layers[0].binder_ingredient_id, binder_id);

@@ -1,5 +1,6 @@
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/recipe_json.h"
+#include "paintlab/engine/recipe_paths.h"
 #include "paintlab/engine/recipe_validation.h"
 
 #include <gtest/gtest.h>
@@ -9,7 +10,9 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
+#include <sstream>
 
 namespace paintlab {
 namespace {
@@ -29,10 +32,10 @@ const BadRecipeCase kBadRecipes[] = {
     {"nan_value.json", "volume_fraction", "NaN"},
     {"infinity_value.json", "thickness_um", "Infinity"},
     {"overflow_value.json", "thickness_um", "too large to be finite"},
-    {"negative_thickness.json", "layer 1 'basecoat' > thickness_um", "-5 must be above 0"},
+    {"negative_thickness.json", "layers[0].thickness_um", "-5 must be above 0"},
     {"zero_layers.json", "layers", "no layers"},
     {"unknown_component_kind.json", "kind", "unknown component kind 'glitter'"},
-    {"concentration_above_limit.json", "component 2 'aluminium' (mirror_flake) > volume_fraction",
+    {"concentration_above_limit.json", "layers[0].components[1].volume_fraction",
      "0.45 is above the maximum 0.3"},
     {"total_volume_fraction_above_one.json", "components", "total volume fraction 1.1"},
     {"orientation_spread_out_of_range.json", "orientation_spread_deg", "120 is above the maximum 90"},
@@ -105,6 +108,60 @@ TEST(BadRecipeFile, MissingFileAndDirectoryAreNamed) {
 
 Recipe minimal() { return loadRecipeFile(fs::path(PAINTLAB_TEST_DATA_DIR) / "valid_minimal.json"); }
 
+TEST(RecipeFieldPaths, ReaderAndValidatorNameAFieldTheSameWay) {
+    // One recipe, one field: a string where the number goes (the JSON
+    // reader's message) and a number out of range (the validator's message).
+    const fs::path file = fs::path(PAINTLAB_TEST_DATA_DIR) / "bad_recipes" / "concentration_above_limit.json";
+    std::ifstream in(file);
+    std::ostringstream contents;
+    contents << in.rdbuf();
+    const std::string text = contents.str();
+    const std::string out_of_range = R"("volume_fraction": 0.45)";
+    const std::size_t at = text.find(out_of_range);
+    ASSERT_NE(at, std::string::npos);
+    const std::string expected = componentPath(0, 1) + ".volume_fraction";
+    ASSERT_EQ(expected, "layers[0].components[1].volume_fraction");
+    std::string as_string = text;
+    as_string.replace(at, out_of_range.size(), R"("volume_fraction": "0.45")");
+    try {
+        (void)parseRecipeJson(as_string);
+        FAIL() << "a string volume fraction was read";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.field(), expected) << e.what();
+    }
+    try {
+        validateRecipe(parseRecipeJson(text), "<recipe>");
+        FAIL() << "a volume fraction of 0.45 passed";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.field(), expected) << e.what();
+    }
+}
+
+TEST(RecipeFieldPaths, BuildAndSplit) {
+    EXPECT_EQ(layerPath(0), "layers[0]");
+    EXPECT_EQ(binderPath(2), "layers[2].binder");
+    EXPECT_EQ(depthProfilePath(1, 0), "layers[1].components[0].depth_profile");
+    EXPECT_EQ(fieldPath("", "substrate"), "substrate");
+    EXPECT_EQ(elementPath("depth_profile", "weight", 2), "depth_profile.weight[2]");
+    EXPECT_EQ(ingredientLabel(componentPath(0, 1), "pigment", "red"),
+              "layers[0].components[1] (pigment 'red')");
+
+    const auto component = splitLayerPath("layers[1].components[10].depth_profile.weight[2]");
+    ASSERT_TRUE(component.has_value());
+    EXPECT_EQ(component->layer, 1U);
+    EXPECT_EQ(component->component, std::optional<std::size_t>(10));
+    EXPECT_EQ(component->rest, ".depth_profile.weight[2]");
+    const auto layer = splitLayerPath("layers[3].components");
+    ASSERT_TRUE(layer.has_value());
+    EXPECT_EQ(layer->layer, 3U);
+    EXPECT_FALSE(layer->component.has_value());
+    EXPECT_EQ(layer->rest, ".components");
+    EXPECT_FALSE(splitLayerPath("substrate.reflectance").has_value());
+    EXPECT_FALSE(splitLayerPath("layers").has_value());
+    EXPECT_FALSE(splitLayerPath("layers[x].name").has_value());
+    EXPECT_FALSE(splitLayerPath("layers[0]name").has_value());
+}
+
 TEST(RecipeValidation, MinimalRecipeHasNoProblems) { EXPECT_TRUE(checkRecipe(minimal()).empty()); }
 
 TEST(RecipeValidation, OutsideTypicalRangeIsOnlyAWarning) {
@@ -149,12 +206,12 @@ TEST(RecipeValidation, DepthProfileNodesAreNamed) {
     const std::vector<Case> cases = {
         {{{0.0, 0.5, 1.0}, {1.0, 1.0}}, "", "3 depths but 2 weights"},
         {{{0.0}, {1.0}}, "depth", "at least two nodes"},
-        {{{0.0, std::nan(""), 1.0}, {1.0, 1.0, 1.0}}, "depth (node 2)", "not a finite number"},
-        {{{0.1, 1.0}, {1.0, 1.0}}, "depth (node 1)", "0.1; the first node must be at 0"},
-        {{{0.0, 0.9}, {1.0, 1.0}}, "depth (node 2)", "0.9; the last node must be at 1"},
-        {{{0.0, 0.6, 0.4, 1.0}, {1.0, 1.0, 1.0, 1.0}}, "depth (node 3)", "0.4 is not below node 2 (0.6)"},
-        {{{0.0, 0.5, 1.0}, {1.0, -0.5, 1.0}}, "weight (node 2)", "-0.5 is below 0"},
-        {{{0.0, 1.0}, {1.0, 2000.0}}, "weight (node 2)", "2000 is above the maximum 1000"},
+        {{{0.0, std::nan(""), 1.0}, {1.0, 1.0, 1.0}}, "depth[1]", "not a finite number"},
+        {{{0.1, 1.0}, {1.0, 1.0}}, "depth[0]", "0.1; the first node must be at 0"},
+        {{{0.0, 0.9}, {1.0, 1.0}}, "depth[1]", "0.9; the last node must be at 1"},
+        {{{0.0, 0.6, 0.4, 1.0}, {1.0, 1.0, 1.0, 1.0}}, "depth[2]", "0.4 is not below depth[1] (0.6)"},
+        {{{0.0, 0.5, 1.0}, {1.0, -0.5, 1.0}}, "weight[1]", "-0.5 is below 0"},
+        {{{0.0, 1.0}, {1.0, 2000.0}}, "weight[1]", "2000 is above the maximum 1000"},
         {{{0.0, 1.0}, {0.0, 0.0}}, "weight", "all weights are zero"},
     };
     for (const Case& c : cases) {
@@ -166,8 +223,8 @@ TEST(RecipeValidation, DepthProfileNodesAreNamed) {
         std::get<Pigment>(r.layers[0].components[0]).depth_profile = c.profile;
         const auto problems = checkRecipe(r);
         ASSERT_FALSE(problems.empty()) << c.message;
-        const std::string where = c.field.empty() ? "depth_profile" : "depth_profile > " + c.field;
-        EXPECT_TRUE(problems.front().field.ends_with(where)) << problems.front().field;
+        const std::string where = c.field.empty() ? "depth_profile" : "depth_profile." + c.field;
+        EXPECT_EQ(problems.front().field, "layers[0].components[0]." + where);
         EXPECT_EQ(problems.front().message, p.message);
     }
     EXPECT_TRUE(depthProfileNodeProblem(DepthProfile{{0.0, 0.3, 1.0}, {1.0, 0.0, 2.0}}).message.empty());

@@ -281,7 +281,7 @@ void DepthProfileTest::nodesAreAddedAndRemovedButNotTheEnds() {
 
     // Right-click on an end node: refused, named, nothing changes.
     rightClick(plot(), plot()->nodePosition(2));
-    QVERIFY2(m_editor->message().contains("depth_profile > depth (node 3)"), qPrintable(m_editor->message()));
+    QVERIFY2(m_editor->message().contains("depth_profile.depth[2]"), qPrintable(m_editor->message()));
     QCOMPARE(pearlProfile(*m_document)->depth.size(), std::size_t{3});
     QCOMPARE(undo->count(), 1);
 
@@ -316,15 +316,15 @@ void DepthProfileTest::invalidProfilesAreRefusedWithTheField() {
         const char* expected;  // what the message must name
     };
     const Case cases[] = {
-        {{{0.0, 0.6, 0.4, 1.0}, {1.0, 1.0, 1.0, 1.0}}, "depth_profile > depth (node 3)"},
-        {{{0.0, 0.5, 0.5, 1.0}, {1.0, 1.0, 1.0, 1.0}}, "depth_profile > depth (node 3)"},
-        {{{0.0, 0.9}, {1.0, 1.0}}, "depth_profile > depth (node 2)"},
-        {{{0.1, 1.0}, {1.0, 1.0}}, "depth_profile > depth (node 1)"},
-        {{{0.0, 0.5, 1.0}, {1.0, -0.5, 1.0}}, "depth_profile > weight (node 2)"},
+        {{{0.0, 0.6, 0.4, 1.0}, {1.0, 1.0, 1.0, 1.0}}, "depth_profile.depth[2]"},
+        {{{0.0, 0.5, 0.5, 1.0}, {1.0, 1.0, 1.0, 1.0}}, "depth_profile.depth[2]"},
+        {{{0.0, 0.9}, {1.0, 1.0}}, "depth_profile.depth[1]"},
+        {{{0.1, 1.0}, {1.0, 1.0}}, "depth_profile.depth[0]"},
+        {{{0.0, 0.5, 1.0}, {1.0, -0.5, 1.0}}, "depth_profile.weight[1]"},
         {{{0.0, 0.5, 1.0}, {0.0, 0.0, 0.0}}, "all weights are zero"},
         {{{0.0, 0.5, 1.0}, {1.0, 1.0}}, "every node needs both"},
-        {{{0.0, 1.0}, {1.0, std::nan("")}}, "depth_profile > weight (node 2)"},
-        {{{0.0, 1.0}, {1.0, 2000.0}}, "depth_profile > weight (node 2): 2000 is above the maximum 1000"},
+        {{{0.0, 1.0}, {1.0, std::nan("")}}, "depth_profile.weight[1]"},
+        {{{0.0, 1.0}, {1.0, 2000.0}}, "depth_profile.weight[1]: 2000 is above the maximum 1000"},
         {{{0.0}, {1.0}}, "needs at least two nodes"},
         // Valid in shape, but 4 % flakes x peak 200 = 80 % > their 30 % limit: the engine's check.
         {{{0.0, 0.01, 1.0}, {100.0, 0.0, 0.0}}, "depth_profile: the profile's peak volume fraction"},
@@ -364,12 +364,11 @@ void DepthProfileTest::typedNodeValuesAreCheckedToo() {
         emit field->editingFinished();
     };
     type(depth, "0.45");  // past node 3 at 0.3
-    QVERIFY2(m_editor->message().contains("depth_profile > depth (node 3)"), qPrintable(m_editor->message()));
+    QVERIFY2(m_editor->message().contains("depth_profile.depth[2]"), qPrintable(m_editor->message()));
     QVERIFY(m_document->recipe() == valid);
     QCOMPARE(depth->text(), QString("0.2"));  // the field shows the recipe's value again
     type(weight, "-1");
-    QVERIFY2(m_editor->message().contains("depth_profile > weight (node 2)"),
-             qPrintable(m_editor->message()));
+    QVERIFY2(m_editor->message().contains("depth_profile.weight[1]"), qPrintable(m_editor->message()));
     QVERIFY(m_document->recipe() == valid);
     type(weight, "lots");
     QVERIFY2(m_editor->message().contains("'lots' is not a number"), qPrintable(m_editor->message()));

@@ -187,7 +187,7 @@ void RecipeStructureTest::editsChangeTheRecipeAsExpected() {
         (void)withComponentRemoved(r, kBase, 3);
         QFAIL("a fourth component was removed");
     } catch (const paintlab::InputError& e) {
-        QCOMPARE(e.field(), std::string("layer 2 'basecoat' > component 4"));
+        QCOMPARE(e.field(), std::string("layers[1].components[3]"));
     }
     QVERIFY_THROWS_EXCEPTION(paintlab::InputError, withLayerMoved(r, 0, -1));
     QVERIFY_THROWS_EXCEPTION(paintlab::InputError, withLayerRemoved(r, 2));
@@ -274,7 +274,7 @@ void RecipeStructureTest::layersMoveUpAndDownWithTheSelection() {
     QCOMPARE(m_document->undoStack()->count(), 2);
     // Past the bottom: refused, named.
     QVERIFY(!panel()->moveLayer(+1));
-    QVERIFY2(panel()->message().contains("layer 2 'basecoat': it is already the bottom layer"),
+    QVERIFY2(panel()->message().contains("layers[1]: it is already the bottom layer"),
              qPrintable(panel()->message()));
     QCOMPARE(m_document->undoStack()->count(), 2);
     m_document->undoStack()->undo();
@@ -317,14 +317,14 @@ void RecipeStructureTest::emptyOrTakenNamesAreRefused() {
     const Recipe before = m_document->recipe();
     panel()->selectLayer(kBase);
     QVERIFY(!panel()->renameLayer(QStringLiteral("   ")));
-    QVERIFY2(panel()->message().contains("layer 2 '' > name: the layer needs a name"),
+    QVERIFY2(panel()->message().contains("layers[1].name: the layer needs a name"),
              qPrintable(panel()->message()));
     QVERIFY(m_document->recipe() == before);
     QCOMPARE(m_document->undoStack()->count(), 0);
     // Through the list: the refused text is replaced by the name again.
     panel()->layerList()->item(kBase)->setText(QStringLiteral("layer"));
     QTRY_VERIFY(panel()->message().contains("already called"));
-    QVERIFY2(panel()->message().contains("layer 2 'basecoat' > name: layer 1 is already called 'layer'"),
+    QVERIFY2(panel()->message().contains("layers[1].name: layer 1 is already called 'layer'"),
              qPrintable(panel()->message()));
     QVERIFY(m_document->recipe() == before);
     QCOMPARE(m_document->undoStack()->count(), 0);
@@ -374,9 +374,8 @@ void RecipeStructureTest::componentsAreRemovedAndMoved() {
     // Past the end: refused, named.
     panel()->selectComponent(2);
     QVERIFY(!panel()->moveComponent(+1));
-    QVERIFY2(
-        panel()->message().contains("layer 2 'basecoat' > component 3: it is already the last component"),
-        qPrintable(panel()->message()));
+    QVERIFY2(panel()->message().contains("layers[1].components[2]: it is already the last component"),
+             qPrintable(panel()->message()));
     QVERIFY(m_document->recipe() == before);
 }
 

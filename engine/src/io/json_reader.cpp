@@ -1,6 +1,7 @@
 #include "json_reader.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/recipe_paths.h"
 
 #include <algorithm>
 #include <cctype>
@@ -236,12 +237,10 @@ void ObjectReader::finish() const {
     }
 }
 
-std::string ObjectReader::fieldPath(std::string_view key) const {
-    return m_path.empty() ? std::string(key) : m_path + "." + std::string(key);
-}
+std::string ObjectReader::fieldPath(std::string_view key) const { return paintlab::fieldPath(m_path, key); }
 
 std::string ObjectReader::elementPath(std::string_view key, std::size_t index) const {
-    return fieldPath(key) + "[" + std::to_string(index) + "]";
+    return paintlab::elementPath(m_path, key, index);
 }
 
 }  // namespace paintlab::jsonio

@@ -36,8 +36,9 @@ struct SavedVersion {
     std::string recipe_name;
     int version = 0;
     std::string checksum_sha256;
-    bool created = false;               // false: identical to the latest version, nothing was written
-    std::vector<std::string> unlinked;  // "layer 2 'basecoat' > pigment 'X'" for every unmatched ingredient
+    bool created = false;  // false: identical to the latest version, nothing was written
+    std::vector<std::string>
+        unlinked;  // "layers[1].components[0] (pigment 'X')" for every unmatched ingredient
 };
 
 struct RecipeVersionInfo {

@@ -15,7 +15,7 @@ enum class Severity { Warning, Error };
 
 struct RecipeProblem {
     Severity severity = Severity::Error;
-    std::string field;    // "layer 2 'basecoat' > component 1 'Al flake' > volume_fraction"
+    std::string field;    // "layers[1].components[0].volume_fraction" (recipe_paths.h)
     std::string message;  // "0.4 is above the maximum 0.3 (allowed 0 to 0.3)"
 };
 
@@ -36,11 +36,11 @@ std::vector<RecipeProblem> checkMaterial(const Substrate& substrate);
 void validateRecipe(const Recipe& recipe, const std::string& source);
 
 // The first problem of a depth profile's nodes, its field relative to the
-// profile ("depth (node 3)", "weight (node 2)", or "" for the profile as a
+// profile ("depth[2]", "weight[1]", counted from 0, or "" for the profile as a
 // whole) and an empty message when the nodes are well-formed: as many
 // weights as depths, at least two nodes, depth strictly increasing from 0
 // to 1, weights finite, >= 0 and within the declared maximum, not all zero.
-// checkRecipe reports it under "... > depth_profile"; the workstation's
+// checkRecipe reports it under "...depth_profile."; the workstation's
 // profile editor shows the same words while a node is dragged or typed.
 RecipeProblem depthProfileNodeProblem(const DepthProfile& profile);
 
