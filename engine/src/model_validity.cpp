@@ -51,6 +51,7 @@
 #include "paintlab/engine/model_validity.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/number_format.h"
 #include "paintlab/engine/layer_optics.h"
 #include "paintlab/engine/multiangle.h"
 #include "paintlab/engine/optics/flake_orientation.h"
@@ -61,7 +62,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 #include <string>
 #include <variant>
@@ -332,14 +332,12 @@ FastModelValidity fastModelValidity(const Recipe& recipe, double tolerance) {
             const FlakeTerm* dominant = &terms.front();
             for (const auto& term : terms)
                 if (term.tau * term.x > dominant->tau * dominant->x) dominant = &term;
-            char text[256];
-            std::snprintf(text, sizeof text,
-                          ": coverage %.3g flake layers, diameter over film and free path %.3g, diameter / "
-                          "film %.3g; at 45as%.0f %+.1f %%",
-                          dominant->coverage, e.x, dominant->diameter_um / layer.thickness_um,
-                          e.largest_at_deg, 100.0 * e.largest);
             worst = dominant->what;
-            worst.append(text);
+            worst.append(io::formatText(
+                ": coverage %.3g flake layers, diameter over film and free path %.3g, diameter / "
+                "film %.3g; at 45as%.0f %+.1f %%",
+                dominant->coverage, e.x, dominant->diameter_um / layer.thickness_um, e.largest_at_deg,
+                100.0 * e.largest));
         }
     }
     result.within = std::abs(result.expected_rel_difference) <= tolerance;
@@ -348,14 +346,12 @@ FastModelValidity fastModelValidity(const Recipe& recipe, double tolerance) {
                         "radiative-transfer equation";
         return result;
     }
-    char head[160];
-    std::snprintf(head, sizeof head, "expected difference %+.1f %% (%s %.0f %%; %s) from ",
-                  100.0 * result.expected_rel_difference, result.within ? "within" : "above",
-                  100.0 * tolerance,
-                  result.expected_rel_difference >= 0.0 ? "the full model brighter: flakes hide one another"
-                                                        : "the full model darker: tilted flakes cannot reach "
-                                                          "the film's top");
-    result.reason = head;
+    result.reason = io::formatText("expected difference %+.1f %% (%s %.0f %%; %s) from ",
+                                   100.0 * result.expected_rel_difference, result.within ? "within" : "above",
+                                   100.0 * tolerance,
+                                   result.expected_rel_difference >= 0.0
+                                       ? "the full model brighter: flakes hide one another"
+                                       : "the full model darker: tilted flakes cannot reach the film's top");
     result.reason.append(worst);
     return result;
 }

@@ -50,6 +50,16 @@ TEST(NumberFormat, MatchesPrintfInTheCLocale) {
     EXPECT_EQ(io::formatNumber(0.1, io::NumberFormat::Shortest), "0.1");
 }
 
+// The plan's and the validity rule's reasons: printf's conversions, any length.
+TEST(NumberFormat, FormatTextIsPrintfWithoutALengthLimit) {
+    EXPECT_EQ(io::formatText("%.3g um, %+.1f %%, %.0f deg, %s %d", 0.0123456, 12.34, 44.5, "light", 7),
+              "0.0123 um, +12.3 %, 44 deg, light 7");
+    const std::string long_name(300, 'x');
+    const std::string text = io::formatText("light '%s' %.2g", long_name.c_str(), 0.5);
+    EXPECT_EQ(text, "light '" + long_name + "' 0.5");  // the plan's old 256-byte buffer cut this
+    EXPECT_EQ(io::formatText("%s", ""), "");
+}
+
 class AtomicFile : public ::testing::Test {
 protected:
     void SetUp() override {

@@ -10,6 +10,7 @@
 // deleted. Each dock is saved as a PNG under the build folder
 // (PAINTLAB_SCREENSHOT_DIR) for the screenshot comparison; no baseline here.
 
+#include "gui_test_main.h"
 #include "ingredient_dock.h"
 #include "main_window.h"
 #include "production_dialog.h"
@@ -34,7 +35,6 @@
 #include <QSettings>
 #include <QSignalSpy>
 #include <QSlider>
-#include <QSurfaceFormat>
 #include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTest>
@@ -469,15 +469,7 @@ void DocksTest::dockLayoutAndRecentFilesPersist() {
 void DocksTest::cleanupTestCase() { m_window.reset(); }
 
 int main(int argc, char** argv) {
-    QSurfaceFormat format;  // as the application's main(): VTK needs a 3.2 core profile
-    format.setVersion(3, 2);
-    format.setProfile(QSurfaceFormat::CoreProfile);
-    QSurfaceFormat::setDefaultFormat(format);
-    QApplication app(argc, argv);
-    QApplication::setOrganizationName("PaintLab-test");
-    QApplication::setApplicationName("PaintLab-docks-test");
-    DocksTest test;
-    return QTest::qExec(&test, argc, argv);
+    return paintlab::test::runGuiTest<DocksTest>(argc, argv, "PaintLab-docks-test");
 }
 
 #include "test_docks.moc"

@@ -13,11 +13,13 @@
 // depend on the preset. Times are printed, not asserted (docs/PERFORMANCE.md).
 
 #include "ab_chart.h"
+#include "gui_test_main.h"
 #include "inplane_plot.h"
 #include "lobe_plot.h"
 #include "main_window.h"
 #include "plot_data.h"
 #include "plot_render_thread.h"
+#include "plot_test_support.h"
 #include "plots_dock.h"
 #include "spectra_plot.h"
 
@@ -38,7 +40,6 @@
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QSpinBox>
-#include <QSurfaceFormat>
 #include <QTabWidget>
 #include <QTemporaryDir>
 #include <QTest>
@@ -50,19 +51,15 @@
 
 using namespace paintlab;
 using namespace paintlab::gui;
+using paintlab::test::Csv;
+using paintlab::test::pearlRecipe;
+using paintlab::test::readCsv;
+using paintlab::test::silverRecipe;
 
 namespace {
 
-constexpr int kWaitMs = 120000;  // ASan + llvmpipe on a loaded 2-core machine
+constexpr int kWaitMs = test::kPlotWaitMs;
 const QString kPearl = QStringLiteral("Blue pearl over black (two layers)");
-
-Recipe silverRecipe() {
-    return loadRecipeFile(std::string(PAINTLAB_DEMO_DIR) + "/recipes/silver-metallic.json");
-}
-
-Recipe pearlRecipe() {
-    return loadRecipeFile(std::string(PAINTLAB_DEMO_DIR) + "/recipes/pearlescent-two-layer.json");
-}
 
 // The same paint with half the pearl flakes.
 Recipe fewerFlakes(Recipe recipe) {
@@ -70,30 +67,6 @@ Recipe fewerFlakes(Recipe recipe) {
         for (Component& c : layer.components)
             if (auto* flake = std::get_if<InterferenceFlake>(&c)) flake->volume_fraction *= 0.5;
     return recipe;
-}
-
-// A CSV file as rows of cells, read by the one CSV reader (io/csv.h).
-struct Csv {
-    QStringList header;
-    std::vector<QStringList> rows;
-    int column(const QString& name) const { return static_cast<int>(header.indexOf(name)); }
-    double number(std::size_t row, const QString& name) const { return rows[row][column(name)].toDouble(); }
-};
-
-Csv readCsv(const QString& path) {
-    Csv csv;
-    QFile file(path);
-    if (!file.open(QIODevice::ReadOnly)) return csv;
-    const QByteArray bytes = file.readAll();
-    const io::CsvTable table = io::CsvTable::parse(
-        std::string_view(bytes.constData(), static_cast<std::size_t>(bytes.size())), path.toStdString());
-    for (const std::string& name : table.header()) csv.header << QString::fromStdString(name);
-    for (const io::CsvRecord& record : table.records()) {
-        QStringList row;
-        for (const std::string& field : record.fields) row << QString::fromStdString(field);
-        csv.rows.push_back(row);
-    }
-    return csv;
 }
 
 bool near(double got, double want) { return std::abs(got - want) <= 1e-9 * std::abs(want) + 1e-12; }
@@ -139,10 +112,6 @@ private slots:
     void lobeRotatesWithTheMouseAndFollowsTheIncidence();
     void logScaleRedraws();
     void mainWindowPlotsDockFollowsTheRecipe();
-    void fullModelOverlayIsLabelledAndNearTheFastModel();
-    void fullModelCancelStopsWithinASecond();
-    void fullModelNewestRequestWins();
-    void fullModelErrorNamesTheField();
     void cleanupTestCase();
 
 private:
@@ -536,176 +505,6 @@ void PlotsTest::mainWindowPlotsDockFollowsTheRecipe() {
     QVERIFY(!dock->inplanePlot()->hasComparison());
 }
 
-namespace {
-
-// A Plots dock of its own (the main window's is the same class) with the
-// silver metallic's preview BRDF and recipe.
-std::unique_ptr<PlotsDock> silverDock(const Recipe& recipe) {
-    auto dock = std::make_unique<PlotsDock>();
-    dock->resize(1200, 500);
-    dock->show();
-    dock->setRecipe(recipe);
-    dock->setBrdf(
-        std::make_shared<const LayeredBrdf>(computeLayeredBrdf(recipe, presetSettings(Preset::Preview))));
-    return dock;
-}
-
-void clickButton(PlotsDock& dock, const char* name) {
-    auto* button = dock.findChild<QPushButton*>(QString::fromLatin1(name));
-    QVERIFY(button != nullptr);
-    QTest::mouseClick(button, Qt::LeftButton);
-}
-
-}  // namespace
-
-void PlotsTest::fullModelOverlayIsLabelledAndNearTheFastModel() {
-    const Recipe silver = silverRecipe();
-    auto dock = silverDock(silver);
-    QTRY_VERIFY_WITH_TIMEOUT(dock->brdf() != nullptr && !dock->computing(), kWaitMs);
-    dock->fullModelSeconds()->setValue(1);
-    QSignalSpy ended(dock.get(), &PlotsDock::fullModelEnded);
-    QElapsedTimer timer;
-    timer.start();
-    clickButton(*dock, "plots_full_model");
-    QVERIFY(dock->fullModelRunning());
-    // An edit while it runs: the run keeps its recipe, and the label says so.
-    Recipe edited = silver;
-    edited.layers[0].thickness_um *= 1.1;
-    dock->setRecipe(edited);
-    QTRY_VERIFY_WITH_TIMEOUT(ended.count() == 1, kWaitMs);
-    QCOMPARE(ended.at(0).at(0).toBool(), true);
-    QTRY_VERIFY_WITH_TIMEOUT(!dock->computing() && dock->inplanePlot()->hasComparison() &&
-                                 dock->abChart()->hasComparison(),
-                             kWaitMs);
-    qInfo("full model, 1 s budget: overlay after %.1f s (%s)", static_cast<double>(timer.elapsed()) * 1e-3,
-          qPrintable(dock->fullModelLabel()));
-    const QString label = dock->fullModelLabel();
-    QVERIFY2(label.startsWith(QStringLiteral("full model (Monte Carlo, ")) && label.contains(" paths, ") &&
-                 label.contains(QStringLiteral(" of the recipe as at ")),
-             qPrintable(label));
-    const QString inplane = m_dir.filePath("full_inplane.csv");
-    const QString ab = m_dir.filePath("full_ab.csv");
-    QVERIFY(dock->inplanePlot()->exportCsv(inplane));
-    QVERIFY(dock->abChart()->exportCsv(ab));
-    const Csv in_csv = readCsv(inplane);
-    const Csv ab_csv = readCsv(ab);
-    std::size_t full_rows = 0;
-    std::map<double, double> fast_y, full_y;  // the 45 degree curve, by view angle
-    for (std::size_t k = 0; k < in_csv.rows.size(); ++k) {
-        const QString& series = in_csv.rows[k][0];
-        QVERIFY2(series == QStringLiteral("current") || series == label, qPrintable(series));
-        if (series == label) ++full_rows;
-        if (in_csv.number(k, "theta_i_deg") != 45.0) continue;
-        (series == label ? full_y : fast_y)[in_csv.number(k, "view_deg")] = in_csv.number(k, "Y");
-    }
-    QCOMPARE(full_rows, std::size_t{5 * 69});
-    std::size_t ab_full_rows = 0;
-    for (const QStringList& row : ab_csv.rows)
-        if (row[0] == label) ++ab_full_rows;
-    QCOMPARE(ab_full_rows, std::size_t{6});
-    // Loose factor 3 per point: the full model (explicit flakes) and the fast
-    // model's continuum approximation of the flakes differ by up to tens of
-    // percent for metal flakes, for this silver metallic +39 to +53 % per
-    // geometry, up to +180 % near specular for larger ones (docs/VALIDATION.md;
-    // here the full model is ~1.5 times the fast one along the 45 degree curve),
-    // and a 1 s budget adds Monte Carlo noise on top. It catches a wrong basis,
-    // a swapped series or a unit (pi, steradian) error, not the physics.
-    // Point by point only up to 70 degrees from the normal: at grazing views a
-    // 1 s budget (0.2-0.4 M paths since the budget is kept, fewer under load) leaves
-    // a few paths per cell, and one view at -85 degrees read 3.3 times the
-    // fast model in a clean-clone CI run; beyond 70 the mean must hold.
-    QCOMPARE(full_y.size(), std::size_t{69});
-    double fast_sum = 0.0;
-    double full_sum = 0.0;
-    double fast_grazing = 0.0;
-    double full_grazing = 0.0;
-    for (const auto& [view, y] : fast_y) {
-        const double full = full_y[view];
-        fast_sum += y;
-        full_sum += full;
-        if (std::abs(view) > 70.0) {
-            fast_grazing += y;
-            full_grazing += full;
-            continue;
-        }
-        QVERIFY2(
-            full > y / 3.0 && full < 3.0 * y,
-            qPrintable(QStringLiteral("45 deg, view %1: full Y %2, fast Y %3").arg(view).arg(full).arg(y)));
-    }
-    QVERIFY2(full_grazing > fast_grazing / 3.0 && full_grazing < 3.0 * fast_grazing,
-             qPrintable(QStringLiteral("45 deg, views beyond 70: full Y %1, fast Y %2 (sums)")
-                            .arg(full_grazing)
-                            .arg(fast_grazing)));
-    qInfo("45 deg curve: mean Y full %.4g, fast %.4g (ratio %.2f)", full_sum / 69.0, fast_sum / 69.0,
-          full_sum / fast_sum);
-    // "Clear comparison" removes it.
-    clickButton(*dock, "plots_unpin");
-    QVERIFY(!dock->inplanePlot()->hasComparison() && !dock->abChart()->hasComparison());
-}
-
-void PlotsTest::fullModelCancelStopsWithinASecond() {
-    auto dock = silverDock(silverRecipe());
-    dock->fullModelSeconds()->setValue(600);
-    QSignalSpy ended(dock.get(), &PlotsDock::fullModelEnded);
-    clickButton(*dock, "plots_full_model");
-    auto* progress = dock->findChild<QWidget*>(QStringLiteral("plots_full_model_progress"));
-    QVERIFY(progress != nullptr && progress->isVisible());
-    QTest::qWait(2000);  // well into the paths (past the grid and the flake tiles)
-    QVERIFY(dock->fullModelRunning());
-    // The grid's fast model alone is 2 % of the progress.
-    auto* bar = dock->findChild<QProgressBar*>(QStringLiteral("plots_full_model_progress"));
-    QVERIFY(bar != nullptr);
-    QVERIFY2(bar->value() >= 1, qPrintable(QString::number(bar->value())));
-    QElapsedTimer timer;
-    timer.start();
-    clickButton(*dock, "plots_full_model_cancel");
-    QTRY_VERIFY_WITH_TIMEOUT(!dock->fullModelRunning(), 10000);
-    const qint64 ms = timer.elapsed();
-    qInfo("full model cancelled after %lld ms", static_cast<long long>(ms));
-    QVERIFY2(ms < 1000, qPrintable(QStringLiteral("%1 ms").arg(ms)));
-    QCOMPARE(ended.count(), 1);
-    QCOMPARE(ended.at(0).at(0).toBool(), false);
-    QVERIFY(!progress->isVisible());
-    QTest::qWait(200);
-    QVERIFY(!dock->inplanePlot()->hasComparison() && !dock->abChart()->hasComparison());
-}
-
-void PlotsTest::fullModelNewestRequestWins() {
-    // A long run, then a short one: the first is cancelled and delivers
-    // nothing (no cancelled() for it either), the second is the overlay.
-    auto dock = silverDock(silverRecipe());
-    QSignalSpy ended(dock.get(), &PlotsDock::fullModelEnded);
-    dock->fullModelSeconds()->setValue(600);
-    dock->compareWithFullModel();
-    QTest::qWait(300);
-    dock->fullModelSeconds()->setValue(1);
-    dock->compareWithFullModel();
-    QTRY_VERIFY_WITH_TIMEOUT(ended.count() == 1 && !dock->fullModelRunning(), kWaitMs);
-    QCOMPARE(ended.at(0).at(0).toBool(), true);
-    QTRY_VERIFY_WITH_TIMEOUT(dock->inplanePlot()->hasComparison() && !dock->computing(), kWaitMs);
-    QVERIFY2(dock->fullModelLabel().startsWith(QStringLiteral("full model (Monte Carlo, ")) &&
-                 !dock->fullModelLabel().contains(QStringLiteral("recipe as at")),
-             qPrintable(dock->fullModelLabel()));
-    QTest::qWait(200);
-    QCOMPARE(ended.count(), 1);
-}
-
-void PlotsTest::fullModelErrorNamesTheField() {
-    // The full model needs every layer thicker than 0 (runMonteCarlo); the fast model does not.
-    Recipe recipe = silverRecipe();
-    recipe.layers[0].thickness_um = 0.0;
-    auto dock = silverDock(recipe);
-    QSignalSpy ended(dock.get(), &PlotsDock::fullModelEnded);
-    dock->compareWithFullModel();
-    QTRY_VERIFY_WITH_TIMEOUT(ended.count() == 1, kWaitMs);
-    QCOMPARE(ended.at(0).at(0).toBool(), false);
-    auto* box = dock->findChild<QMessageBox*>(QStringLiteral("error_dialog"));
-    QVERIFY(box != nullptr);
-    qInfo("full model error: %s", qPrintable(box->text()));
-    QVERIFY2(box->text().contains(QStringLiteral("thickness")), qPrintable(box->text()));
-    QVERIFY(!dock->inplanePlot()->hasComparison());
-}
-
 void PlotsTest::cleanupTestCase() {
     m_inplane.reset();
     m_lobe.reset();
@@ -715,15 +514,7 @@ void PlotsTest::cleanupTestCase() {
 }
 
 int main(int argc, char** argv) {
-    QSurfaceFormat format;  // as the application's main(): VTK needs a 3.2 core profile
-    format.setVersion(3, 2);
-    format.setProfile(QSurfaceFormat::CoreProfile);
-    QSurfaceFormat::setDefaultFormat(format);
-    QApplication app(argc, argv);
-    QApplication::setOrganizationName("PaintLab-test");
-    QApplication::setApplicationName("PaintLab-test-plots");
-    PlotsTest test;
-    return QTest::qExec(&test, argc, argv);
+    return paintlab::test::runGuiTest<PlotsTest>(argc, argv, "PaintLab-test-plots");
 }
 
 #include "test_plots.moc"

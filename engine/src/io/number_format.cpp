@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <clocale>  // with glibc also POSIX newlocale, uselocale
+#include <cstdarg>
+#include <cstdio>
 
 namespace paintlab::io {
 
@@ -41,6 +44,24 @@ std::string formatFixed(double value, int decimals) {
     Buffer buffer{};
     return text(buffer, std::to_chars(buffer.data(), buffer.data() + buffer.size(), value,
                                       std::chars_format::fixed, std::clamp(decimals, 0, 17)));
+}
+
+std::string formatText(const char* format, ...) {
+    // One C locale for the process, made on first use (newlocale is thread-safe);
+    // uselocale changes only this thread's locale, and only until the end of the call.
+    static const locale_t c_locale = newlocale(LC_ALL_MASK, "C", nullptr);
+    const locale_t previous = uselocale(c_locale);
+    va_list args;
+    va_start(args, format);
+    va_list again;
+    va_copy(again, args);
+    const int size = std::vsnprintf(nullptr, 0, format, args);
+    std::string out(size > 0 ? static_cast<std::size_t>(size) : 0U, '\0');
+    if (size > 0) std::vsnprintf(out.data(), out.size() + 1, format, again);
+    va_end(again);
+    va_end(args);
+    uselocale(previous);
+    return out;
 }
 
 }  // namespace paintlab::io

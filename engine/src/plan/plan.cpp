@@ -9,6 +9,7 @@
 #include "plan_spectra.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/io/number_format.h"
 #include "paintlab/engine/model_validity.h"
 #include "paintlab/engine/recipe_validation.h"
 #include "paintlab/engine/sparkle/sparkle.h"
@@ -17,8 +18,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdarg>
-#include <cstdio>
 #include <numbers>
 #include <string>
 #include <variant>
@@ -28,16 +27,6 @@ namespace paintlab {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-// printf into a string; the attribute lets the compiler check every call's arguments.
-__attribute__((format(printf, 1, 2))) std::string format(const char* fmt, ...) {
-    char text[256];
-    va_list args;
-    va_start(args, fmt);
-    std::vsnprintf(text, sizeof text, fmt, args);
-    va_end(args);
-    return text;
-}
 
 void checkScene(const PlanScene& s) {
     const auto check = [&](double v, const char* field) {
@@ -127,10 +116,10 @@ PlanDecision sparkleDecision(const Recipe& recipe, const PlanScene& scene, Effec
     std::string element_text;
     double element_side_um = scene.footprint_min_um;
     if (element_side_um > 0.0) {
-        element_text = format("smallest pixel footprint %.3g um", element_side_um);
+        element_text = io::formatText("smallest pixel footprint %.3g um", element_side_um);
     } else {
         element_side_um = std::sqrt(eyeElementAreaUm2(distance, 1.0));
-        element_text = format("the eye's 1 arcmin at %.3g m (%.3g um)", distance, element_side_um);
+        element_text = io::formatText("the eye's 1 arcmin at %.3g m (%.3g um)", distance, element_side_um);
     }
     // Geometries of a multi-angle sparkle instrument (light at 15, 45 and 75
     // deg from a camera on the normal) and the mirror geometry at 30 deg.
@@ -160,8 +149,9 @@ PlanDecision sparkleDecision(const Recipe& recipe, const PlanScene& scene, Effec
             const double delta = share * texturePercentile99(stats);
             if (delta > worst) {
                 worst = delta;
-                worst_text = format("light at %.0f deg, view at %.0f deg: %.3g glinting flakes per element",
-                                    theta_i, theta_o, stats.expected_glints);
+                worst_text =
+                    io::formatText("light at %.0f deg, view at %.0f deg: %.3g glinting flakes per element",
+                                   theta_i, theta_o, stats.expected_glints);
                 worst_text.append(" from '" + light.name + "'");
             }
         }
@@ -174,7 +164,7 @@ PlanDecision sparkleDecision(const Recipe& recipe, const PlanScene& scene, Effec
     d.setting = p.sparkle ? "sparkle texture on the paint pixels" : "none";
     d.reason = (p.sparkle ? "resolvable glints: " : "glints average out: ") + worst_text + " at " +
                element_text +
-               format(" (99th percentile |change| %.3g of the pixel, dE00 %.3g)", worst, skip_error);
+               io::formatText(" (99th percentile |change| %.3g of the pixel, dE00 %.3g)", worst, skip_error);
     if (!p.sparkle) d.reason.append(": the plan accepts that difference");
     return d;
 }
@@ -245,12 +235,12 @@ PlanDecision angularDecision(const Recipe& recipe, const PlanScene& scene, Effec
     // r has r / 2 per axis; the environment's feature width is ~1.65 of its
     // standard deviation (plan_scene.h's definition).
     double sigma = scene.environment_sharpness_deg / 1.65 * kPi / 180.0;
-    std::string light_text = format("environment features %.3g deg", scene.environment_sharpness_deg);
+    std::string light_text = io::formatText("environment features %.3g deg", scene.environment_sharpness_deg);
     for (const PlanLight& l : scene.lights) {
         const double r = std::sqrt(l.solid_angle_sr / kPi);
         if (l.irradiance_w_m2 > 0.0 && 0.5 * r < sigma) {
             sigma = 0.5 * r;
-            light_text = "light '" + l.name + "'" + format(" %.3g deg across", 2.0 * r * 180.0 / kPi);
+            light_text = "light '" + l.name + "'" + io::formatText(" %.3g deg across", 2.0 * r * 180.0 / kPi);
         }
     }
     const int preset_orders = p.fast.orders;
@@ -272,11 +262,12 @@ PlanDecision angularDecision(const Recipe& recipe, const PlanScene& scene, Effec
     d.simulate = true;
     d.setting = "orders " + std::to_string(p.fast.orders) + ", nodes " + std::to_string(p.fast.nodes);
     d.accepted_error_de = deltaEForRelativeChange(error);
-    d.reason = "sharpest light: " + light_text +
-               (orders < preset_orders
-                    ? format("; the paint's orders >= %.0f seen through it: %.2g %% of the lobe's peak",
-                             static_cast<double>(orders), 100.0 * error)
-                    : std::string("; the preset's orders are needed"));
+    d.reason =
+        "sharpest light: " + light_text +
+        (orders < preset_orders
+             ? io::formatText("; the paint's orders >= %.0f seen through it: %.2g %% of the lobe's peak",
+                              static_cast<double>(orders), 100.0 * error)
+             : std::string("; the preset's orders are needed"));
     return d;
 }
 
@@ -306,11 +297,12 @@ PlanDecision bandsDecision(const Recipe& recipe, const PlanScene& scene, EffectP
     p.fast.bands = bands;
     d.setting = std::to_string(bands) + " bands";
     d.accepted_error_de = deltaEForRelativeChange(error);
-    d.reason = error == 0.0 && bands < preset_bands
-                   ? "every spectrum of the recipe is constant: any band count gives the same BRDF"
-                   : format("ingredient spectra sampled at %.0f bands are within %.2g %% of their values "
-                            "(RGB lighting)",
-                            static_cast<double>(bands), 100.0 * error);
+    d.reason =
+        error == 0.0 && bands < preset_bands
+            ? "every spectrum of the recipe is constant: any band count gives the same BRDF"
+            : io::formatText("ingredient spectra sampled at %.0f bands are within %.2g %% of their values "
+                             "(RGB lighting)",
+                             static_cast<double>(bands), 100.0 * error);
     return d;
 }
 
@@ -341,8 +333,8 @@ PlanDecision slicesDecision(const Recipe& recipe, EffectPlan& p) {
     d.simulate = true;
     d.setting = std::to_string(slices) + " slices per profiled layer";
     d.accepted_error_de = deltaEForRelativeChange(error);
-    d.reason = format("the concentration varies with depth; %.0f slices hold it within %.2g %%",
-                      static_cast<double>(slices), 100.0 * error);
+    d.reason = io::formatText("the concentration varies with depth; %.0f slices hold it within %.2g %%",
+                              static_cast<double>(slices), 100.0 * error);
     return d;
 }
 
@@ -364,7 +356,7 @@ PlanDecision fullModelDecision(const Recipe& recipe, EffectPlan& p) {
                              : v.expected_rel_difference;
     d.skip_error_de = deltaEForRelativeChange(worst);
     d.accepted_error_de = p.full_model ? 0.0 : d.skip_error_de;
-    d.reason = v.reason + format(" (the preset allows %.0f %%)", 100.0 * tolerance);
+    d.reason = v.reason + io::formatText(" (the preset allows %.0f %%)", 100.0 * tolerance);
     return d;
 }
 
@@ -414,7 +406,8 @@ FastModelSettings applyPlan(const EffectPlan& plan, FastModelSettings settings) 
 std::vector<AppliedDecision> appliedDecisions(const EffectPlan& plan, bool full_model_available) {
     const FastModelSettings preset = presetSettings(plan.preset);
     const auto setting = [](const char* name, int from, int to) {
-        return to < from ? format("%s %d -> %d", name, from, to) : format("%s %d (the preset's)", name, from);
+        return to < from ? io::formatText("%s %d -> %d", name, from, to)
+                         : io::formatText("%s %d (the preset's)", name, from);
     };
     std::vector<AppliedDecision> out;
     for (const PlanDecision& d : plan.decisions) {

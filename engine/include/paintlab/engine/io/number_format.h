@@ -25,4 +25,10 @@ std::string formatNumber(double value, NumberFormat format = NumberFormat::Messa
 // decimals is clamped to [0, 17].
 std::string formatFixed(double value, int decimals);
 
+// printf-style text (explanations with several numbers, such as the plan's
+// reasons) in the C locale whatever the process's locale is (Qt sets the
+// user's), and never truncated. The attribute lets the compiler check every
+// call's arguments.
+__attribute__((format(printf, 1, 2))) std::string formatText(const char* format, ...);
+
 }  // namespace paintlab::io
