@@ -9,6 +9,9 @@
 
 namespace paintlab::test {
 
+// Every wait of the GUI tests: ASan + llvmpipe on a loaded 2-core machine.
+inline constexpr int kGuiWaitMs = 120000;
+
 template <class Test, class Application = QApplication>
 int runGuiTest(int argc, char** argv, const char* application_name) {
     QSurfaceFormat format;

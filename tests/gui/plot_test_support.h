@@ -1,6 +1,6 @@
 #pragma once
 // What the plot tests share (test_plots.cpp, test_full_model_overlay.cpp):
-// the demo recipes, the wait for work on a loaded machine, and the plots'
+// the demo recipes and the plots'
 // CSV exports read back with the one CSV reader (io/csv.h).
 
 #include "paintlab/engine/io/csv.h"
@@ -17,8 +17,6 @@
 #include <vector>
 
 namespace paintlab::test {
-
-inline constexpr int kPlotWaitMs = 120000;  // ASan + llvmpipe on a loaded 2-core machine
 
 inline Recipe silverRecipe() {
     return loadRecipeFile(std::string(PAINTLAB_DEMO_DIR) + "/recipes/silver-metallic.json");

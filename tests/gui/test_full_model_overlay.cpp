@@ -36,7 +36,7 @@ using paintlab::test::silverRecipe;
 
 namespace {
 
-constexpr int kWaitMs = test::kPlotWaitMs;
+constexpr int kWaitMs = test::kGuiWaitMs;
 
 }  // namespace
 

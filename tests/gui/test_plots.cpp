@@ -58,7 +58,7 @@ using paintlab::test::silverRecipe;
 
 namespace {
 
-constexpr int kWaitMs = test::kPlotWaitMs;
+constexpr int kWaitMs = test::kGuiWaitMs;
 const QString kPearl = QStringLiteral("Blue pearl over black (two layers)");
 
 // The same paint with half the pearl flakes.

@@ -3,6 +3,7 @@
 // a demo database and a small demo scene, shared by every case; the version
 // comparison cases are in test_workstation_compare.cpp.
 
+#include "gui_test_main.h"
 #include "main_window.h"
 #include "render_scheduler.h"
 
@@ -17,7 +18,7 @@
 
 namespace paintlab::test {
 
-inline constexpr int kWaitMs = 120000;  // ASan + llvmpipe on a loaded 2-core machine
+inline constexpr int kWaitMs = kGuiWaitMs;
 inline const QString kPearl = QStringLiteral("Blue pearl over black (two layers)");
 
 }  // namespace paintlab::test

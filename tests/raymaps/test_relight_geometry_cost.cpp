@@ -1,8 +1,9 @@
 // Issue 6: relighting a scene with many more triangles does the same work at
 // the same resolution. The relight reads the ray map only: per paint pixel a
 // record of a fixed size, whatever the geometry that produced it, and the
-// kernel's work is fixed per paint pixel (relight.cpp, shadeRows). So the test
-// counts that work, which does not depend on the machine's load; the time
+// kernel's work is fixed per paint pixel for a given record layout
+// (relight.cpp, shadeRows). So the test checks the layout and the number of
+// paint pixels, which do not depend on the machine's load; the time
 // itself is BM_RelightGeometry's (tests/bench/bench_raymaps.cpp,
 // docs/PERFORMANCE.md).
 
@@ -24,16 +25,6 @@
 namespace paintlab::raymaps {
 namespace {
 
-// The kernel's multiply-adds for one image: per paint pixel and channel, the
-// J x M_L moment table against the record's coefficients and J products with
-// l^0; per explicit light, an 8-corner trilinear lookup of 3 channels.
-double kernelWork(const RelightInput& input) {
-    const auto cells = static_cast<double>(input.cells());
-    const auto orders = static_cast<double>(input.orders());
-    const auto lights = static_cast<double>(input.lights());
-    return static_cast<double>(input.paintPixels()) * (3.0 * (cells * orders + cells) + 8.0 * 3.0 * lights);
-}
-
 TEST(RelightGeometryCost, SixteenTimesTheTrianglesRelightWithTheSameWork) {
     const test::TempDir dir;
     // The cheapest precompute: the relight's work does not depend on it.
@@ -51,15 +42,12 @@ TEST(RelightGeometryCost, SixteenTimesTheTrianglesRelightWithTheSameWork) {
     EXPECT_EQ(coarse.orders(), fine.orders());
     EXPECT_EQ(coarse.lights(), fine.lights());
     // Up to the silhouette's pixels the same number of paint pixels (the
-    // finer sphere is rounder by < 1 %), so the same work within 1 %.
+    // finer sphere is rounder by < 1 %): with the same layout, the same work within 1 %.
     const auto a = static_cast<double>(coarse.paintPixels());
     const auto b = static_cast<double>(fine.paintPixels());
     ASSERT_GT(a, 20000.0);
     EXPECT_NEAR(b / a, 1.0, 0.01);
-    EXPECT_NEAR(kernelWork(fine) / kernelWork(coarse), 1.0, 0.01);
-    std::printf("relight 640 x 360: %.0f / %.0f paint pixels, %.4g / %.4g multiply-adds (1,280 / 20,480 "
-                "triangles)\n",
-                a, b, kernelWork(coarse), kernelWork(fine));
+    std::printf("relight 640 x 360: %.0f / %.0f paint pixels (1,280 / 20,480 triangles)\n", a, b);
 
     // Both relight to a full image with the same tables (J, M_L of either map).
     const RelightTables tables(computeLayeredBrdf(loadRecipeFile(std::filesystem::path(PAINTLAB_DEMO_DIR) /
