@@ -4,6 +4,7 @@
 #include "commands.h"
 
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/layered/slab_totals.h"
 
 #include <CLI/CLI.hpp>
@@ -32,6 +33,8 @@ struct SlabOptions {
     bool slide_n_bottom_given = false;  // otherwise the bottom slide is --slide-n
     double theta_deg = 0.0;
     int quad_points = 32;
+    bool quad_points_given = false;
+    std::string preset;  // empty: 32 nodes and a start of 1/4096, as before presets existed
     bool json = false;
 };
 
@@ -60,6 +63,7 @@ std::string optionName(const std::string& field) {
     if (field == "n_slide_bottom") return "--slide-n-bottom";
     if (field == "theta_deg") return "--theta";
     if (field == "quad_points") return "--quad-points";
+    if (field == "preset") return "--preset";
     return field;
 }
 
@@ -75,6 +79,12 @@ int runSlab(const SlabOptions& options) {
     p.quad_points = options.quad_points;
     layered::SlabTotals t;
     try {
+        if (!options.preset.empty()) {
+            // The fast model's angular settings of the preset; --quad-points, if given, overrides its nodes.
+            const FastModelSettings preset = presetSettings(presetFromName(options.preset));
+            if (!options.quad_points_given) p.quad_points = preset.nodes;
+            p.max_start_tau = preset.max_start_tau;
+        }
         t = layered::slabTotals(p);
     } catch (const InputError& e) {
         throw InputError("<argument>", optionName(e.field()), e.detail());
@@ -98,6 +108,8 @@ int runSlab(const SlabOptions& options) {
         in["slide_n_bottom"] = p.n_slide_bottom;
         in["theta_deg"] = p.theta_deg;
         in["quad_points"] = p.quad_points;
+        if (!options.preset.empty()) in["preset"] = options.preset;
+        in["max_start_tau"] = p.max_start_tau;
         out["inputs"] = in;
         std::cout << out.dump(2) << '\n';
     } else {
@@ -128,11 +140,16 @@ void addSlabCommand(CLI::App& app, CommandAction& action) {
                          "Index of the bottom slide if it differs from --slide-n (1: none)");
     slab->add_option("--theta", options->theta_deg,
                      "Incidence angle in air, degrees, in [0, 90) (default 0)");
-    slab->add_option("--quad-points", options->quad_points,
-                     "Quadrature nodes per hemisphere, 4..512 (default 32)");
+    CLI::Option* quad_points = slab->add_option("--quad-points", options->quad_points,
+                                                "Quadrature nodes per hemisphere, 4..512 (default 32, or the "
+                                                "preset's; overrides the preset's if both are given)");
+    slab->add_option(
+        "--preset", options->preset,
+        "Accuracy preset: preview, standard or reference (the fast model's nodes and starting layer)");
     slab->add_flag("--json", options->json, "Print the totals and inputs as JSON");
-    slab->callback([options, bottom, &action] {
+    slab->callback([options, bottom, quad_points, &action] {
         options->slide_n_bottom_given = bottom->count() > 0;
+        options->quad_points_given = quad_points->count() > 0;
         action = [options] { return runSlab(*options); };
     });
 }

@@ -1,5 +1,7 @@
 #include "paintlab/engine/fast_model/layered_brdf.h"
 
+#include "single_scattering.h"
+#include "slab_operator.h"
 #include "stack_assembly.h"
 
 #include "paintlab/engine/error.h"
@@ -61,6 +63,9 @@ FastModelSettings presetSettings(Preset preset) {
                 .order_tolerance = 1e-3,
                 .output_bands = 41};
     case Preset::Standard:
+        // Sharp lobes (g above ~0.65): within 2 % of the converged BRDF
+        // wherever it is at least 1 % of its largest value at that incidence
+        // (tests/engine/fast_model/test_sharp_phase.cpp).
         return {.nodes = 16,
                 .orders = 8,
                 .bands = 24,
@@ -70,7 +75,10 @@ FastModelSettings presetSettings(Preset preset) {
                 .flake_azimuth = 6,
                 .flake_table = 33,
                 .order_tolerance = 1e-4,
-                .output_bands = 81};
+                .output_bands = 81,
+                .sharp_nodes = 32,
+                .sharp_orders = 24,
+                .sharp_max_start_tau = 1.0 / 1024.0};
     case Preset::Reference:
         // Converged: doubling nodes and orders (96, 64) changes the multi-angle
         // reflectance factors of the demo paints by < 3.2e-5, a 4x smaller start
@@ -84,7 +92,11 @@ FastModelSettings presetSettings(Preset preset) {
                 .flake_azimuth = 16,
                 .flake_table = 257,
                 .order_tolerance = 1e-9,
-                .output_bands = 0};
+                .output_bands = 0,
+                // Sharp lobes (g above ~0.87): within 0.5 % everywhere.
+                .sharp_nodes = 64,
+                .sharp_orders = 48,
+                .sharp_max_start_tau = 1.0 / 4096.0};
     }
     return {};
 }
@@ -127,10 +139,15 @@ void setInterpolation(const fast::StackQuadrature& grid, const fast::MediumNodes
         if (mirrored)
             for (std::size_t k = b; k < e; ++k)
                 if (table.node_angle[k] > 0.0) x.push_back(-table.node_angle[k]);
-        const auto weight = [&x](double xk) {
+        // Each factor divided by the capacity (span / 4) of the abscissae: a
+        // common scale, which the barycentric formula cancels, that keeps the
+        // weights of a large piece (hundreds of nodes) from overflowing.
+        const auto [lowest, highest] = std::minmax_element(x.begin(), x.end());
+        const double capacity = std::max(*highest - *lowest, 1e-300) / 4.0;
+        const auto weight = [&x, capacity](double xk) {
             double w = 1.0;
             for (double xl : x)
-                if (xl != xk) w /= xk - xl;
+                if (xl != xk) w /= (xk - xl) / capacity;
             return w;
         };
         for (std::size_t k = b; k < e; ++k) {
@@ -318,6 +335,28 @@ LayeredBrdf::BandTable spectralInterpolation(const std::vector<double>& band_nm,
     return t;
 }
 
+// The settings a recipe runs with: the preset's, with the finer grid of
+// FastModelSettings::sharp_* if a pigment's phase function is sharp there
+// (its delta-M truncation, checked at five wavelengths across the range).
+FastModelSettings settingsFor(const Recipe& recipe, const FastModelSettings& settings) {
+    if (settings.sharp_nodes <= settings.nodes && settings.sharp_orders <= settings.orders &&
+        settings.sharp_max_start_tau >= settings.max_start_tau)
+        return settings;
+    double truncated = 0.0;
+    for (const Layer& layer : recipe.layers)
+        for (double nm : visibleBands(5)) {
+            const SlabOptics optics = slabOptics(layer, nm);
+            if (optics.sigma_s_per_um > 0.0)
+                truncated = std::max(truncated, fast::scaledMedium(optics, settings.nodes).f);
+        }
+    if (truncated <= settings.sharp_truncation) return settings;
+    FastModelSettings sharp = settings;
+    sharp.nodes = std::max(settings.nodes, std::min(settings.sharp_nodes, kMaxNodes));
+    sharp.orders = std::max(settings.orders, settings.sharp_orders);
+    sharp.max_start_tau = std::min(settings.max_start_tau, settings.sharp_max_start_tau);
+    return sharp;
+}
+
 // The wavelengths the model runs at: spread evenly over the whole visible
 // range 380-780 nm (spectrum.h), with or without spectral refinement, so the
 // refined tables interpolate between computed bands everywhere and never hold
@@ -328,8 +367,16 @@ std::vector<double> computedBands(const FastModelSettings& settings) {
 
 }  // namespace
 
-LayeredBrdf computeLayeredBrdf(const Recipe& recipe, const FastModelSettings& settings,
+LayeredBrdf computeLayeredBrdf(const Recipe& recipe, const FastModelSettings& requested,
                                const ProgressCallback& progress) {
+    // The tables are interpolated by one polynomial per quadrature interval
+    // (setInterpolation); through more than ~100 of these nodes it is
+    // ill-conditioned (from 100 nodes on, values at grazing angles go wrong).
+    if (requested.nodes > kMaxNodes)
+        throw InputError("<settings>", "nodes",
+                         std::to_string(requested.nodes) + " is more than the " + std::to_string(kMaxNodes) +
+                             " the tables' interpolation takes");
+    const FastModelSettings settings = settingsFor(recipe, requested);
     const auto start = std::chrono::steady_clock::now();
     LayeredBrdf brdf;
     brdf.m_settings = settings;
@@ -380,6 +427,25 @@ LayeredBrdf computeLayeredBrdf(const Recipe& recipe, const FastModelSettings& se
     }
     for (double nm : brdf.m_wavelengths_nm)
         brdf.m_top_index_per_band.push_back(recipe.layers.front().binder.refractive_index(nm));
+    if (settings.exact_single_scattering) {
+        // Per output band, with the orders its nearest computed band's table holds.
+        std::vector<double> computed_nm = computedBands(settings);
+        std::vector<std::optional<fast::SingleScatteringCorrection>> corrections(
+            brdf.m_wavelengths_nm.size());
+        tbb::parallel_for(0, static_cast<int>(corrections.size()), [&](int o) {
+            const auto k = static_cast<std::size_t>(o);
+            const double nm = brdf.m_wavelengths_nm[k];
+            std::size_t nearest = 0;
+            for (std::size_t b = 1; b < computed_nm.size(); ++b)
+                if (std::abs(computed_nm[b] - nm) < std::abs(computed_nm[nearest] - nm)) nearest = b;
+            corrections[k].emplace(recipe, nm, settings, work[nearest]->orders);
+        });
+        if (std::any_of(corrections.begin(), corrections.end(), [](const auto& c) { return !c->empty(); })) {
+            auto all = std::make_shared<std::vector<fast::SingleScatteringCorrection>>();
+            for (auto& c : corrections) all->push_back(std::move(*c));
+            brdf.m_single_scattering = std::move(all);
+        }
+    }
     brdf.m_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return brdf;
 }
@@ -411,6 +477,7 @@ LayeredBrdf LayeredBrdf::withTables(const LayeredBrdf& grid, std::vector<BandTab
     }
     LayeredBrdf brdf = grid;
     brdf.m_bands = std::move(tables);
+    brdf.m_single_scattering.reset();
     brdf.m_seconds = seconds;
     return brdf;
 }
@@ -443,8 +510,10 @@ void LayeredBrdf::eval(const Direction& wi, const Direction& wo, std::span<doubl
         coefficients.resize(t.f.size());
         for (std::size_t m = 0; m < t.f.size(); ++m)
             coefficients[m] = m % 2 == 0 ? out_even.dot(t.f[m] * in_even) : out_odd.dot(t.f[m] * in_odd);
-        out[b] =
-            clippedFourierSum(std::span<const double>(terms).first(t.f.size()), coefficients, 1, transmit);
+        const double correction = m_single_scattering ? (*m_single_scattering)[b](wi.z, wo.z, dphi) : 0.0;
+        out[b] = std::max(
+            0.0, fourierSum(std::span<const double>(terms).first(t.f.size()), coefficients, 1, transmit) +
+                     correction);
     }
 }
 
@@ -485,6 +554,11 @@ void LayeredBrdf::fourierCoefficients(double cos_o, double cos_i, std::span<doub
             const double weight = m == 0 ? 1.0 : (m % 2 == 0 ? 2.0 : -2.0);
             const double value = m % 2 == 0 ? out_even.dot(t.f[m] * in_even) : out_odd.dot(t.f[m] * in_odd);
             out[m * bands + b] = transmit * weight * value;
+        }
+        if (m_single_scattering) {
+            std::vector<double> correction(orders);
+            (*m_single_scattering)[b].fourierCoefficients(cos_i, std::min(cos_o, 1.0), correction);
+            for (std::size_t m = 0; m < orders; ++m) out[m * bands + b] += correction[m];
         }
     }
 }
@@ -535,6 +609,7 @@ void LayeredBrdf::fourierCoefficientsGrid(std::span<const double> cos_o, std::sp
         Eigen::VectorXd odd;
         Eigen::RowVectorXd row;
         Eigen::RowVectorXd values(static_cast<Eigen::Index>(n_i));
+        std::vector<double> correction(orders);
         for (std::size_t b = 0; b < bands; ++b) {
             const BandTable& t = m_bands[b];
             const Incident& in = incident[b];
@@ -556,6 +631,17 @@ void LayeredBrdf::fourierCoefficientsGrid(std::span<const double> cos_o, std::sp
                     double* at = out.data() + ((o * n_i + i) * orders + m) * channels;
                     for (std::size_t c = 0; c < channels; ++c)
                         at[c] += weights(static_cast<Eigen::Index>(b), static_cast<Eigen::Index>(c)) * v;
+                }
+            }
+            if (!m_single_scattering) continue;
+            for (std::size_t i = 0; i < n_i; ++i) {
+                (*m_single_scattering)[b].fourierCoefficients(std::min(cos_i[i], 1.0),
+                                                              std::min(cos_o[o], 1.0), correction);
+                for (std::size_t m = 0; m < orders; ++m) {
+                    double* at = out.data() + ((o * n_i + i) * orders + m) * channels;
+                    for (std::size_t c = 0; c < channels; ++c)
+                        at[c] += weights(static_cast<Eigen::Index>(b), static_cast<Eigen::Index>(c)) *
+                                 correction[m];
                 }
             }
         }

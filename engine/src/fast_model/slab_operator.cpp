@@ -343,13 +343,7 @@ void addFlakes(const std::vector<FlakeKind>& kinds, const layered::Quadrature& q
     }
 }
 
-// The pigments' phase function: Legendre moments of the HG mixture, with the
-// delta-M truncation (Wiscombe 1977) moving f = chi_N into the unscattered beam.
-struct ScaledMedium {
-    std::vector<double> chi;
-    double sigma_s = 0.0;
-    double sigma_a = 0.0;
-};
+}  // namespace
 
 ScaledMedium scaledMedium(const SlabOptics& slab, int n_moments) {
     ScaledMedium s;
@@ -358,16 +352,29 @@ ScaledMedium scaledMedium(const SlabOptics& slab, int n_moments) {
         for (int l = 0; l <= n_moments; ++l)
             chi[static_cast<std::size_t>(l)] += lobe.weight * std::pow(lobe.g, l);
     if (slab.lobes.empty()) chi[0] = 1.0;
-    const double f = std::clamp(chi.back(), 0.0, 0.999999);
+    s.f = std::clamp(chi.back(), 0.0, 0.999999);
     s.chi.resize(static_cast<std::size_t>(n_moments));
     for (int l = 0; l < n_moments; ++l)
-        s.chi[static_cast<std::size_t>(l)] = (chi[static_cast<std::size_t>(l)] - f) / (1.0 - f);
-    s.sigma_s = slab.sigma_s_per_um * (1.0 - f);
+        s.chi[static_cast<std::size_t>(l)] = (chi[static_cast<std::size_t>(l)] - s.f) / (1.0 - s.f);
+    s.sigma_s = slab.sigma_s_per_um * (1.0 - s.f);
     s.sigma_a = slab.sigma_a_per_um;
     return s;
 }
 
-}  // namespace
+std::vector<double> flakeExtinction(const SlabOptics& slab, double wavelength_nm,
+                                    const std::vector<double>& cosines, const FlakeSampling& sampling) {
+    std::vector<double> extinction(cosines.size(), 0.0);
+    const UnitRule polar_rule(std::max(1, sampling.polar));
+    const UnitRule azimuth_rule(std::max(1, sampling.azimuth));
+    for (const auto& kind : flakeKinds(slab, wavelength_nm, std::max(5, sampling.table))) {
+        const FlakeOrientation orientation(kind.spread_deg);
+        for (std::size_t i = 0; i < cosines.size(); ++i)
+            extinction[i] +=
+                kind.area_density_per_um *
+                flakeTotals(orientation, kind.table, cosines[i], polar_rule, azimuth_rule).extinction;
+    }
+    return extinction;
+}
 
 SlabKernels slabKernels(const SlabOptics& slab, const layered::Quadrature& q, double wavelength_nm,
                         int max_order, int n_moments, const FlakeSampling& sampling) {

@@ -43,6 +43,22 @@ struct FlakeSampling {
     double kernel_points_per_spread = 4.0;  // azimuth points per spread sigma in the kernel's Fourier sums
 };
 
+// The pigments' phase function as the kernels use it: Legendre moments of the
+// HG mixture with the delta-M truncation (Wiscombe 1977), which moves the
+// fraction f = chi_N of the forward peak into the unscattered beam.
+struct ScaledMedium {
+    std::vector<double> chi;  // chi*_l, l < n_moments
+    double f = 0.0;
+    double sigma_s = 0.0;  // (1 - f) sigma_s, 1/µm
+    double sigma_a = 0.0;
+};
+ScaledMedium scaledMedium(const SlabOptics& slab, int n_moments);
+
+// The flakes' extinction (1/µm: projected area of all kinds) for directions
+// with these cosines in the slab's medium, as the kernels compute it at nodes.
+std::vector<double> flakeExtinction(const SlabOptics& slab, double wavelength_nm,
+                                    const std::vector<double>& cosines, const FlakeSampling& sampling);
+
 // Kernels of the slab for orders 0..max_order on the medium quadrature q
 // (cosines and weights in the slab's medium). n_moments: Legendre moments kept
 // for the pigment phase functions (delta-M beyond them).

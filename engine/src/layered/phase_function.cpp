@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 namespace paintlab::layered {
 
@@ -13,9 +14,10 @@ namespace {
 //   Lambda_{m+1}^m = sqrt(2m+1) x Lambda_m^m,
 //   Lambda_l^m = ((2l-1) x Lambda_{l-1}^m - sqrt((l-1)^2 - m^2) Lambda_{l-2}^m) / sqrt(l^2 - m^2).
 // The sign (-1)^m of P_l^m cancels in h^m, which is a product of two.
-std::vector<double> seminormalisedLegendre(int m, int n_moments, double x) {
-    std::vector<double> out(static_cast<std::size_t>(n_moments), 0.0);
-    if (m >= n_moments) return out;
+void seminormalisedLegendre(int m, double x, std::span<double> out) {
+    const int n_moments = static_cast<int>(out.size());
+    std::fill(out.begin(), out.end(), 0.0);
+    if (m >= n_moments) return;
     const double s = std::sqrt(std::max(0.0, 1.0 - x * x));
     double pmm = 1.0;
     for (int k = 1; k <= m; ++k) pmm *= std::sqrt((2.0 * k - 1.0) / (2.0 * k)) * s;
@@ -27,7 +29,6 @@ std::vector<double> seminormalisedLegendre(int m, int n_moments, double x) {
                   std::sqrt((l - 1.0) * (l - 1.0) - static_cast<double>(m) * m) * out[k - 2]) /
                  std::sqrt(static_cast<double>(l) * l - static_cast<double>(m) * m);
     }
-    return out;
 }
 
 }  // namespace
@@ -56,7 +57,8 @@ PhaseMatrices phaseMatrices(const std::vector<double>& mu, const std::vector<dou
     const int n_moments = static_cast<int>(chi.size());
     Eigen::MatrixXd lambda(n, n_moments);
     for (Eigen::Index i = 0; i < n; ++i) {
-        const auto values = seminormalisedLegendre(m, n_moments, mu[static_cast<std::size_t>(i)]);
+        std::vector<double> values(static_cast<std::size_t>(n_moments));
+        seminormalisedLegendre(m, mu[static_cast<std::size_t>(i)], values);
         for (int l = 0; l < n_moments; ++l) lambda(i, l) = values[static_cast<std::size_t>(l)];
     }
     // Lambda_l^m(-x) = (-1)^(l+m) Lambda_l^m(x).
@@ -71,6 +73,40 @@ PhaseMatrices phaseMatrices(const std::vector<double>& mu, const std::vector<dou
     h.same = lambda * coeff_same.asDiagonal() * lambda.transpose();
     h.opposite = lambda * coeff_opposite.asDiagonal() * lambda.transpose();
     return h;
+}
+
+void phaseFourierOrders(double mu, double mu_prime, const std::vector<double>& chi, std::span<double> out) {
+    const int n_moments = static_cast<int>(chi.size());
+    std::vector<double> a(chi.size());
+    std::vector<double> b(chi.size());
+    std::fill(out.begin(), out.end(), 0.0);
+    for (int m = 0; m < std::min(static_cast<int>(out.size()), n_moments); ++m) {
+        seminormalisedLegendre(m, mu, a);
+        seminormalisedLegendre(m, mu_prime, b);
+        double h = 0.0;
+        for (int l = m; l < n_moments; ++l) {
+            const auto k = static_cast<std::size_t>(l);
+            h += (2.0 * l + 1.0) * chi[k] * a[k] * b[k];
+        }
+        out[static_cast<std::size_t>(m)] = (m == 0 ? 1.0 : 2.0) * h;
+    }
+}
+
+double phaseFourierSum(double mu, double mu_prime, double cos_dphi, const std::vector<double>& chi,
+                       int orders) {
+    std::vector<double> terms(static_cast<std::size_t>(std::max(0, orders)));
+    phaseFourierOrders(mu, mu_prime, chi, terms);
+    // cos(m dphi) by the Chebyshev recurrence.
+    double sum = 0.0;
+    double c_prev = cos_dphi;  // cos(-dphi)
+    double c_now = 1.0;
+    for (double term : terms) {
+        sum += term * c_now;
+        const double c_next = 2.0 * cos_dphi * c_now - c_prev;
+        c_prev = c_now;
+        c_now = c_next;
+    }
+    return sum;
 }
 
 }  // namespace paintlab::layered

@@ -11,16 +11,21 @@
 
 namespace paintlab {
 
-// max(0, scale * sum_m terms[m] * coefficients[m * stride]) for m < terms.size(),
+// scale * sum_m terms[m] * coefficients[m * stride] for m < terms.size(),
 // summed in ascending m. terms[m]: the order's azimuthal factor, cos(m dphi)
 // times whatever weight the coefficients leave out; scale >= 0: a factor
-// applied after the sum (a Fresnel transmittance, pi). Clipped at zero because
-// a truncated series can ring slightly below it.
-inline double clippedFourierSum(std::span<const double> terms, std::span<const double> coefficients,
-                                std::size_t stride, double scale) {
+// applied after the sum (a Fresnel transmittance, pi).
+inline double fourierSum(std::span<const double> terms, std::span<const double> coefficients,
+                         std::size_t stride, double scale) {
     double sum = 0.0;
     for (std::size_t m = 0; m < terms.size(); ++m) sum += terms[m] * coefficients[m * stride];
-    return std::max(0.0, scale * sum);
+    return scale * sum;
+}
+
+// The same, clipped at zero, because a truncated series can ring slightly below it.
+inline double clippedFourierSum(std::span<const double> terms, std::span<const double> coefficients,
+                                std::size_t stride, double scale) {
+    return std::max(0.0, fourierSum(terms, coefficients, stride, scale));
 }
 
 }  // namespace paintlab

@@ -21,9 +21,16 @@
 
 namespace paintlab {
 
+namespace fast {
+class SingleScatteringCorrection;
+}
+
+// The most quadrature nodes per hemisphere computeLayeredBrdf takes.
+inline constexpr int kMaxNodes = 96;
+
 // One point on the accuracy-vs-time curve of the fast model.
 struct FastModelSettings {
-    int nodes = 24;                       // quadrature nodes per hemisphere
+    int nodes = 24;                       // quadrature nodes per hemisphere, at most kMaxNodes
     int orders = 16;                      // Fourier orders 0 .. orders-1
     int bands = 16;                       // wavelengths computed, evenly over 380-780 nm
     double max_start_tau = 1.0 / 1024.0;  // largest optical thickness of the starting sublayer
@@ -42,6 +49,20 @@ struct FastModelSettings {
     // spectra are smooth, but colour from a linearly interpolated coarse
     // spectrum is not accurate.
     int output_bands = 0;
+    // The pigments' once-scattered light with their full phase function at the
+    // exact directions (fast_model/single_scattering.h), the truncated one the
+    // tables hold taken away: without it a sharp lobe (g >= 0.75) is wrong by
+    // tens of percent away from its peak. Off only to measure what it does.
+    bool exact_single_scattering = true;
+    // A sharp phase function needs a finer angular grid for its multiple
+    // scattering: if any pigment's delta-M truncation at `nodes` moments
+    // (f = chi_nodes, the share of its scattering moved into the forward
+    // peak) exceeds sharp_truncation, nodes, orders and the starting layer
+    // become at least these (sharp_nodes 0: never). settings() reports what ran.
+    double sharp_truncation = 1e-3;
+    int sharp_nodes = 0;
+    int sharp_orders = 0;
+    double sharp_max_start_tau = 1.0;
 };
 
 enum class Preset { Preview, Standard, Reference };
@@ -57,7 +78,8 @@ using ProgressCallback = std::function<bool(double fraction)>;
 class LayeredBrdf final : public SpectralBrdf {
 public:
     std::span<const double> wavelengthsNm() const override { return m_wavelengths_nm; }
-    // Diffuse (everything but the top interface's mirror term), 1/sr.
+    // Diffuse (everything but the top interface's mirror term), 1/sr: the
+    // tables' Fourier series plus the exact single-scattering correction.
     void eval(const Direction& wi, const Direction& wo, std::span<double> out_per_sr) const override;
     using SpectralBrdf::eval;
 
@@ -69,6 +91,8 @@ public:
     // out[m * bands + b] cos(m (phi_o - phi_i)), per band b, 1/sr; what a
     // renderer's tables need. Not clipped at zero, unlike eval()
     // (clippedFourierSum, fast_model/fourier_series.h, sums it as eval() does).
+    // The single-scattering correction is in it up to orders(): a lobe
+    // sharper than that many orders is eval()'s alone.
     void fourierCoefficients(double cos_o, double cos_i, std::span<double> out) const;
     // fourierCoefficients() on a grid of direction pairs, reduced over the
     // bands by `weights` (bands() x C, e.g. band -> linear sRGB):
@@ -80,7 +104,9 @@ public:
                                  const Eigen::MatrixXd& weights, std::span<double> out) const;
     // Orders in fourierCoefficients(): the largest computed in any band.
     int orders() const;
-    // Directional-hemispherical albedo for light from wi, mirror term included, per band.
+    // Directional-hemispherical albedo for light from wi, mirror term included,
+    // per band; from the tables (the single-scattering correction moves light
+    // between directions and changes it by far less than the tables' error).
     std::vector<double> albedo(const Direction& wi) const;
     // Albedo for uniform diffuse incidence (mirror term included), per band.
     std::vector<double> diffuseAlbedo() const;
@@ -116,7 +142,8 @@ public:
     // The wavelengths, grid, interpolation and mirror term of `grid` with
     // each band's f^m and albedo from `tables` (same node counts: InputError
     // otherwise): how the full model's tables (montecarlo/mc_table.h) become
-    // a LayeredBrdf that every tool takes.
+    // a LayeredBrdf that every tool takes. Their tables are complete: no
+    // single-scattering correction is added to them.
     static LayeredBrdf withTables(const LayeredBrdf& grid, std::vector<BandTable> tables, double seconds);
 
 private:
@@ -126,6 +153,8 @@ private:
     FastModelSettings m_settings;
     double m_ambient_index = 1.0;
     std::vector<double> m_top_index_per_band;
+    // Per band (empty: none); shared, since copies of a LayeredBrdf are common.
+    std::shared_ptr<const std::vector<fast::SingleScatteringCorrection>> m_single_scattering;
     double m_seconds = 0.0;
 };
 

@@ -12,6 +12,7 @@
 
 #include <Eigen/Dense>
 
+#include <span>
 #include <vector>
 
 namespace paintlab::layered {
@@ -38,5 +39,16 @@ struct PhaseMatrices {
 };
 
 PhaseMatrices phaseMatrices(const std::vector<double>& mu, const std::vector<double>& chi, int m);
+
+// The Fourier terms of that series one by one: out[m] = (2 - delta_m0) h^m(mu, mu')
+// for m < out.size() (zero from m = chi.size() on).
+void phaseFourierOrders(double mu, double mu_prime, const std::vector<double>& chi, std::span<double> out);
+
+// The phase function of moments chi as its first `orders` Fourier orders
+// carry it: sum_{m < orders} (2 - delta_m0) h^m(mu, mu') cos(m dphi), for signed
+// cosines mu, mu' and the azimuth difference dphi. With orders >= chi.size()
+// it is the Legendre series sum_l (2l + 1) chi_l P_l(cos Theta).
+double phaseFourierSum(double mu, double mu_prime, double cos_dphi, const std::vector<double>& chi,
+                       int orders);
 
 }  // namespace paintlab::layered
