@@ -1,0 +1,33 @@
+#include "undo_shortcut_filter.h"
+
+#include <QAbstractSpinBox>
+#include <QDockWidget>
+#include <QKeyEvent>
+#include <QLineEdit>
+#include <QWidget>
+
+namespace paintlab::gui {
+
+UndoShortcutFilter::UndoShortcutFilter(QWidget* window) : QObject(window), m_window(window) {}
+
+bool UndoShortcutFilter::eventFilter(QObject* watched, QEvent* event) {
+    if (event->type() != QEvent::ShortcutOverride) return false;
+    const auto* key = static_cast<QKeyEvent*>(event);
+    if (!key->matches(QKeySequence::Undo) && !key->matches(QKeySequence::Redo)) return false;
+    auto* field = qobject_cast<QWidget*>(watched);
+    if (field == nullptr ||
+        (qobject_cast<QAbstractSpinBox*>(field) == nullptr && qobject_cast<QLineEdit*>(field) == nullptr))
+        return false;
+    // Only this window's fields, a floating dock's included; a dialog of the
+    // window (its own window) keeps its fields' undo.
+    for (const QWidget* w = field; w != nullptr; w = w->parentWidget()) {
+        if (w == m_window) {
+            event->ignore();  // not claimed: the shortcut (Edit > Undo / Redo) runs
+            return true;
+        }
+        if (w->isWindow() && qobject_cast<const QDockWidget*>(w) == nullptr) return false;
+    }
+    return false;
+}
+
+}  // namespace paintlab::gui
