@@ -15,6 +15,7 @@
 
 #include "paintlab/database/recipes.h"
 
+#include <QDateTime>
 #include <QInputDialog>
 #include <QListWidget>
 #include <QMessageBox>
@@ -80,7 +81,9 @@ bool MainWindow::offerRecoveredDraft() {
                     tr("PaintLab was not closed normally and kept unsaved edits of <b>%1</b> "
                        "(from %2, written %3 UTC).")
                         .arg(QString::fromStdString(draft->recipe.name).toHtmlEscaped(),
-                             draft->origin.toHtmlEscaped(), draft->written_at),
+                             draft->origin.toHtmlEscaped(),
+                             QDateTime::fromString(draft->written_at, Qt::ISODate)
+                                 .toString(QStringLiteral("yyyy-MM-dd HH:mm:ss"))),
                     QMessageBox::Discard, this);
     box.setObjectName("recovery_question");
     box.setInformativeText(tr("Restore them to go on editing, or discard them?"));

@@ -30,6 +30,7 @@
 #include <QFile>
 #include <QListWidget>
 #include <QSettings>
+#include <QSlider>
 #include <QTemporaryDir>
 #include <QTest>
 #include <QUndoStack>
@@ -303,6 +304,24 @@ void NoLostWorkTest::ctrlZInANumberFieldUndoesOneTypedValueAtATime() {
     QTest::keyClick(field, Qt::Key_Z, Qt::ControlModifier | Qt::ShiftModifier);  // redo
     QCOMPARE(thickness(), 45.0);
     QCOMPARE(field->value(), 45.0);
+
+    // A slider drag is one step, and the next drag of the same slider another.
+    QSlider* slider = m_window->editorDock()->sliderFor("thickness_um");
+    QVERIFY(slider != nullptr);
+    const int before_drags = undo->index();
+    for (const int offset : {40, -40}) {
+        slider->setSliderDown(true);
+        for (int step = 1; step <= 5; ++step) slider->setValue(slider->value() + offset / 5);
+        slider->setSliderDown(false);
+    }
+    QCOMPARE(undo->index(), before_drags + 2);
+    const double after_first_drag = [&]() {
+        undo->undo();
+        return thickness();
+    }();
+    QVERIFY(after_first_drag > 45.0);  // the first drag's end, not its start
+    undo->undo();
+    QCOMPARE(thickness(), 45.0);
 }
 
 void NoLostWorkTest::undoPastASaveSaysModifiedSinceThatVersion() {
