@@ -1,5 +1,5 @@
 // Work is never lost (issue 27, items 1-3), driven as a technician would:
-// picking another recipe or closing the window with unsaved edits asks (save
+// picking another recipe, opening a version or closing the window with unsaved edits asks (save
 // a version, discard, cancel); a recovery draft written a few seconds after
 // an edit survives a crash and is offered back (restore, discard), and is
 // removed after a save; Ctrl+Z undoes one committed value at a time from a
@@ -29,8 +29,10 @@
 #include <QElapsedTimer>
 #include <QFile>
 #include <QListWidget>
+#include <QPushButton>
 #include <QSettings>
 #include <QSlider>
+#include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTest>
 #include <QUndoStack>
@@ -57,6 +59,7 @@ private slots:
     void cleanup();
     void pickingAnotherRecipeAsksFirst();
     void closingAsksFirst();
+    void openingAVersionAsksFirst();
     void draftSurvivesACrashAndIsOfferedBack();
     void draftIsDiscardedOnRequestAndRemovedBySaving();
     void ctrlZInANumberFieldUndoesOneTypedValueAtATime();
@@ -203,6 +206,33 @@ void NoLostWorkTest::closingAsksFirst() {
     QVERIFY(m_window->close());
     QVERIFY(answers.done());
     QVERIFY(!QFile::exists(m_window->recoveryDraft()->file()));
+    QVERIFY2(answers.unexpected().isEmpty(), qPrintable(answers.unexpected().join(", ")));
+}
+
+void NoLostWorkTest::openingAVersionAsksFirst() {
+    QVERIFY(m_window->selectRecipe(kPearl));
+    typeThickness(45.0);
+    QVERIFY(m_window->saveVersionAs(QStringLiteral("45 um")));
+    typeThickness(50.0);
+    paintlab::gui::VersionsDock* versions = m_window->versionsDock();
+    QCOMPARE(versions->historyTable()->rowCount(), 2);
+    versions->historyTable()->selectRow(0);  // version 1
+    QPushButton* open = nullptr;
+    for (QPushButton* b : versions->findChildren<QPushButton*>())
+        if (b->text() == QStringLiteral("Open")) open = b;
+    QVERIFY(open != nullptr && open->isEnabled());
+    ModalAnswers answers;
+    answers.expect("unsaved_question", ModalAnswers::click(QMessageBox::Cancel));
+    open->click();
+    QVERIFY(answers.done());
+    QCOMPARE(thickness(), 50.0);
+    QCOMPARE(m_window->document()->version(), 2);
+    answers.expect("unsaved_question", ModalAnswers::click(QMessageBox::Discard));
+    open->click();
+    QVERIFY(answers.done());
+    QCOMPARE(m_window->document()->version(), 1);
+    QVERIFY(!m_window->document()->hasUnsavedEdits());
+    QCOMPARE(m_window->windowTitle(), QStringLiteral("PaintLab - %1, version 1").arg(kPearl));
     QVERIFY2(answers.unexpected().isEmpty(), qPrintable(answers.unexpected().join(", ")));
 }
 
