@@ -70,7 +70,7 @@ MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMa
         },
         Qt::QueuedConnection);
     // Ctrl+Z and Ctrl+Shift+Z reach Edit > Undo / Redo from a number field too.
-    qApp->installEventFilter(new UndoShortcutFilter(this));
+    qApp->installEventFilter(new UndoShortcutFilter(this, m_editor));
     connect(&m_draft, &RecoveryDraft::failed, this,
             [this](const QString& message) { statusBar()->showMessage(message); });
     connect(&m_document, &RecipeDocument::recipeChanged, this, &MainWindow::requestRender);

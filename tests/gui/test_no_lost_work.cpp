@@ -15,6 +15,7 @@
 #include "modal_answers.h"
 
 #include "author_setting.h"
+#include "ingredient_dock.h"
 #include "main_window.h"
 #include "recipe_editor_dock.h"
 #include "recovery_draft.h"
@@ -28,6 +29,7 @@
 #include <QDoubleSpinBox>
 #include <QElapsedTimer>
 #include <QFile>
+#include <QLineEdit>
 #include <QListWidget>
 #include <QPushButton>
 #include <QSettings>
@@ -340,6 +342,18 @@ void NoLostWorkTest::ctrlZInANumberFieldUndoesOneTypedValueAtATime() {
     QTest::keyClick(field, Qt::Key_Z, Qt::ControlModifier | Qt::ShiftModifier);  // redo
     QCOMPARE(thickness(), 45.0);
     QCOMPARE(field->value(), 45.0);
+
+    // A text field outside the recipe editor (the ingredient search) keeps its own undo.
+    auto* search = m_window->findChild<QLineEdit*>(QStringLiteral("ingredient_search"));
+    QVERIFY(search != nullptr);
+    m_window->ingredientDock()->raise();
+    search->setFocus();
+    QTRY_VERIFY(search->hasFocus());
+    QTest::keyClicks(search, QStringLiteral("mica"));
+    QTest::keyClick(search, Qt::Key_Z, Qt::ControlModifier);
+    QVERIFY2(search->text() != QStringLiteral("mica"), qPrintable(search->text()));
+    QCOMPARE(thickness(), 45.0);  // the recipe untouched
+    m_window->editorDock()->raise();
 
     // A slider drag is one step, and the next drag of the same slider another.
     QSlider* slider = m_window->editorDock()->sliderFor("thickness_um");
