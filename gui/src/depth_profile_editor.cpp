@@ -19,14 +19,6 @@ namespace paintlab::gui {
 
 namespace {
 
-// Numbers of node drags, unique in the process: an editor rebuilt for the
-// same component must not merge its first drag into an old one still on top
-// of the undo stack.
-int nextDragNumber() {
-    static int last = 0;
-    return ++last;
-}
-
 struct PresetEntry {
     DepthProfilePreset preset;
     const char* label;
@@ -95,7 +87,7 @@ DepthProfileEditor::DepthProfileEditor(RecipeDocument* document, int layer, int 
 
     connect(m_plot, &DepthProfilePlot::nodeDragged, this, [this](const DepthProfile& profile) {
         if (m_drag == 0) {
-            m_drag = nextDragNumber();
+            m_drag = RecipeDocument::nextDragNumber();
             m_drag_pushed = false;
         }
         propose(profile, m_drag, true);

@@ -78,7 +78,11 @@ int main(int argc, char** argv) {
     options.open_scene = !parser.isSet(no_scene);
     paintlab::gui::MainWindow window(options);
     window.show();
-    if (parser.isSet(recipe)) window.selectRecipe(parser.value(recipe));
+    // Unsaved edits a crash or a kill left behind come first (restore or
+    // discard). A scripted screenshot neither asks nor touches them.
+    if (parser.isSet(screenshot)) window.recoveryDraft()->setDatabase({});
+    const bool restored = !parser.isSet(screenshot) && window.offerRecoveredDraft();
+    if (parser.isSet(recipe) && !restored) window.selectRecipe(parser.value(recipe));
     if (parser.isSet(screenshot)) {
         const QString file = parser.value(screenshot);
         QObject::connect(

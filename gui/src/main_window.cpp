@@ -1,10 +1,12 @@
 #include "main_window.h"
 
 #include "accuracy_dock.h"
+#include "author_setting.h"
 #include "file_output.h"
 #include "inplane_plot.h"
 #include "recipe_editor_dock.h"
 #include "render_dock.h"
+#include "undo_shortcut_filter.h"
 #include "workstation_paths.h"
 
 #include "paintlab/database/demo.h"
@@ -15,10 +17,10 @@
 #include "paintlab/raymaps/scene.h"
 
 #include <QAction>
+#include <QApplication>
 #include <QCloseEvent>
 #include <QDockWidget>
 #include <QFileDialog>
-#include <QInputDialog>
 #include <QListWidget>
 #include <QMenuBar>
 #include <QMessageBox>
@@ -55,11 +57,22 @@ MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMa
     addPlotsDock();
     buildMenus();
 
-    connect(m_recipes, &QListWidget::itemActivated, this,
-            [this](QListWidgetItem* item) { selectRecipe(item->data(Qt::UserRole).toString()); });
-    connect(m_recipes, &QListWidget::currentItemChanged, this, [this](QListWidgetItem* item) {
-        if (item != nullptr) selectRecipe(item->data(Qt::UserRole).toString());
-    });
+    // A recipe picked in the list replaces the edited one: asked first if it has
+    // unsaved edits. Queued: the question's dialog never runs inside the list's mouse handling.
+    connect(
+        m_recipes, &QListWidget::itemActivated, this,
+        [this](QListWidgetItem* item) { pickRecipe(item->data(Qt::UserRole).toString()); },
+        Qt::QueuedConnection);
+    connect(
+        m_recipes, &QListWidget::currentItemChanged, this,
+        [this](QListWidgetItem* item) {
+            if (item != nullptr) pickRecipe(item->data(Qt::UserRole).toString());
+        },
+        Qt::QueuedConnection);
+    // Ctrl+Z and Ctrl+Shift+Z reach Edit > Undo / Redo from a number field too.
+    qApp->installEventFilter(new UndoShortcutFilter(this, m_editor));
+    connect(&m_draft, &RecoveryDraft::failed, this,
+            [this](const QString& message) { statusBar()->showMessage(message); });
     connect(&m_document, &RecipeDocument::recipeChanged, this, &MainWindow::requestRender);
     connect(&m_scheduler, &RenderScheduler::finished, this, [this](const RenderResult& result) {
         m_render->showResult(result);
@@ -105,7 +118,7 @@ void MainWindow::buildMenus() {
     file->addAction(tr("&Open recipe file..."), QKeySequence::Open, this, [this]() {
         const QString path =
             QFileDialog::getOpenFileName(this, tr("Open recipe"), {}, tr("Recipes (*.json)"));
-        if (!path.isEmpty()) openRecipeFile(path);
+        if (!path.isEmpty() && resolveUnsavedEdits(tr("opening %1").arg(path))) openRecipeFile(path);
     });
     file->addAction(tr("&Save version..."), QKeySequence::Save, this, &MainWindow::saveVersion);
     addDatabaseMenuItems(file);
@@ -123,8 +136,17 @@ void MainWindow::buildMenus() {
     undo->setShortcut(QKeySequence::Undo);
     QAction* redo = m_document.undoStack()->createRedoAction(this, tr("&Redo"));
     redo->setShortcut(QKeySequence::Redo);
+    undo->setObjectName("undo_action");
+    redo->setObjectName("redo_action");
     edit->addAction(undo);
     edit->addAction(redo);
+    edit->addSeparator();
+    QAction* author = edit->addAction(tr("&Author..."), this, [this]() {
+        if (const auto name = askAuthor(this))
+            statusBar()->showMessage(tr("Versions are saved by %1").arg(*name));
+    });
+    author->setObjectName("author_action");
+    author->setStatusTip(tr("The name stored with every version you save"));
 
     QMenu* view = menuBar()->addMenu(tr("&View"));
     for (QDockWidget* dock : findChildren<QDockWidget*>()) view->addAction(dock->toggleViewAction());
@@ -137,6 +159,7 @@ void MainWindow::openDatabase(const std::filesystem::path& file) {
     try {
         m_db.emplace(db::Database::open(file.empty() ? db::defaultDatabasePath() : file));
         db::initDemoDatabase(*m_db);  // fills an empty database with the demo data, else nothing
+        m_draft.setDatabase(m_db->file());
         fillRecipeList();
         statusBar()->showMessage(tr("Database %1").arg(QString::fromStdString(m_db->file().string())));
     } catch (const std::exception& e) {
@@ -154,6 +177,18 @@ void MainWindow::fillRecipeList() {
             tr("%1 (v%2)").arg(QString::fromStdString(r.name)).arg(r.latest_version), m_recipes);
         item->setData(Qt::UserRole, QString::fromStdString(r.name));
     }
+    // The edited recipe stays selected (a save refills the list).
+    if (m_document.hasRecipe()) selectListItem(QString::fromStdString(m_document.recipe().name));
+}
+
+void MainWindow::selectListItem(const QString& name) {
+    const QSignalBlocker block(m_recipes);
+    for (int row = 0; row < m_recipes->count(); ++row)
+        if (m_recipes->item(row)->data(Qt::UserRole).toString() == name) {
+            m_recipes->setCurrentRow(row);
+            return;
+        }
+    m_recipes->setCurrentRow(-1);  // a recipe not in the database (a file)
 }
 
 bool MainWindow::selectRecipe(const QString& name) {
@@ -162,7 +197,7 @@ bool MainWindow::selectRecipe(const QString& name) {
         const db::StoredRecipeVersion stored = db::loadRecipeVersion(*m_db, name.toStdString());
         m_document.load(stored.recipe, tr("%1, version %2").arg(name).arg(stored.info.version),
                         stored.info.version);
-        setWindowTitle(tr("PaintLab - %1").arg(m_document.origin()));
+        selectListItem(name);
         return true;
     } catch (const std::exception& e) {
         showError(tr("Cannot load the recipe"), QString::fromUtf8(e.what()));
@@ -174,7 +209,7 @@ bool MainWindow::openRecipeFile(const QString& path) {
     try {
         const Recipe recipe = loadRecipeFile(path.toStdString());
         m_document.load(recipe, path, 0);
-        setWindowTitle(tr("PaintLab - %1").arg(path));
+        selectListItem({});
         addRecentFile(path);
         return true;
     } catch (const std::exception& e) {
@@ -262,19 +297,16 @@ void MainWindow::requestRender(bool interactive) {
     requestComparison(false);
 }
 
-void MainWindow::saveVersion() {
-    if (!m_db || !m_document.hasRecipe()) return;
-    bool ok = false;
-    const QString note = QInputDialog::getText(this, tr("Save version"), tr("What changed and why:"),
-                                               QLineEdit::Normal, {}, &ok);
-    if (ok) saveVersionAs(note);
-}
-
 bool MainWindow::saveVersionAs(const QString& note) {
     if (!m_db || !m_document.hasRecipe()) return false;
+    const std::optional<QString> author = authorForSave(this);
+    if (!author) {
+        statusBar()->showMessage(tr("Not saved: a version needs an author (Edit > Author...)"));
+        return false;
+    }
     try {
         db::SaveOptions options;
-        options.author = qEnvironmentVariable("USER", "paintlab").toStdString();
+        options.author = author->toStdString();
         options.note = note.toStdString();
         options.source = m_document.origin().toStdString();
         const db::SavedVersion saved = db::saveRecipeVersion(*m_db, m_document.recipe(), options);
@@ -323,6 +355,10 @@ void MainWindow::addRecentFile(const QString& path) {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
+    if (!resolveUnsavedEdits(tr("closing PaintLab"))) {
+        event->ignore();
+        return;
+    }
     QSettings settings;
     settings.setValue("window/geometry", saveGeometry());
     settings.setValue("window/state", saveState());

@@ -1,9 +1,12 @@
 #pragma once
 // The workstation's main window: the recipe list of the database, the recipe
 // editor, the in-plane BRDF plot, the render and accuracy docks. Dock layout,
-// window geometry and recent files are kept with QSettings.
+// window geometry and recent files are kept with QSettings. Unsaved edits are
+// never dropped without asking (main_window_unsaved.cpp) and are kept in a
+// recovery draft (recovery_draft.h) until saved or discarded.
 
 #include "recipe_document.h"
+#include "recovery_draft.h"
 #include "render_scheduler.h"
 
 #include "paintlab/database/database.h"
@@ -49,14 +52,35 @@ public:
     MainWindow(MainWindow&&) = delete;
     MainWindow& operator=(MainWindow&&) = delete;
 
-    // Loads the latest saved version of a recipe of the database; false (and a
-    // message box) if there is none of that name.
+    // Loads the latest saved version of a recipe of the database and selects
+    // it in the recipe list; false (and a message box) if there is none of
+    // that name. Replaces unsaved edits without asking: the user's ways there
+    // (the recipe list, File > Open, a version opened) ask first (resolveUnsavedEdits).
     bool selectRecipe(const QString& name);
     // Loads a recipe file; false (and a message box naming the file and the field) if it is bad.
+    // Replaces unsaved edits without asking, as selectRecipe.
     bool openRecipeFile(const QString& path);
-    // Saves the edited recipe as the next version in the database (author: $USER);
-    // false (and a message box) if the database refuses it.
+    // Saves the edited recipe as the next version in the database, by the
+    // remembered author (asked at the first save: author_setting.h); false if
+    // no author is given or (with a message box) the database refuses it.
     bool saveVersionAs(const QString& note);
+
+    // Before the edited recipe is replaced or the window closed: true at once
+    // if there are no unsaved edits; otherwise asks (modal box
+    // "unsaved_question": Save version... / Discard / Cancel). Save asks for
+    // the version's note and saves; Discard removes the recovery draft. False:
+    // cancelled (or the save failed), leave everything as it is.
+    bool resolveUnsavedEdits(const QString& next_step);
+    // A recovery draft left by an earlier run on this database (a crash, a
+    // kill): asks (modal box "recovery_question": Restore / Discard) and, on
+    // Restore, edits it as unsaved edits over the version they started from
+    // (undo leads back to it). Call once at start, before any recipe is
+    // loaded (loading one removes the draft). True if a draft was restored.
+    bool offerRecoveredDraft();
+    RecoveryDraft* recoveryDraft() { return &m_draft; }
+    // "Blue pearl ..., version 2", "Blue pearl ..., modified since version 2",
+    // "<file>, edited": the window title's and the render dock's name of the edited recipe.
+    QString currentLabel();
 
     // The ingredient browser, the recipe versions and the production export
     // (main_window_docks.cpp): shows the non-modal dialog on the edited version.
@@ -92,7 +116,13 @@ private:
     void fillRecipeList();
     void openScene(const std::filesystem::path& scene, const std::filesystem::path& raymap);
     void requestRender(bool interactive);
-    void saveVersion();
+    // File > Save version...: asks for the note, then saveVersionAs; false if cancelled or failed.
+    bool saveVersion();
+    // A recipe picked in the list: asks about unsaved edits, then loads it
+    // (or puts the list's selection back on the edited recipe).
+    void pickRecipe(const QString& name);
+    void selectListItem(const QString& name);
+    void updateTitle();
     void saveImage();
     void exportPlotCsv();
     void showError(const QString& title, const QString& message);
@@ -106,9 +136,9 @@ private:
     // Renders the comparison again if it was rendered with other settings
     // than the edited recipe's last request (or `always`).
     void requestComparison(bool always);
-    QString currentLabel();
 
     RecipeDocument m_document;
+    RecoveryDraft m_draft{&m_document};
     RenderScheduler m_scheduler;
     RenderScheduler m_compare_scheduler;
     std::optional<Recipe> m_comparison;

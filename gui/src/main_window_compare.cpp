@@ -30,7 +30,10 @@ void MainWindow::connectComparison() {
     });
     connect(m_render, &RenderDock::clearComparisonRequested, this, &MainWindow::clearComparison);
     // The label of the edited side follows what is edited.
-    const auto relabel = [this]() { m_render->setCurrentLabel(currentLabel()); };
+    const auto relabel = [this]() {
+        m_render->setCurrentLabel(currentLabel());
+        updateTitle();
+    };
     connect(&m_document, &RecipeDocument::recipeLoaded, this, relabel);
     connect(m_document.undoStack(), &QUndoStack::cleanChanged, this, relabel);
     connect(this, &MainWindow::versionSaved, this, relabel);
@@ -38,8 +41,17 @@ void MainWindow::connectComparison() {
 
 QString MainWindow::currentLabel() {
     if (!m_document.hasRecipe()) return {};
-    const QString origin = m_document.origin();
-    return m_document.undoStack()->isClean() ? origin : tr("%1, edited").arg(origin);
+    if (!m_document.hasUnsavedEdits()) return m_document.origin();
+    // Undone past a save, or edited since: not what that version holds.
+    if (m_document.version() > 0)
+        return tr("%1, modified since version %2")
+            .arg(QString::fromStdString(m_document.recipe().name))
+            .arg(m_document.version());
+    return tr("%1, edited").arg(m_document.origin());
+}
+
+void MainWindow::updateTitle() {
+    setWindowTitle(m_document.hasRecipe() ? tr("PaintLab - %1").arg(currentLabel()) : tr("PaintLab"));
 }
 
 void MainWindow::compareWith(const Recipe& recipe, const QString& label) {

@@ -31,6 +31,8 @@ void MainWindow::addDatabaseDocks() {
     tabifyDockWidget(m_accuracy, m_versions);
     m_accuracy->raise();
 
+    // Opening or reverting to a version replaces the edited recipe: asked first.
+    m_versions->setLeaveGuard([this](const QString& next_step) { return resolveUnsavedEdits(next_step); });
     connect(m_versions, &VersionsDock::saveRequested, this,
             [this](const QString& note) { saveVersionAs(note); });
     connect(this, &MainWindow::versionSaved, this, [this](const QString& recipe, int version) {
@@ -53,8 +55,9 @@ void MainWindow::addDatabaseMenuItems(QMenu* file) {
         recent->clear();
         const QStringList files = QSettings().value("recentFiles").toStringList();
         for (const QString& path : files) {
-            QAction* action =
-                recent->addAction(QFileInfo(path).fileName(), this, [this, path]() { openRecipeFile(path); });
+            QAction* action = recent->addAction(QFileInfo(path).fileName(), this, [this, path]() {
+                if (resolveUnsavedEdits(tr("opening %1").arg(path))) openRecipeFile(path);
+            });
             action->setToolTip(path);
             action->setStatusTip(path);
         }

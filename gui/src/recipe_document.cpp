@@ -25,6 +25,11 @@ void RecipeDocument::markSaved(const QString& origin, int version) {
     m_undo.setClean();
 }
 
+int RecipeDocument::nextDragNumber() {
+    static int last = 0;  // GUI thread only
+    return ++last;
+}
+
 void RecipeDocument::settle() { emit recipeChanged(false); }
 
 void RecipeDocument::setSelectedLayer(int layer) {

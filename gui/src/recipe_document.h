@@ -23,6 +23,8 @@ public:
     const QString& origin() const { return m_origin; }
     int version() const { return m_version; }  // 0: not a saved version
     QUndoStack* undoStack() { return &m_undo; }
+    // Edits not in the version or file it came from (the undo stack is not at its saved state).
+    bool hasUnsavedEdits() const { return m_has_recipe && !m_undo.isClean(); }
 
     // A new recipe to edit: clears the undo history.
     void load(const Recipe& recipe, const QString& origin, int version);
@@ -31,6 +33,11 @@ public:
     // The recipe as it is now was saved as this version: the origin and
     // version change, the recipe and the undo history stay (marked clean).
     void markSaved(const QString& origin, int version);
+    // Numbers for drags (a slider, a depth-profile node), unique in the
+    // process: the edits of one drag merge into one undo step, and an editor
+    // rebuilt for the same field never merges a new drag into an old one
+    // still on top of the undo stack.
+    static int nextDragNumber();
     // An interactive edit (a slider drag) ended: announces the recipe again as final.
     void settle();
     // The layer chosen in the recipe editor's layer list (0 = top; -1: none),

@@ -159,6 +159,9 @@ void RecipeEditorDock::rebuild() {
     // next rebuild, which deletes these widgets (and their connections) first.
     for (const Row& row : m_rows) {
         const Row* r = &row;
+        // A new drag number per press: the edits of one drag merge into one undo step.
+        connect(row.slider, &QSlider::sliderPressed, this,
+                [this]() { m_drag = RecipeDocument::nextDragNumber(); });
         connect(row.slider, &QSlider::valueChanged, this, [this, r](int step) {
             const double v = r->range.lo + (r->range.hi - r->range.lo) * step / kSliderSteps;
             edit(*r, v, r->slider->isSliderDown());
@@ -189,7 +192,10 @@ void RecipeEditorDock::edit(const Row& row, double value, bool interactive) {
     const double* current = scalarField(m_document->recipe(), row.ref);
     if (current == nullptr) return;
     if (*current == value) return;  // nothing moved: no empty undo step
-    m_document->undoStack()->push(new SetParameterCommand(m_document, row.ref, value, interactive));
+    // Held slider: part of the current drag; anything else (a typed value, a
+    // key press on the slider) is one undo step of its own.
+    const int drag = interactive ? m_drag : 0;
+    m_document->undoStack()->push(new SetParameterCommand(m_document, row.ref, value, drag, interactive));
 }
 
 }  // namespace paintlab::gui

@@ -61,6 +61,7 @@ private:
     QWidget* m_form = nullptr;
     QVBoxLayout* m_layout = nullptr;
     std::vector<Row> m_rows;
+    int m_drag = 0;  // the number of the slider drag under way (or the last one)
 };
 
 }  // namespace paintlab::gui

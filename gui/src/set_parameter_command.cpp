@@ -8,9 +8,9 @@
 namespace paintlab::gui {
 
 SetParameterCommand::SetParameterCommand(RecipeDocument* document, const ParameterRef& ref, double value,
-                                         bool interactive)
-    : m_document(document), m_ref(ref), m_before(document->recipe()), m_after(document->recipe()),
-      m_interactive(interactive) {
+                                         int drag, bool interactive)
+    : m_document(document), m_ref(ref), m_drag(drag), m_before(document->recipe()),
+      m_after(document->recipe()), m_interactive(interactive) {
     if (double* field = scalarField(m_after, ref)) {
         const ParameterDecl& decl = *ref.decl;
         *field = std::clamp(value, decl.min, decl.max);
@@ -30,8 +30,9 @@ void SetParameterCommand::redo() {
 
 bool SetParameterCommand::mergeWith(const QUndoCommand* other) {
     const auto* next = dynamic_cast<const SetParameterCommand*>(other);
-    if (next == nullptr || !(next->m_ref == m_ref)) return false;
+    if (next == nullptr || m_drag == 0 || next->m_drag != m_drag || !(next->m_ref == m_ref)) return false;
     m_after = next->m_after;
+    setObsolete(m_after == m_before);  // dragged back to where it began: no step
     return true;
 }
 

@@ -1,6 +1,7 @@
 #include "versions_dock.h"
 
-#include <QAbstractButton>
+#include "author_setting.h"
+
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QInputDialog>
@@ -9,7 +10,6 @@
 #include <QPushButton>
 #include <QSplitter>
 #include <QTableWidget>
-#include <QUndoStack>
 #include <QVBoxLayout>
 
 #include <algorithm>
@@ -86,7 +86,7 @@ VersionsDock::VersionsDock(RecipeDocument* document, QWidget* parent)
     connect(m_compare, &QPushButton::clicked, this, &VersionsDock::diffSelected);
     connect(m_open, &QPushButton::clicked, this, [this]() {
         const std::vector<int> v = selectedVersions();
-        if (!v.empty()) openVersion(v.back());
+        if (!v.empty() && mayLeave(tr("opening version %1").arg(v.back()))) openVersion(v.back());
     });
     connect(m_revert, &QPushButton::clicked, this, &VersionsDock::revertSelected);
     connect(m_compare_render, &QPushButton::clicked, this, [this]() {
@@ -98,8 +98,9 @@ VersionsDock::VersionsDock(RecipeDocument* document, QWidget* parent)
     connect(
         m_table, &QTableWidget::cellDoubleClicked, this,
         [this](int row) {
-            if (row >= 0 && row < static_cast<int>(m_history.size()))
-                openVersion(m_history[static_cast<std::size_t>(row)].version);
+            if (row < 0 || row >= static_cast<int>(m_history.size())) return;
+            const int version = m_history[static_cast<std::size_t>(row)].version;
+            if (mayLeave(tr("opening version %1").arg(version))) openVersion(version);
         },
         Qt::QueuedConnection);
     connect(document, &RecipeDocument::recipeLoaded, this,
@@ -235,9 +236,11 @@ void VersionsDock::diffSelected() {
 std::optional<int> VersionsDock::revertTo(int version) {
     if (m_db == nullptr) return std::nullopt;
     try {
+        const std::optional<QString> author = authorForSave(this);
+        if (!author) return std::nullopt;  // no author given: nothing saved
         const db::StoredRecipeVersion old = db::loadRecipeVersion(*m_db, m_name.toStdString(), version);
         db::SaveOptions options;
-        options.author = qEnvironmentVariable("USER", "paintlab").toStdString();
+        options.author = author->toStdString();
         options.note = tr("Revert to version %1").arg(version).toStdString();
         options.source = tr("%1, version %2").arg(m_name).arg(version).toStdString();
         const db::SavedVersion saved = db::saveRecipeVersion(*m_db, old.recipe, options);
@@ -254,22 +257,8 @@ void VersionsDock::revertSelected() {
     const std::vector<int> v = selectedVersions();
     if (v.size() != 1) return;
     const int version = v.front();
-    if (m_document->undoStack()->isClean()) {
-        revertTo(version);
-        return;
-    }
-    // Unsaved edits would be replaced: ask, without blocking the GUI thread.
-    auto* box = new QMessageBox(QMessageBox::Question, tr("Revert"),
-                                tr("The edited recipe has changes that are not saved. Revert to version %1 "
-                                   "and leave them?")
-                                    .arg(version),
-                                QMessageBox::Yes | QMessageBox::Cancel, this);
-    box->setObjectName("revert_question");
-    box->setAttribute(Qt::WA_DeleteOnClose);
-    connect(box, &QMessageBox::buttonClicked, this, [this, box, version](QAbstractButton* button) {
-        if (box->standardButton(button) == QMessageBox::Yes) revertTo(version);
-    });
-    box->open();
+    // The revert opens the new version in the editor: unsaved edits are asked about first.
+    if (mayLeave(tr("reverting to version %1").arg(version))) revertTo(version);
 }
 
 bool VersionsDock::openVersion(int version) {

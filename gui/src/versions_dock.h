@@ -19,6 +19,7 @@
 #include <QDockWidget>
 #include <QString>
 
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -34,6 +35,12 @@ public:
     explicit VersionsDock(RecipeDocument* document, QWidget* parent = nullptr);
 
     void setDatabase(db::Database* database);
+    // Asked before Open or Revert to replaces the edited recipe, with what is
+    // about to happen ("opening version 2"); false: leave it as it is. By
+    // default nothing is asked; the main window asks about unsaved edits.
+    void setLeaveGuard(std::function<bool(const QString& next_step)> guard) {
+        m_leave_guard = std::move(guard);
+    }
     // Shows the history of the recipe of this name (the edited recipe's by default).
     void showRecipe(const QString& name);
     // Reads the history again.
@@ -52,7 +59,8 @@ public:
     // (nothing saved) if it cannot. When the latest version already has those
     // contents, nothing is saved and that version is returned.
     std::optional<int> revertTo(int version);
-    // Loads a version into the editor.
+    // Loads a version into the editor (replacing unsaved edits without asking:
+    // the Open button and a double-click ask the leave guard first).
     bool openVersion(int version);
     // Asks for a version to be rendered as the comparison (comparisonRequested);
     // false (and a message) if it cannot be read.
@@ -76,7 +84,10 @@ private:
     void updateButtons();
     void showError(const QString& title, const QString& message);
 
+    bool mayLeave(const QString& next_step) const { return !m_leave_guard || m_leave_guard(next_step); }
+
     RecipeDocument* m_document;
+    std::function<bool(const QString&)> m_leave_guard;
     db::Database* m_db = nullptr;
     QString m_name;
     std::vector<db::RecipeVersionInfo> m_history;

@@ -10,6 +10,7 @@
 // deleted. Each dock is saved as a PNG under the build folder
 // (PAINTLAB_SCREENSHOT_DIR) for the screenshot comparison; no baseline here.
 
+#include "author_setting.h"
 #include "gui_test_main.h"
 #include "ingredient_dock.h"
 #include "main_window.h"
@@ -110,6 +111,8 @@ void DocksTest::initTestCase() {
     QVERIFY(m_dir.isValid());
     qputenv("XDG_CACHE_HOME", (m_dir.path() + "/cache").toUtf8());
     qputenv("XDG_CONFIG_HOME", (m_dir.path() + "/config").toUtf8());
+    qputenv("XDG_DATA_HOME", (m_dir.path() + "/data").toUtf8());  // recovery drafts
+    paintlab::gui::rememberAuthor(QStringLiteral("GUI test"));    // no author question at the first save
     m_db_file = m_dir.path() + "/lab.db";
     paintlab::gui::WorkstationOptions options;
     options.database = m_db_file.toStdString();

@@ -439,6 +439,7 @@ void PlotsTest::logScaleRedraws() {
 void PlotsTest::mainWindowPlotsDockFollowsTheRecipe() {
     qputenv("XDG_CACHE_HOME", (m_dir.path() + "/cache").toUtf8());
     qputenv("XDG_CONFIG_HOME", (m_dir.path() + "/config").toUtf8());
+    qputenv("XDG_DATA_HOME", (m_dir.path() + "/data").toUtf8());  // recovery drafts
     WorkstationOptions options;
     options.database = m_dir.filePath("lab.db").toStdString();
     options.open_scene = false;  // the BRDF alone: no scene to trace

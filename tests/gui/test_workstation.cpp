@@ -16,6 +16,7 @@
 #include "gui_test_main.h"
 
 #include "accuracy_dock.h"
+#include "author_setting.h"
 #include "comparison_view.h"
 #include "inplane_plot.h"
 #include "main_window.h"
@@ -145,6 +146,8 @@ void WorkstationTest::initTestCase() {
     QVERIFY(m_dir.isValid());
     qputenv("XDG_CACHE_HOME", (m_dir.path() + "/cache").toUtf8());
     qputenv("XDG_CONFIG_HOME", (m_dir.path() + "/config").toUtf8());
+    qputenv("XDG_DATA_HOME", (m_dir.path() + "/data").toUtf8());  // recovery drafts
+    paintlab::gui::rememberAuthor(QStringLiteral("GUI test"));    // no author question at the first save
     // The demo scene, made tiny.
     std::ifstream in(std::string(PAINTLAB_DEMO_DIR) + "/scenes/car_body_sky.json");
     nlohmann::json scene = nlohmann::json::parse(in);
