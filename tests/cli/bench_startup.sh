@@ -2,6 +2,8 @@
 # Whole-process start-up of paintlab-cli (issue 26, part 3): wall time by
 # hyperfine (Debian package `hyperfine`, needed here only, not by CI) and
 # the largest maximum resident set size over a few runs (/usr/bin/time).
+# The CPU time (user + system, mean) moves less than the wall time when
+# other work shares the cores.
 # Figures go to docs/PERFORMANCE.md with the machine ("Command-line start-up").
 #
 #   tests/cli/bench_startup.sh [PAINTLAB_CLI] [RUNS]
@@ -28,7 +30,7 @@ cases=(
   "mc --help (helper)|mc --help"
 )
 
-printf '| command | mean ± σ (ms) | min (ms) | max RSS (MB) |\n|---|---|---|---|\n'
+printf '| command | wall mean ± σ (ms) | wall min (ms) | CPU user+sys (ms) | max RSS (MB) |\n|---|---|---|---|---|\n'
 json=$(mktemp)
 trap 'rm -f "$json"' EXIT
 for c in "${cases[@]}"; do
@@ -36,12 +38,12 @@ for c in "${cases[@]}"; do
   args=${c#*|}
   # shellcheck disable=SC2086 # the arguments are split on purpose
   hyperfine --style none --warmup 3 --runs "$runs" -N --export-json "$json" "$cli $args" >/dev/null 2>&1
-  read -r mean sd min < <(jq -r '.results[0] | "\(.mean*1000) \(.stddev*1000) \(.min*1000)"' "$json")
+  read -r mean sd min cpu < <(jq -r '.results[0] | "\(.mean*1000) \(.stddev*1000) \(.min*1000) \((.user+.system)*1000)"' "$json")
   rss=0
   for _ in 1 2 3 4 5; do
     # shellcheck disable=SC2086
     k=$(/usr/bin/time -f %M "$cli" $args 2>&1 >/dev/null | tail -1)
     ((k > rss)) && rss=$k
   done
-  printf '| `%s` | %.1f ± %.1f | %.1f | %.1f |\n' "$name" "$mean" "$sd" "$min" "$(bc -l <<<"$rss/1024")"
+  printf '| `%s` | %.1f ± %.1f | %.1f | %.1f | %.1f |\n' "$name" "$mean" "$sd" "$min" "$cpu" "$(bc -l <<<"$rss/1024")"
 done
