@@ -45,5 +45,5 @@ for c in "${cases[@]}"; do
     k=$(/usr/bin/time -f %M "$cli" $args 2>&1 >/dev/null | tail -1)
     ((k > rss)) && rss=$k
   done
-  printf '| `%s` | %.1f ± %.1f | %.1f | %.1f | %.1f |\n' "$name" "$mean" "$sd" "$min" "$cpu" "$(bc -l <<<"$rss/1024")"
+  printf "| \`%s\` | %.1f ± %.1f | %.1f | %.1f | %.1f |\n" "$name" "$mean" "$sd" "$min" "$cpu" "$(bc -l <<<"$rss/1024")"
 done
