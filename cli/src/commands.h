@@ -1,6 +1,8 @@
 #pragma once
-// Each group of CLI commands registers itself on the application; main.cpp
-// lists the groups explicitly (after Mayo's src/app/main.cpp).
+// Each group of CLI commands registers itself on the application; cli_app.cpp
+// lists the groups explicitly (after Mayo's src/app/main.cpp). `mc`,
+// `compare`, the ray-map commands and `plan` are linked into paintlab-cli-full
+// only (helper_commands.h).
 
 #include <functional>
 

@@ -1,68 +1,87 @@
-// paintlab-cli: the scriptable face of PaintLab.
-// Exit codes are a public contract: 0 ok, 2 bad input, 1 internal error (or a
-// database that is locked, read-only or on a full disk).
+// paintlab-cli: the scriptable face of PaintLab (cli/README.md).
+// This front end links the fast model and the database only, so that the
+// light commands (validate, show, slab, brdf, eval, multiangle, accuracy,
+// db) start in milliseconds without the image, mesh and ray-tracing
+// libraries. A command line that names a command of the full model or the
+// ray maps (helper_commands.h) is handed, argv unchanged, to
+// paintlab-cli-full: beside this program in the build tree, in
+// PAINTLAB_CLI_HELPER_DIR (relative to this program's folder) when installed.
 
-#include "commands.h"
-#include "paintlab/database/database.h"
-#include "paintlab/engine/error.h"
+#include "cli_app.h"
+#include "helper_commands.h"
 
 #include <CLI/CLI.hpp>
 
-#include <exception>
+#include <unistd.h>
+
+#include <cerrno>
+#include <filesystem>
 #include <iostream>
+#include <span>
+#include <string_view>
+#include <system_error>
 
 namespace {
 
-constexpr int kExitOk = 0;
+namespace fs = std::filesystem;
+using paintlab::cli::CommandAction;
+using paintlab::cli::CommandSummary;
+
+constexpr const char* kHelperName = "paintlab-cli-full";
 constexpr int kExitInternal = 1;
-constexpr int kExitBadInput = 2;
 
-int run(int argc, char** argv) {
-    CLI::App app{"PaintLab command line: validate recipes, run the fast model, colour metrics.\n"
-                 "Exit codes: 0 ok, 2 bad input (file and field named on stderr), 1 internal error."};
-    app.set_version_flag("--version", std::string("paintlab-cli ") + PAINTLAB_VERSION);
-    app.require_subcommand(1);
+bool isHelperCommand(std::string_view arg) {
+    for (const CommandSummary& c : paintlab::cli::kFullModelCommands)
+        if (arg == c.name) return true;
+    for (const CommandSummary& c : paintlab::cli::kSceneCommands)
+        if (arg == c.name) return true;
+    return false;
+}
 
-    paintlab::cli::CommandAction action;
-    paintlab::cli::addRecipeCommands(app, action);
-    paintlab::cli::addSlabCommand(app, action);
-    paintlab::cli::addBrdfCommands(app, action);
-    paintlab::cli::addAccuracyCommand(app, action);
-    paintlab::cli::addMcCommands(app, action);
-    paintlab::cli::addDbCommands(app, action);
-    paintlab::cli::addRaymapCommands(app, action);
-    paintlab::cli::addPlanCommand(app, action);
+// Any argument, not only the command's position: the helper then parses the
+// line exactly as the single program did. An argument that merely equals a
+// command name (a file called "plan") costs the helper's start-up, never a
+// different result.
+bool namesHelperCommand(std::span<char*> args) {
+    for (const char* arg : args.subspan(1))
+        if (isHelperCommand(arg)) return true;
+    return false;
+}
 
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::Success& e) {  // --help, --version
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        app.exit(e);
-        return kExitBadInput;
-    }
+fs::path helperPath() {
+    std::error_code ec;
+    const fs::path dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
+    for (const fs::path& candidate : {dir / kHelperName, dir / PAINTLAB_CLI_HELPER_DIR / kHelperName})
+        if (access(candidate.c_str(), X_OK) == 0) return candidate;
+    return dir / PAINTLAB_CLI_HELPER_DIR / kHelperName;  // named in the error below
+}
 
-    try {
-        return action ? action() : kExitOk;
-    } catch (const paintlab::InputError& e) {
-        std::cerr << "error: " << e.what() << '\n';
-        return kExitBadInput;
-    } catch (const paintlab::db::DatabaseError& e) {
-        // A bad database file is bad input; a locked, read-only or full one is not.
-        std::cerr << "error: " << e.what() << '\n';
-        return e.isBadFile() ? kExitBadInput : kExitInternal;
-    }
+// Replaces this process by the helper (same argv, streams and exit code);
+// returns only if that fails.
+int runHelper(char** argv) {
+    const fs::path helper = helperPath();
+    execv(helper.c_str(), argv);
+    std::cerr << "internal error: cannot run " << helper.string() << " (installed with paintlab-cli): "
+              << std::error_code(errno, std::generic_category()).message() << '\n';
+    return kExitInternal;
+}
+
+// An entry that names a helper command in --help. It is never chosen, since
+// main() hands every line naming one to the helper; if it were, the helper runs.
+paintlab::cli::AddCommands namingOnly(std::span<const CommandSummary> commands, char** argv) {
+    return [commands, argv](CLI::App& app, CommandAction& action) {
+        for (const CommandSummary& c : commands)
+            app.add_subcommand(c.name, c.description)->callback([&action, argv] {
+                action = [argv] { return runHelper(argv); };
+            });
+    };
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const std::exception& e) {
-        std::cerr << "internal error: " << e.what() << '\n';
-    } catch (...) {
-        std::cerr << "internal error: unknown exception\n";
-    }
-    return kExitInternal;
+    if (namesHelperCommand({argv, static_cast<std::size_t>(argc)})) return runHelper(argv);
+    return paintlab::cli::runCli(argc, argv,
+                                 {namingOnly(paintlab::cli::kFullModelCommands, argv),
+                                  namingOnly(paintlab::cli::kSceneCommands, argv)});
 }

@@ -4,6 +4,7 @@
 
 #include "brdf_table_io.h"
 #include "commands.h"
+#include "helper_commands.h"
 
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/fast_model/layered_brdf.h"
@@ -434,8 +435,7 @@ void addStopOptions(CLI::App* command, McOptions& o) {
 void addMcCommands(CLI::App& app, CommandAction& action) {
     auto o = std::make_shared<McOptions>();
 
-    CLI::App* mc = app.add_subcommand("mc", "Monte Carlo full model: albedo at 0 and 45 deg, BRDF at the "
-                                            "multi-angle geometries, with std errors");
+    CLI::App* mc = app.add_subcommand(kMcCommand.name, kMcCommand.description);
     addStopOptions(mc, *o);
     mc->add_option("--bands", o->bands, "Wavelength bands over 380-780 nm")->capture_default_str();
     mc->add_flag(
@@ -448,8 +448,7 @@ void addMcCommands(CLI::App& app, CommandAction& action) {
         ->capture_default_str();
     mc->callback([o, &action] { action = [o] { return runMc(*o); }; });
 
-    CLI::App* compare = app.add_subcommand(
-        "compare", "Fast vs full model at the multi-angle geometries, with the time each took");
+    CLI::App* compare = app.add_subcommand(kCompareCommand.name, kCompareCommand.description);
     addStopOptions(compare, *o);
     compare->add_option("--preset", o->preset, "Fast-model preset (its bands are the MC's bands)")
         ->capture_default_str();

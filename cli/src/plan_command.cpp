@@ -3,6 +3,7 @@
 // Options and JSON fields are a public contract: extend, never rename.
 
 #include "commands.h"
+#include "helper_commands.h"
 
 #include "paintlab/engine/plan/plan.h"
 #include "paintlab/engine/recipe_json.h"
@@ -93,8 +94,7 @@ int runPlan(const PlanOptions& o) {
 
 void addPlanCommand(CLI::App& app, CommandAction& action) {
     auto o = std::make_shared<PlanOptions>();
-    CLI::App* cmd = app.add_subcommand(
-        "plan", "What to simulate for a recipe in a scene, with reasons and accepted errors");
+    CLI::App* cmd = app.add_subcommand(kPlanCommand.name, kPlanCommand.description);
     cmd->add_option("scene", o->scene, "Scene JSON file")->required();
     cmd->add_option("recipe", o->recipe, "Recipe JSON file")->required();
     cmd->add_option("--preset", o->preset, "Accuracy preset: preview, standard or reference")

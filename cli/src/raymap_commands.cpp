@@ -2,6 +2,7 @@
 // (docs/RAYMAPS.md). Options are a public contract (issue 6): extend, never rename.
 
 #include "commands.h"
+#include "helper_commands.h"
 #include "sparkle_option.h"
 
 #include "paintlab/engine/error.h"
@@ -236,7 +237,7 @@ int reference(const ReferenceOptions& o) {
 
 void addRaymapCommands(CLI::App& app, CommandAction& action) {
     auto b = std::make_shared<BuildOptions>();
-    CLI::App* raymap = app.add_subcommand("raymap", "Ray maps: precompute a scene once, relight its paint");
+    CLI::App* raymap = app.add_subcommand(kRaymapCommand.name, kRaymapCommand.description);
     raymap->require_subcommand(1);
     CLI::App* cmd = raymap->add_subcommand("build", "Trace SCENE.json once and write its ray map");
     cmd->add_option("scene", b->scene, "Scene JSON file")->required();
@@ -253,7 +254,7 @@ void addRaymapCommands(CLI::App& app, CommandAction& action) {
     });
 
     auto r = std::make_shared<RelightOptions>();
-    CLI::App* relight = app.add_subcommand("relight", "Re-shade the paint of a ray map with a recipe");
+    CLI::App* relight = app.add_subcommand(kRelightCommand.name, kRelightCommand.description);
     relight->add_option("map", r->map, "Ray-map file (.prm)")->required();
     addRelightOptions(relight, *r);
     addSparkleOptions(relight, r->sparkle);
@@ -262,9 +263,7 @@ void addRaymapCommands(CLI::App& app, CommandAction& action) {
     relight->callback([r, &action] { action = [r] { return relightMap(*r, r->map); }; });
 
     auto ro = std::make_shared<ReferenceOptions>();
-    CLI::App* ref = app.add_subcommand(
-        "reference",
-        "Brute-force path-traced reference of a scene with the paint's RGB BRDF (slow; for tests)");
+    CLI::App* ref = app.add_subcommand(kReferenceCommand.name, kReferenceCommand.description);
     ref->add_option("scene", ro->scene, "Scene JSON file")->required();
     addRelightOptions(ref, ro->image);
     ref->add_option("--spp", ro->settings.samples_per_pixel, "Paths per pixel")->capture_default_str();
@@ -275,7 +274,7 @@ void addRaymapCommands(CLI::App& app, CommandAction& action) {
 
     auto rb = std::make_shared<BuildOptions>();
     auto rr = std::make_shared<RelightOptions>();
-    CLI::App* render = app.add_subcommand("render", "raymap build, then relight (the map is not kept)");
+    CLI::App* render = app.add_subcommand(kRenderCommand.name, kRenderCommand.description);
     render->add_option("scene", rb->scene, "Scene JSON file")->required();
     addRelightOptions(render, *rr);
     addSparkleOptions(render, rr->sparkle);

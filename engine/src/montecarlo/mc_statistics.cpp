@@ -1,5 +1,7 @@
 #include "mc_statistics.h"
 
+#include "paintlab/engine/montecarlo/mc_table.h"
+
 #include <cmath>
 
 namespace paintlab::mc {
@@ -75,6 +77,20 @@ Estimate batchMeansEstimate(std::span<const double> batch_means, std::span<const
         var += d * d;
     }
     return {mean, std::sqrt(var * k / (k - 1.0))};
+}
+
+// Declared in mc_table.h; defined here, apart from McEngine (Embree), for the fast
+// model's table writer (fast_model/brdf_table_io.cpp).
+Estimate batchEstimate(std::span<const double> per_batch) {
+    if (per_batch.empty()) return {};
+    const auto k = static_cast<double>(per_batch.size());
+    double mean = 0.0;
+    for (double v : per_batch) mean += v;
+    mean /= k;
+    if (per_batch.size() < 2) return {mean, 0.0};
+    double var = 0.0;
+    for (double v : per_batch) var += (v - mean) * (v - mean);
+    return {mean, std::sqrt(var / (k - 1.0) / k)};
 }
 
 }  // namespace paintlab::mc

@@ -31,8 +31,9 @@
 // Standard errors: per entry over paths (or over batch means with explicit
 // flakes, monte_carlo.h); for anything derived from the table (eval at a
 // direction pair, colours) from the spread of the per-batch tables
-// (batchEstimate), which accounts for the correlation between the entries
-// that one path feeds.
+// (batchEstimate, in mc_statistics.cpp so that the fast model's table
+// writer uses it without linking the Monte Carlo engine and Embree), which
+// accounts for the correlation between the entries that one path feeds.
 
 #include "paintlab/engine/montecarlo/mc_table.h"
 
@@ -71,18 +72,6 @@ LayeredBrdf::BandTable emptyTable(const LayeredBrdf::BandTable& g) {
 }
 
 }  // namespace
-
-Estimate batchEstimate(std::span<const double> per_batch) {
-    if (per_batch.empty()) return {};
-    const auto k = static_cast<double>(per_batch.size());
-    double mean = 0.0;
-    for (double v : per_batch) mean += v;
-    mean /= k;
-    if (per_batch.size() < 2) return {mean, 0.0};
-    double var = 0.0;
-    for (double v : per_batch) var += (v - mean) * (v - mean);
-    return {mean, std::sqrt(var / (k - 1.0) / k)};
-}
 
 McTable tabulateMonteCarlo(const Recipe& recipe, const FastModelSettings& grid_settings,
                            const McSettings& settings, const ProgressCallback& progress) {
