@@ -14,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -40,6 +41,58 @@ BENCHMARK(BM_FastModelPreset)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(1);
+
+// A filler of large particles (g = 0.9) in a 20 µm coat over a white base:
+// what computing its single scattering exactly and refining the grid for its
+// sharp lobe cost (arguments: preset 1 standard / 2 reference; cures 0 off /
+// 1 on), and per eval() call (BM_EvalSharpLobe, the same arguments).
+paintlab::Recipe sharpLobeRecipe() {
+    paintlab::Recipe r;
+    r.name = "filler g 0.9";
+    paintlab::Layer coat;
+    coat.name = "coat";
+    coat.thickness_um = 20.0;
+    coat.binder.refractive_index = paintlab::Spectrum(1.5);
+    paintlab::Pigment filler;
+    filler.name = "filler";
+    filler.volume_fraction = 0.1;
+    filler.sigma_a_per_um = paintlab::Spectrum(0.02);
+    filler.sigma_s_per_um = paintlab::Spectrum(1.0);
+    filler.hg_g = 0.9;
+    coat.components = {filler};
+    r.layers = {coat};
+    r.substrate = paintlab::LambertianSubstrate{paintlab::Spectrum(0.8)};
+    return r;
+}
+
+paintlab::FastModelSettings sharpLobeSettings(const benchmark::State& state) {
+    auto settings = paintlab::presetSettings(static_cast<paintlab::Preset>(state.range(0)));
+    if (state.range(1) == 0) {
+        settings.exact_single_scattering = false;
+        settings.sharp_nodes = settings.sharp_orders = 0;
+        settings.sharp_max_start_tau = 1.0;
+    }
+    return settings;
+}
+
+void BM_FastModelSharpLobe(benchmark::State& state) {
+    const auto recipe = sharpLobeRecipe();
+    const auto settings = sharpLobeSettings(state);
+    for (auto _ : state) benchmark::DoNotOptimize(paintlab::computeLayeredBrdf(recipe, settings));
+}
+BENCHMARK(BM_FastModelSharpLobe)->ArgsProduct({{1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_EvalSharpLobe(benchmark::State& state) {
+    const auto brdf = paintlab::computeLayeredBrdf(sharpLobeRecipe(), sharpLobeSettings(state));
+    std::vector<double> out(brdf.wavelengthsNm().size());
+    const auto wi = paintlab::directionFromAnglesDeg(45.0, 0.0);
+    const auto wo = paintlab::directionFromAnglesDeg(30.0, 150.0);
+    for (auto _ : state) {
+        brdf.eval(wi, wo, out);
+        benchmark::DoNotOptimize(out.data());
+    }
+}
+BENCHMARK(BM_EvalSharpLobe)->ArgsProduct({{1, 2}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
 // Scaling on the pearlescent demo around the standard preset: one knob at a time.
 enum Knob { kNodes, kOrders, kBands };
