@@ -8,6 +8,7 @@
 
 #include "paint_comparison.h"
 #include "temp_dir.h"
+#include "write_exr.h"
 
 #include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/recipe_json.h"
@@ -15,7 +16,6 @@
 #include "paintlab/raymaps/relight.h"
 #include "paintlab/raymaps/scene.h"
 
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -42,12 +42,7 @@ std::filesystem::path writeCourtyard(const test::TempDir& dir, bool sun = true) 
             for (int c = 0; c < 3; ++c)
                 rgb[static_cast<std::size_t>((v * w + u) * 3 + c)] = value * (c == 2 ? 0.9F : 1.0F);
         }
-    const auto path = dir.path() / "courtyard.exr";
-    auto out = OIIO::ImageOutput::create(path.string());
-    EXPECT_TRUE(out && out->open(path.string(), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
-    EXPECT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()));
-    out->close();
-    return path;
+    return test::writeExr(dir.path() / "courtyard.exr", w, h, rgb);
 }
 
 // A paint sphere seen from the opening's side (the camera behind it, on +z),
