@@ -14,12 +14,12 @@ EnvironmentMoments::EnvironmentMoments(const EnvironmentMap& environment, int po
                                radicalInverse2(static_cast<std::uint32_t>(i)));
         if (!(s.pdf_sr > 0.0)) continue;
         m_direction.push_back(s.direction);
-        m_weight.push_back(s.radiance / (static_cast<double>(n) * s.pdf_sr));
+        m_weight.emplace_back(s.radiance / (static_cast<double>(n) * s.pdf_sr));
     }
 }
 
 void EnvironmentMoments::add(const Frame& frame, int cells, int orders, std::vector<Rgb3>& moments) const {
-    const auto m_count = static_cast<std::size_t>(orders);
+    const auto order_count = static_cast<std::size_t>(orders);
     for (std::size_t k = 0; k < m_direction.size(); ++k) {
         const Vec3 w = frame.toLocal(m_direction[k]);
         const double mu = w.z();
@@ -31,9 +31,9 @@ void EnvironmentMoments::add(const Frame& frame, int cells, int orders, std::vec
         const Rgb3 base = m_weight[k] * mu;
         double previous = 1.0;
         double current = c1;
-        moments[j * m_count] += base;
-        for (std::size_t m = 1; m < m_count; ++m) {
-            moments[j * m_count + m] += base * current;
+        moments[j * order_count] += base;
+        for (std::size_t m = 1; m < order_count; ++m) {
+            moments[j * order_count + m] += base * current;
             const double next = 2.0 * c1 * current - previous;
             previous = current;
             current = next;
