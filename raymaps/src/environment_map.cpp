@@ -127,10 +127,10 @@ EnvironmentMap EnvironmentMap::builtinSky(int width) {
     return fromPixels(width, height, std::move(rgb), "built-in sky");
 }
 
-void EnvironmentMap::buildDistribution() {
+void EnvironmentMap::buildDistribution(bool facing) {
     m_all = distribution(nullptr);
     m_facing.clear();
-    for (int axis = 0; axis < 6; ++axis) {
+    for (int axis = 0; facing && axis < 6; ++axis) {
         Eigen::Vector3d a = Eigen::Vector3d::Zero();
         a[axis / 2] = axis % 2 == 0 ? 1.0 : -1.0;
         m_facing.push_back(distribution(&a));
@@ -181,6 +181,7 @@ EnvironmentMap::Distribution EnvironmentMap::distribution(const Eigen::Vector3d*
 }
 
 const EnvironmentMap::Distribution& EnvironmentMap::facing(const Eigen::Vector3d& normal) const {
+    if (m_facing.empty()) return m_all;
     Eigen::Index axis = 0;
     normal.cwiseAbs().maxCoeff(&axis);
     return m_facing[static_cast<std::size_t>(2 * axis + (normal[axis] >= 0.0 ? 0 : 1))];
@@ -338,7 +339,9 @@ EnvironmentMap EnvironmentMap::withoutHotspots(int max_count, double threshold,
         spot.direction.normalize();
         hotspots.push_back(spot);
     }
-    residual.buildDistribution();
+    // The residual lights only the paint's moment rays, which sample it over
+    // the sphere: no facing distributions (8 MB each for a 1024 x 512 map).
+    residual.buildDistribution(false);
     return residual;
 }
 

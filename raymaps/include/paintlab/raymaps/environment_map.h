@@ -59,7 +59,8 @@ public:
     // distributions (the axis nearest the normal), luminance x sin(theta) x
     // (max(0, cos to the axis) + 0.1), so that the light below the surface,
     // which cannot reach it, does not take the samples. A floor under an HDR
-    // whose brightest part is low on the horizon wasted most of them.
+    // whose brightest part is low on the horizon wasted most of them. The
+    // residual of withoutHotspots() has none: there they are sample(), pdf().
     Sample sampleFacing(const Eigen::Vector3d& normal, double u1, double u2) const;
     double pdfFacing(const Eigen::Vector3d& normal, const Eigen::Vector3d& direction) const;
 
@@ -89,7 +90,7 @@ private:
         std::vector<double> pixel_weight;  // unnormalised
         double weight_sum = 0.0;
     };
-    void buildDistribution();
+    void buildDistribution(bool facing = true);
     Distribution distribution(const Eigen::Vector3d* axis) const;
     Sample sampleFrom(const Distribution& d, double u1, double u2) const;
     double pdfOf(const Distribution& d, const Eigen::Vector3d& direction) const;
