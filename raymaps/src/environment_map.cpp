@@ -127,32 +127,64 @@ EnvironmentMap EnvironmentMap::builtinSky(int width) {
     return fromPixels(width, height, std::move(rgb), "built-in sky");
 }
 
-void EnvironmentMap::buildDistribution() {
+void EnvironmentMap::buildDistribution(bool facing) {
+    m_all = distribution(nullptr);
+    m_facing.clear();
+    for (int axis = 0; facing && axis < 6; ++axis) {
+        Eigen::Vector3d a = Eigen::Vector3d::Zero();
+        a[axis / 2] = axis % 2 == 0 ? 1.0 : -1.0;
+        m_facing.push_back(distribution(&a));
+    }
     const auto w = static_cast<std::size_t>(m_width);
     const auto h = static_cast<std::size_t>(m_height);
-    m_pixel_weight.assign(w * h, 0.0);
-    m_column_cdf.assign(h * (w + 1), 0.0);
-    m_row_cdf.assign(h + 1, 0.0);
-    m_luminance_integral = 0.0;
     const double pixel_solid_angle_per_sin =
         (2.0 * kPi / static_cast<double>(w)) * (kPi / static_cast<double>(h));
+    m_luminance_integral = 0.0;
+    for (std::size_t v = 0; v < h; ++v) {
+        const double sin_theta = std::sin(kPi * (static_cast<double>(v) + 0.5) / static_cast<double>(h));
+        for (std::size_t u = 0; u < w; ++u)
+            m_luminance_integral +=
+                luminance(pixelAt(m_rgb, v * w + u)) * sin_theta * pixel_solid_angle_per_sin;
+    }
+}
+
+EnvironmentMap::Distribution EnvironmentMap::distribution(const Eigen::Vector3d* axis) const {
+    const auto w = static_cast<std::size_t>(m_width);
+    const auto h = static_cast<std::size_t>(m_height);
+    Distribution d;
+    d.pixel_weight.assign(w * h, 0.0);
+    d.column_cdf.assign(h * (w + 1), 0.0);
+    d.row_cdf.assign(h + 1, 0.0);
+    // The facing distributions keep a floor of 0.1 below the axis's
+    // horizon: a normal up to 55 degrees from its axis still sees some of it.
+    constexpr double kBelowHorizon = 0.1;
     for (std::size_t v = 0; v < h; ++v) {
         const double sin_theta = std::sin(kPi * (static_cast<double>(v) + 0.5) / static_cast<double>(h));
         double row = 0.0;
         for (std::size_t u = 0; u < w; ++u) {
             const std::size_t i = v * w + u;
-            const double lum = luminance(pixelAt(m_rgb, i));
-            m_luminance_integral += lum * sin_theta * pixel_solid_angle_per_sin;
             // A black pixel still gets a little weight so that pdf() > 0
             // wherever radiance could be evaluated by bilinear filtering.
-            const double weight = (lum + 1e-6) * sin_theta;
-            m_pixel_weight[i] = weight;
+            double weight = (luminance(pixelAt(m_rgb, i)) + 1e-6) * sin_theta;
+            if (axis != nullptr)
+                weight *= std::max(0.0, axis->dot(uvToDirection(static_cast<double>(u) + 0.5,
+                                                                static_cast<double>(v) + 0.5))) +
+                          kBelowHorizon;
+            d.pixel_weight[i] = weight;
             row += weight;
-            m_column_cdf[v * (w + 1) + u + 1] = row;
+            d.column_cdf[v * (w + 1) + u + 1] = row;
         }
-        m_row_cdf[v + 1] = m_row_cdf[v] + row;
+        d.row_cdf[v + 1] = d.row_cdf[v] + row;
     }
-    m_weight_sum = m_row_cdf[h];
+    d.weight_sum = d.row_cdf[h];
+    return d;
+}
+
+const EnvironmentMap::Distribution& EnvironmentMap::facing(const Eigen::Vector3d& normal) const {
+    if (m_facing.empty()) return m_all;
+    Eigen::Index axis = 0;
+    normal.cwiseAbs().maxCoeff(&axis);
+    return m_facing[static_cast<std::size_t>(2 * axis + (normal[axis] >= 0.0 ? 0 : 1))];
 }
 
 Eigen::Vector2d EnvironmentMap::directionToUv(const Eigen::Vector3d& d) const {
@@ -189,32 +221,47 @@ Rgb3 EnvironmentMap::radiance(const Eigen::Vector3d& direction) const {
 }
 
 EnvironmentMap::Sample EnvironmentMap::sample(double u1, double u2) const {
+    return sampleFrom(m_all, u1, u2);
+}
+
+double EnvironmentMap::pdf(const Eigen::Vector3d& direction) const { return pdfOf(m_all, direction); }
+
+EnvironmentMap::Sample EnvironmentMap::sampleFacing(const Eigen::Vector3d& normal, double u1,
+                                                    double u2) const {
+    return sampleFrom(facing(normal), u1, u2);
+}
+
+double EnvironmentMap::pdfFacing(const Eigen::Vector3d& normal, const Eigen::Vector3d& direction) const {
+    return pdfOf(facing(normal), direction);
+}
+
+EnvironmentMap::Sample EnvironmentMap::sampleFrom(const Distribution& d, double u1, double u2) const {
     const auto w = static_cast<std::size_t>(m_width);
     const auto h = static_cast<std::size_t>(m_height);
-    const std::size_t v = upperIndex(m_row_cdf, 0, h, u1 * m_weight_sum);
-    const double row_total = m_row_cdf[v + 1] - m_row_cdf[v];
-    const std::size_t u = upperIndex(m_column_cdf, v * (w + 1), w, u2 * row_total);
+    const std::size_t v = upperIndex(d.row_cdf, 0, h, u1 * d.weight_sum);
+    const double row_total = d.row_cdf[v + 1] - d.row_cdf[v];
+    const std::size_t u = upperIndex(d.column_cdf, v * (w + 1), w, u2 * row_total);
     // Uniform within the pixel (in u, and in v: the pdf below accounts for sin theta).
-    const double ru = (u1 * m_weight_sum - m_row_cdf[v]) / row_total;
-    const double cu = m_column_cdf[v * (w + 1) + u];
-    const double pixel_weight = m_pixel_weight[v * w + u];
+    const double ru = (u1 * d.weight_sum - d.row_cdf[v]) / row_total;
+    const double cu = d.column_cdf[v * (w + 1) + u];
+    const double pixel_weight = d.pixel_weight[v * w + u];
     const double fu = std::clamp((u2 * row_total - cu) / pixel_weight, 0.0, 1.0);
     const double fv = std::clamp(ru, 0.0, 1.0);
     Sample s;
     s.direction = uvToDirection(static_cast<double>(u) + fu, static_cast<double>(v) + fv);
     s.radiance = radiance(s.direction);
-    s.pdf_sr = pdf(s.direction);
+    s.pdf_sr = pdfOf(d, s.direction);
     return s;
 }
 
-double EnvironmentMap::pdf(const Eigen::Vector3d& direction) const {
+double EnvironmentMap::pdfOf(const Distribution& d, const Eigen::Vector3d& direction) const {
     const Eigen::Vector2d uv = directionToUv(direction.normalized());
     const auto u = static_cast<std::size_t>(std::clamp(uv.x(), 0.0, m_width - 1.0));
     const auto v = static_cast<std::size_t>(std::clamp(uv.y(), 0.0, m_height - 1.0));
     // Samples are uniform in (phi, theta) within a pixel, so the density per
     // solid angle divides by the sine at the direction itself.
     const double sin_theta = std::max(std::sin(kPi * uv.y() / m_height), 1e-12);
-    const double p_pixel = m_pixel_weight[v * static_cast<std::size_t>(m_width) + u] / m_weight_sum;
+    const double p_pixel = d.pixel_weight[v * static_cast<std::size_t>(m_width) + u] / d.weight_sum;
     return p_pixel / ((2.0 * kPi / m_width) * (kPi / m_height) * sin_theta);
 }
 
@@ -292,7 +339,9 @@ EnvironmentMap EnvironmentMap::withoutHotspots(int max_count, double threshold,
         spot.direction.normalize();
         hotspots.push_back(spot);
     }
-    residual.buildDistribution();
+    // The residual lights only the paint's moment rays, which sample it over
+    // the sphere: no facing distributions (8 MB each for a 1024 x 512 map).
+    residual.buildDistribution(false);
     return residual;
 }
 

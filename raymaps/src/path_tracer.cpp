@@ -171,7 +171,7 @@ Rgb3 PathTracer::directLight(const Hit& hit, const Vec3& wo, const Frame& frame,
     }
     const double u1 = rng.uniform();
     const double u2 = rng.uniform();
-    const EnvironmentMap::Sample s = m_environment.sample(u1, u2);
+    const EnvironmentMap::Sample s = m_environment.sampleFacing(frame.z, u1, u2);
     const Vec3 wi = frame.toLocal(s.direction);
     if (wi.z() > 0.0 && s.pdf_sr > 0.0 &&
         !m_tracer.occluded(offset(hit.position, hit.geometric_normal, s.direction), s.direction)) {
@@ -232,7 +232,8 @@ Rgb3 PathTracer::radianceAt(const Hit& first, const Vec3& direction, Rng& rng, b
     Rgb3 beta = Rgb3::Ones();
     Hit hit = first;
     Vec3 dir = direction;
-    double previous_pdf = 0.0;  // of the BSDF sample that made this ray; 0 after a delta (no MIS)
+    double previous_pdf = 0.0;             // of the BSDF sample that made this ray; 0 after a delta (no MIS)
+    Vec3 previous_normal = Vec3::UnitY();  // of that vertex: its next-event distribution (sampleFacing)
     bool sun_disks = see_sun_disks;
     // `depth` counts the surface vertices that scatter (diffuse, glossy,
     // paint): a mirror or glass bounce adds no vertex, so a moment ray
@@ -248,7 +249,9 @@ Rgb3 PathTracer::radianceAt(const Hit& first, const Vec3& direction, Rng& rng, b
                 return escaped(dir, sun_disks) - m_environment.radiance(dir) + first_escape->radiance(dir);
             const Rgb3 env = m_environment.radiance(dir);
             const double weight =
-                previous_pdf > 0.0 ? powerHeuristic(previous_pdf, m_environment.pdf(dir)) : 1.0;
+                previous_pdf > 0.0
+                    ? powerHeuristic(previous_pdf, m_environment.pdfFacing(previous_normal, dir))
+                    : 1.0;
             l += beta.cwiseProduct(env * weight + (escaped(dir, sun_disks) - env));
             break;
         }
@@ -298,6 +301,7 @@ Rgb3 PathTracer::radianceAt(const Hit& first, const Vec3& direction, Rng& rng, b
             if (dir.dot(ng) <= 0.0) break;
             beta = beta.cwiseProduct(evalBsdf(surface, wo_local, wi_local)) * (wi_local.z() / pdf);
             previous_pdf = pdf;
+            previous_normal = ns;
             sun_disks = false;  // the suns were sampled by next-event estimation
         }
         hit = m_tracer.intersect(offset(hit.position, hit.geometric_normal, dir), dir);

@@ -3,6 +3,7 @@
 // the baked radiance everywhere else.
 
 #include "path_tracer.h"
+#include "pixel_tracer.h"
 #include "raymap_io.h"
 #include "record_layout.h"
 #include "sampling.h"
@@ -21,6 +22,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <span>
 
 namespace paintlab::raymaps {
@@ -33,184 +35,6 @@ void checkRange(int value, int low, int high, const char* field) {
                          std::to_string(value) + " is outside [" + std::to_string(low) + ", " +
                              std::to_string(high) + "]");
 }
-
-// What the camera samples of one pixel found on the paint, summed.
-struct PaintAccumulator {
-    int samples = 0;
-    Vec3 normal, view, position;
-    double footprint = 0.0;
-    double frame_offset2 = 0.0;  // squared distance of the frame's sample from the pixel centre
-    Rgb3 weight = Rgb3::Zero();
-    Rgb3 mirror = Rgb3::Zero();
-    std::vector<Rgb3> moments;  // [j * orders + m]
-    std::vector<double> visibility;
-};
-
-class PixelTracer {
-public:
-    // `pt` bakes the non-paint samples; `indirect` (shorter paths) serves the
-    // paint's moment and mirror rays.
-    // `hotspots`: the environment's extracted lights; `residual`: the
-    // environment without them, seen by the moment rays that escape.
-    PixelTracer(const PathTracer& pt, const PathTracer& indirect, const PinholeCamera& camera,
-                const RayMapSettings& s, int width, const std::vector<DirectionalLight>& hotspots,
-                const EnvironmentMap& residual)
-        : m_pt(pt), m_indirect(indirect), m_camera(camera), m_s(s), m_width(width),
-          m_lights(static_cast<int>(pt.suns().size() + pt.points().size() + hotspots.size())),
-          m_hotspots(hotspots), m_residual(residual) {
-        m_side = std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(s.aa_samples)))));
-        const int samples = m_side * m_side;
-        // Equally spaced azimuths (one random rotation per cell): the moments
-        // of a light that varies slowly in azimuth are exact for orders below
-        // this count, so it is at least M_L.
-        m_azimuths = std::max(s.orders, (s.light_rays + s.cells * samples - 1) / (s.cells * samples));
-    }
-
-    // Returns the baked radiance; fills `paint` if a sample met the paint.
-    Rgb3 trace(int x, int y, PaintAccumulator& paint) const {
-        const auto pixel = static_cast<std::uint64_t>(y) * static_cast<std::uint64_t>(m_width) +
-                           static_cast<std::uint64_t>(x);
-        Rng rng(m_s.seed, pixel, 0);
-        const int samples = m_side * m_side;
-        Rgb3 baked = Rgb3::Zero();
-        paint.samples = 0;
-        paint.weight.setZero();
-        paint.mirror.setZero();
-        paint.moments.assign(static_cast<std::size_t>(m_s.cells) * static_cast<std::size_t>(m_s.orders),
-                             Rgb3::Zero());
-        paint.visibility.assign(static_cast<std::size_t>(m_lights), 0.0);
-        for (int sy = 0; sy < m_side; ++sy)
-            for (int sx = 0; sx < m_side; ++sx) {
-                const double px = x + (sx + rng.uniform()) / m_side;
-                const double py = y + (sy + rng.uniform()) / m_side;
-                const double offset2 = (px - x - 0.5) * (px - x - 0.5) + (py - y - 0.5) * (py - y - 0.5);
-                baked += traceSample(m_camera.direction(px, py), offset2, rng, paint);
-            }
-        if (paint.samples > 0) {
-            const double inv = 1.0 / paint.samples;
-            for (Rgb3& l : paint.moments) l *= inv;
-            for (double& v : paint.visibility) v *= inv;
-            paint.mirror *= inv;
-            paint.weight /= samples;
-        }
-        return baked / samples;
-    }
-
-private:
-    // offset2: the sample's squared distance from the pixel centre (pixels).
-    Rgb3 traceSample(Vec3 dir, double offset2, Rng& rng, PaintAccumulator& paint) const {
-        Vec3 origin = m_camera.origin();
-        Rgb3 beta = Rgb3::Ones();
-        Rgb3 baked = Rgb3::Zero();  // what the glass's other branches see
-        double distance = 0.0;
-        for (int bounce = 0;; ++bounce) {
-            const Hit hit = m_pt.tracer().intersect(origin, dir);
-            if (!hit.found) return baked + beta.cwiseProduct(m_pt.escaped(dir, true));
-            distance += hit.t;
-            const Material& m = m_pt.material(hit);
-            if (m.kind == MaterialKind::Paint) {
-                addPaint(hit, dir, beta, distance, offset2, rng, paint);
-                return baked;
-            }
-            if (m.kind == MaterialKind::Mirror && bounce < m_s.max_delta_bounces) {
-                dir = m_pt.deltaBounce(m, hit, dir, rng, beta);
-                origin = m_pt.offset(hit.position, hit.geometric_normal, dir);
-                continue;
-            }
-            if (m.kind == MaterialKind::Glass && bounce < m_s.max_delta_bounces) {
-                // Both Fresnel branches, not a random choice between them (a
-                // pixel behind a pane would be all paint or all reflection):
-                // the camera path follows the stronger one with throughput
-                // F or 1 - F, the other is path traced into the baked
-                // radiance (paint it meets is the grey proxy there, a
-                // second-order error: F ~ 4 % for a pane seen head-on).
-                const PathTracer::GlassSplit split = m_pt.glassSplit(m, hit, dir);
-                const bool reflect = split.reflectance >= 0.5;
-                const double follow = reflect ? split.reflectance : 1.0 - split.reflectance;
-                const Vec3 side = reflect ? split.refracted : split.reflected;
-                if (follow < 1.0) {
-                    const Vec3 side_origin = m_pt.offset(hit.position, hit.geometric_normal, side);
-                    baked +=
-                        (beta * (1.0 - follow)).cwiseProduct(m_pt.radiance(side_origin, side, rng, true));
-                }
-                beta *= follow;
-                dir = reflect ? split.reflected : split.refracted;
-                origin = m_pt.offset(hit.position, hit.geometric_normal, dir);
-                continue;
-            }
-            Rgb3 l = Rgb3::Zero();
-            for (int k = 0; k < m_s.bake_paths; ++k) l += m_pt.radianceAt(hit, dir, rng, true);
-            return baked + beta.cwiseProduct(l) / m_s.bake_paths;
-        }
-    }
-
-    void addPaint(const Hit& hit, const Vec3& dir, const Rgb3& beta, double distance, double offset2,
-                  Rng& rng, PaintAccumulator& paint) const {
-        const Vec3 wo = -dir;
-        const Vec3 ng =
-            hit.geometric_normal.dot(wo) >= 0.0 ? hit.geometric_normal : Vec3(-hit.geometric_normal);
-        Vec3 ns = hit.shading_normal.dot(ng) >= 0.0 ? hit.shading_normal : Vec3(-hit.shading_normal);
-        if (ns.dot(wo) <= 1e-3) ns = ng;  // silhouettes: the interpolated normal faces away
-        // x towards the view: the azimuth of wi is measured from the view's.
-        const Frame frame = Frame::fromNormalAndTangent(ns, wo);
-        const Vec3 origin = m_pt.offset(hit.position, ng, ng);
-        // The frame of the paint sample nearest the pixel centre: the first
-        // of the stratified samples sits in the top-left stratum, and its
-        // frame shifted the explicit-light and coat terms by a quarter pixel
-        // (3-4 % per-pixel error on a small sphere against the reference).
-        if (paint.samples == 0 || offset2 < paint.frame_offset2) {
-            paint.frame_offset2 = offset2;
-            paint.normal = ns;
-            paint.view = wo;
-            paint.position = hit.position;
-            paint.footprint = distance * m_camera.pixelAngle();
-        }
-        ++paint.samples;
-        paint.weight += beta;
-
-        // Light moments: l^m_j = (pi / J) E[L cos(m phi)] for directions
-        // uniform in the projected solid angle of cell j (mu^2 in [j/J, (j+1)/J]).
-        const int cells = m_s.cells;
-        for (int j = 0; j < cells; ++j) {
-            const double rotation = rng.uniform();
-            for (int a = 0; a < m_azimuths; ++a) {
-                const double mu = std::sqrt((j + rng.uniform()) / cells);
-                const double phi = 2.0 * kPi * (a + rotation) / m_azimuths;
-                const double sin_theta = std::sqrt(std::max(0.0, 1.0 - mu * mu));
-                Vec3 wi = frame.toWorld(Vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), mu));
-                // Below the triangle's own plane (shading normal != geometric
-                // normal): mirrored above it, where the light is most alike.
-                if (wi.dot(ng) <= 0.0) wi -= 2.0 * wi.dot(ng) * ng;
-                const Rgb3 l =
-                    m_indirect.radiance(origin, wi, rng, false, &m_residual) * (kPi / (cells * m_azimuths));
-                for (int m = 0; m < m_s.orders; ++m)
-                    paint.moments[static_cast<std::size_t>(j) * static_cast<std::size_t>(m_s.orders) +
-                                  static_cast<std::size_t>(m)] += l * std::cos(m * phi);
-            }
-        }
-        std::size_t k = 0;
-        for (const auto& sun : m_pt.suns())
-            paint.visibility[k++] += m_pt.sunVisibility(hit.position, ng, sun, m_s.sun_shadow_rays, rng);
-        for (const auto& point : m_pt.points())
-            paint.visibility[k++] += m_pt.pointVisible(hit.position, ng, point) ? 1.0 : 0.0;
-        for (const auto& spot : m_hotspots)
-            paint.visibility[k++] += m_pt.sunVisibility(hit.position, ng, spot, m_s.sun_shadow_rays, rng);
-        Vec3 r = reflect(wo, ns);
-        if (r.dot(ng) <= 0.0) r = reflect(wo, ng);
-        paint.mirror += m_indirect.radiance(origin, r, rng, true);
-    }
-
-    const PathTracer& m_pt;
-    const PathTracer& m_indirect;
-    const PinholeCamera& m_camera;
-    const RayMapSettings& m_s;
-    int m_width;
-    int m_lights;
-    const std::vector<DirectionalLight>& m_hotspots;
-    const EnvironmentMap& m_residual;
-    int m_side = 1;
-    int m_azimuths = 4;
-};
 
 template <typename T> void put(std::byte* at, const T& value) { std::memcpy(at, &value, sizeof(T)); }
 
@@ -272,6 +96,8 @@ void validateRayMapSettings(const RayMapSettings& s) {
     checkRange(s.max_delta_bounces, 0, 64, "max_delta_bounces");
     checkRange(s.band_rows, 1, 4096, "band_rows");
     checkRange(s.env_lights, 0, 32, "env_lights");
+    checkRange(s.environment_points, 0, 1 << 20, "environment_points");
+    checkRange(s.environment_rays, 0, 65536, "environment_rays");
     if (!(s.env_light_threshold >= 1.0 && s.env_light_threshold <= 1e9))
         throw InputError("<argument>", "env_light_threshold",
                          std::to_string(s.env_light_threshold) + " is outside [1, 1e9]");
@@ -336,7 +162,10 @@ RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, con
     const int width = header.width;
     const int bands = (header.height + settings.band_rows - 1) / settings.band_rows;
     std::vector<RayMapBand> done(static_cast<std::size_t>(bands));
-    const PixelTracer pixels(pt, pt_indirect, camera, settings, width, hotspots, residual);
+    std::optional<EnvironmentMoments> environment_moments;
+    if (settings.environment_points > 0) environment_moments.emplace(residual, settings.environment_points);
+    const PixelTracer pixels(pt, pt_indirect, camera, settings, width, hotspots, residual,
+                             environment_moments ? &*environment_moments : nullptr);
     for (int b = 0; b < bands; ++b) {
         RayMapBand& band = done[static_cast<std::size_t>(b)];
         band.first_row = b * settings.band_rows;

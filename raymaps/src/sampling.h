@@ -124,4 +124,17 @@ inline Vec3 sampleCone(double u1, double u2, double cos_max) {
 
 inline Vec3 reflect(const Vec3& wo, const Vec3& n) { return 2.0 * wo.dot(n) * n - wo; }
 
+// Van der Corput radical inverse in base 2 of i, its bits XOR-scrambled:
+// (i / n, radicalInverse2(i)) for i < n = 2^k is a Hammersley set, one point
+// in every elementary interval of area 1 / n; a random `scramble` keeps that
+// and makes each point uniform (random digit scrambling, Owen 1995).
+inline double radicalInverse2(std::uint32_t i, std::uint32_t scramble = 0) {
+    i = (i << 16U) | (i >> 16U);
+    i = ((i & 0x55555555U) << 1U) | ((i & 0xAAAAAAAAU) >> 1U);
+    i = ((i & 0x33333333U) << 2U) | ((i & 0xCCCCCCCCU) >> 2U);
+    i = ((i & 0x0F0F0F0FU) << 4U) | ((i & 0xF0F0F0F0U) >> 4U);
+    i = ((i & 0x00FF00FFU) << 8U) | ((i & 0xFF00FF00U) >> 8U);
+    return static_cast<double>(i ^ scramble) * 0x1p-32;
+}
+
 }  // namespace paintlab::raymaps

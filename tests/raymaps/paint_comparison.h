@@ -154,6 +154,58 @@ inline PaintComparison comparePaint(const RgbImage& relit, const ReferenceImage&
     return out;
 }
 
+// The precompute's noise seen in two relights of maps traced with different
+// seeds (same scene, settings and recipe), over the pixels of `mask`, per
+// channel: the RMS of the per-pixel relative difference (a - b) / ((a + b) / 2)
+// and, less sensitive to dark pixels, RMS(a - b) / mean((a + b) / 2). Both are
+// of a difference of two independent estimates: divide by sqrt(2) for one
+// map's noise (`perMap`). Channel values whose mean is not above
+// `floor` x the channel's mean over the mask are left out of the per-pixel
+// figure (they count in the other).
+struct SeedNoise {
+    int pixels = 0;
+    Rgb3 relative = Rgb3::Zero();  // RMS of the per-pixel relative difference
+    Rgb3 of_mean = Rgb3::Zero();   // RMS difference / mean
+    static double perMap(double difference) { return difference / std::sqrt(2.0); }
+};
+
+inline SeedNoise seedNoise(const RgbImage& a, const RgbImage& b, const std::vector<char>& mask,
+                           double floor = 1e-3) {
+    SeedNoise out;
+    Rgb3 mean = Rgb3::Zero();
+    for (std::size_t p = 0; p < mask.size(); ++p) {
+        if (mask[p] == 0) continue;
+        ++out.pixels;
+        for (int c = 0; c < 3; ++c) {
+            const std::size_t at = 3 * p + static_cast<std::size_t>(c);
+            mean[c] += 0.5 * (static_cast<double>(a.rgb[at]) + static_cast<double>(b.rgb[at]));
+        }
+    }
+    if (out.pixels == 0) return out;
+    mean /= out.pixels;
+    Rgb3 d2 = Rgb3::Zero();
+    Rgb3 r2 = Rgb3::Zero();
+    Eigen::Vector3i counted = Eigen::Vector3i::Zero();
+    for (std::size_t p = 0; p < mask.size(); ++p) {
+        if (mask[p] == 0) continue;
+        for (int c = 0; c < 3; ++c) {
+            const std::size_t at = 3 * p + static_cast<std::size_t>(c);
+            const double x = static_cast<double>(a.rgb[at]);
+            const double y = static_cast<double>(b.rgb[at]);
+            d2[c] += (x - y) * (x - y);
+            const double m = 0.5 * (x + y);
+            if (!(m > floor * mean[c])) continue;
+            r2[c] += (x - y) * (x - y) / (m * m);
+            ++counted[c];
+        }
+    }
+    for (int c = 0; c < 3; ++c) {
+        out.of_mean[c] = mean[c] > 0.0 ? std::sqrt(d2[c] / out.pixels) / mean[c] : 0.0;
+        out.relative[c] = counted[c] > 0 ? std::sqrt(r2[c] / counted[c]) : 0.0;
+    }
+    return out;
+}
+
 inline void printComparison(const char* what, const PaintComparison& c) {
     std::printf("%s: %d paint pixels, RMSE %.2f %% (reference noise %.2f %%, precompute noise %.2f %%; "
                 "against the truth %.2f %%, systematic %.2f %%, at most %.2f %% at 3 sigma), bias %+.2f / "

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <random>
@@ -36,6 +37,25 @@ Eigen::Vector3d uniformSphere(double u1, double u2) {
     return {r * std::cos(2.0 * kPi * u2), r * std::sin(2.0 * kPi * u2), z};
 }
 
+// The integral of f over the sphere by the midpoint rule in (theta, phi) on
+// a grid 4x finer than a w x h map's pixels: every pixel gets 4 x 4 nodes
+// whatever the map's rotation, so a pdf constant per pixel in
+// (phi, theta) is integrated exactly up to round-off.
+double integrateOverSphere(int w, int h, const std::function<double(const Eigen::Vector3d&)>& f) {
+    const int sub = 4;
+    double sum = 0.0;
+    for (int i = 0; i < h * sub; ++i) {
+        const double theta = kPi * (i + 0.5) / (h * sub);
+        for (int j = 0; j < w * sub; ++j) {
+            const double phi = 2.0 * kPi * (j + 0.5) / (w * sub);
+            const Eigen::Vector3d d(std::sin(theta) * std::sin(phi), std::cos(theta),
+                                    -std::sin(theta) * std::cos(phi));
+            sum += f(d) * std::sin(theta);
+        }
+    }
+    return sum * (kPi / (h * sub)) * (2.0 * kPi / (w * sub));
+}
+
 TEST(EnvironmentMap, ConstantEnvironment) {
     const EnvironmentMap env = EnvironmentMap::fromPixels(64, 32, constantPixels(64, 32, 2.0F), "const");
     std::mt19937_64 rng(7);
@@ -56,18 +76,7 @@ TEST(EnvironmentMap, PdfIntegratesToOne) {
     // (phi, theta) there), so the rule is exact up to round-off; an error in
     // the direction <-> pixel mapping, the sin(theta) factor or the
     // normalisation shows up at the percent level.
-    const int sub = 4;
-    double sum = 0.0;
-    for (int i = 0; i < h * sub; ++i) {
-        const double theta = kPi * (i + 0.5) / (h * sub);
-        for (int j = 0; j < w * sub; ++j) {
-            const double phi = 2.0 * kPi * (j + 0.5) / (w * sub);
-            const Eigen::Vector3d d(std::sin(theta) * std::sin(phi), std::cos(theta),
-                                    -std::sin(theta) * std::cos(phi));
-            sum += env.pdf(d) * std::sin(theta);
-        }
-    }
-    EXPECT_NEAR(sum * (kPi / (h * sub)) * (2.0 * kPi / (w * sub)), 1.0, 1e-9);
+    EXPECT_NEAR(integrateOverSphere(w, h, [&](const Eigen::Vector3d& d) { return env.pdf(d); }), 1.0, 1e-9);
 }
 
 TEST(EnvironmentMap, SamplingIsUnbiasedAndConsistentWithPdf) {
@@ -97,6 +106,36 @@ TEST(EnvironmentMap, SamplingIsUnbiasedAndConsistentWithPdf) {
     const double se = std::sqrt((sum2 / n - mean * mean) / n);
     EXPECT_LT(std::abs(mean - env.luminanceIntegral()), 4.0 * se + 0.01 * env.luminanceIntegral())
         << "mean " << mean << " se " << se << " integral " << env.luminanceIntegral();
+}
+
+// The six next-event distributions (sampleFacing): each pdf integrates to
+// one (midpoint rule on a 4x finer grid, exact up to round-off as above),
+// sampling returns the pdf pdfFacing gives, and a normal takes the
+// distribution of its nearest axis, which puts a sample below that axis's
+// horizon with the weight 0.1 of the luminance there (the map is a dim
+// sphere and a hotspot above the horizon, 40 degrees up: +y's distribution
+// puts ~0.1 x half the dim light's share below, well under 10 %).
+TEST(EnvironmentMap, FacingDistributionsAreNormalisedAndKeepSamplesAboveTheSurface) {
+    const int w = 64;
+    const int h = 32;
+    const EnvironmentMap env = hotspotMap(w, h, 8, 40, 30.0);
+    for (const Eigen::Vector3d& normal : {Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, -1, 0),
+                                          Eigen::Vector3d(0.3, 0.2, -0.93).normalized()}) {
+        EXPECT_NEAR(
+            integrateOverSphere(w, h, [&](const Eigen::Vector3d& d) { return env.pdfFacing(normal, d); }),
+            1.0, 1e-9);
+        std::mt19937_64 rng(5);
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        int below = 0;
+        for (int i = 0; i < 2000; ++i) {
+            const auto s = env.sampleFacing(normal, u(rng), u(rng));
+            ASSERT_NEAR(s.pdf_sr, env.pdfFacing(normal, s.direction), 1e-9 * s.pdf_sr);
+            below += s.direction.dot(normal) < 0.0 ? 1 : 0;
+        }
+        if (normal.y() > 0.9) {
+            EXPECT_LT(below, 200);  // the plain distribution: ~half of the dim light's share
+        }
+    }
 }
 
 TEST(EnvironmentMap, SamplesLandOnTheHotspotAndRotationTurnsIt) {

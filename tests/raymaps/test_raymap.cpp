@@ -3,6 +3,7 @@
 // corrupt or truncated files.
 
 #include "temp_dir.h"
+#include "write_exr.h"
 
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/fast_model/layered_brdf.h"
@@ -16,7 +17,6 @@
 #include "paintlab/raymaps/relight_input.h"
 #include "paintlab/raymaps/scene.h"
 
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
@@ -46,11 +46,7 @@ std::filesystem::path writeUniformSky(const test::TempDir& dir, float radiance) 
     const int w = 16;
     const int h = 8;
     std::vector<float> rgb(static_cast<std::size_t>(w * h * 3), radiance);
-    auto out = OIIO::ImageOutput::create(path.string());
-    EXPECT_TRUE(out && out->open(path.string(), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
-    EXPECT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()));
-    out->close();
-    return path;
+    return test::writeExr(path, w, h, rgb);
 }
 
 // A paint sphere of radius 1 at the origin, seen from +z, nothing else.
@@ -528,12 +524,7 @@ std::filesystem::path writeSkyWithHotspot(const test::TempDir& dir) {
             const float value = spot ? 3000.0F : (v < h / 2 ? 0.3F : 0.1F);
             for (int c = 0; c < 3; ++c) rgb[static_cast<std::size_t>((v * w + u) * 3 + c)] = value;
         }
-    const auto path = dir.path() / "hotspot.exr";
-    auto out = OIIO::ImageOutput::create(path.string());
-    EXPECT_TRUE(out && out->open(path.string(), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
-    EXPECT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()));
-    out->close();
-    return path;
+    return test::writeExr(dir.path() / "hotspot.exr", w, h, rgb);
 }
 
 TEST(Reference, RelightMatchesTheReferenceUnderAnHdrWithAHotspot) {

@@ -55,6 +55,14 @@ public:
     // u1, u2 uniform in [0, 1).
     Sample sample(double u1, double u2) const;
     double pdf(const Eigen::Vector3d& direction) const;
+    // For next-event estimation at a surface of this normal: one of six
+    // distributions (the axis nearest the normal), luminance x sin(theta) x
+    // (max(0, cos to the axis) + 0.1), so that the light below the surface,
+    // which cannot reach it, does not take the samples. A floor under an HDR
+    // whose brightest part is low on the horizon wasted most of them. The
+    // residual of withoutHotspots() has none: there they are sample(), pdf().
+    Sample sampleFacing(const Eigen::Vector3d& normal, double u1, double u2) const;
+    double pdfFacing(const Eigen::Vector3d& normal, const Eigen::Vector3d& direction) const;
 
     // A bright compact region taken out of the map (docs/RAYMAPS.md, K_env):
     // its radiance above the surrounding sky, as a directional light.
@@ -74,7 +82,19 @@ public:
     double luminanceIntegral() const { return m_luminance_integral; }
 
 private:
-    void buildDistribution();
+    // Piecewise-constant 2-D distribution over pixels: marginal CDF over rows
+    // and conditional CDFs over columns (each m_width + 1 long).
+    struct Distribution {
+        std::vector<double> row_cdf;
+        std::vector<double> column_cdf;
+        std::vector<double> pixel_weight;  // unnormalised
+        double weight_sum = 0.0;
+    };
+    void buildDistribution(bool facing = true);
+    Distribution distribution(const Eigen::Vector3d* axis) const;
+    Sample sampleFrom(const Distribution& d, double u1, double u2) const;
+    double pdfOf(const Distribution& d, const Eigen::Vector3d& direction) const;
+    const Distribution& facing(const Eigen::Vector3d& normal) const;
     Eigen::Vector2d directionToUv(const Eigen::Vector3d& d) const;  // continuous pixel coordinates
     Eigen::Vector3d uvToDirection(double u, double v) const;
 
@@ -82,12 +102,8 @@ private:
     int m_height = 0;
     std::vector<float> m_rgb;
     double m_rotation_rad = 0.0;
-    // Piecewise-constant 2-D distribution over pixels: marginal CDF over rows
-    // and conditional CDFs over columns (each m_width + 1 long).
-    std::vector<double> m_row_cdf;
-    std::vector<double> m_column_cdf;
-    std::vector<double> m_pixel_weight;  // luminance x sin(theta), unnormalised
-    double m_weight_sum = 0.0;
+    Distribution m_all;                  // luminance x sin(theta)
+    std::vector<Distribution> m_facing;  // +x, -x, +y, -y, +z, -z
     double m_luminance_integral = 0.0;
     std::size_t m_clamped_negatives = 0;
 };

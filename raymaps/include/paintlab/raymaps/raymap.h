@@ -45,6 +45,13 @@ struct RayMapSettings {
     // brighter than env_light_threshold x the map's mean luminance.
     int env_lights = 4;
     double env_light_threshold = 50.0;
+    // Points of the fixed quadrature of the environment's light moments (the
+    // moment rays then estimate only what the scene changes: occlusion and
+    // light from other surfaces); 0: the rays estimate all of it.
+    int environment_points = 1024;
+    // Moment rays per paint pixel importance sampled on the environment (in
+    // addition to light_rays, which are uniform in projected solid angle).
+    int environment_rays = 64;
     std::uint64_t seed = 1;
     // The Lambertian stand-in for paint that a secondary ray meets (paint
     // seen by paint in a mirror or through glass, paint lighting the floor),
