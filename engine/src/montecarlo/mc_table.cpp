@@ -28,6 +28,16 @@
 // fast model pushed through the same projection). It shrinks with more
 // nodes, at the price of more variance per cell.
 //
+// The node on the normal (mu = 1, the grid's Gauss-Radau end node): there
+// the azimuth is undefined, so f cannot depend on it and every order m >= 1
+// is exactly 0, both as exit (row) and as incidence (column). The cell
+// average would instead hold noise and the cell's odd part (f^m ~ sin^m
+// theta near the normal), and the basis (fast_model/layered_brdf.cpp)
+// mirrors the piece at the normal by the parity of f^m, so an odd order that
+// is not 0 on the normal makes eval() jump there: in the incidence plane the
+// view crossing the normal turns delta by pi (issue 26: steps of 1 to 5
+// standard errors). These entries are set to 0 with standard error 0.
+//
 // Standard errors: per entry over paths (or over batch means with explicit
 // flakes, monte_carlo.h); for anything derived from the table (eval at a
 // direction pair, colours) from the spread of the per-batch tables
@@ -58,6 +68,18 @@ void cellEdges(const std::vector<double>& mu, std::vector<double>& lower, std::v
     for (std::size_t i = 0; i < mu.size(); ++i) {
         lower.push_back(i == 0 ? 0.0 : 0.5 * (mu[i - 1] + mu[i]));
         upper.push_back(i + 1 == mu.size() ? 1.0 : 0.5 * (mu[i] + mu[i + 1]));
+    }
+}
+
+// Orders m >= 1 of the node on the normal: exactly 0 (see the top of the file).
+void clearAzimuthalOrdersAtNormal(const std::vector<double>& mu, std::vector<Eigen::MatrixXd>& f) {
+    for (std::size_t k = 0; k < mu.size(); ++k) {
+        if (mu[k] != 1.0) continue;
+        const auto kk = static_cast<Eigen::Index>(k);
+        for (std::size_t m = 1; m < f.size(); ++m) {
+            f[m].row(kk).setZero();
+            f[m].col(kk).setZero();
+        }
     }
 }
 
@@ -158,6 +180,9 @@ McTable tabulateMonteCarlo(const Recipe& recipe, const FastModelSettings& grid_s
             table.total_paths += r.incidence.paths;
             ++jobs_done;
         }
+        clearAzimuthalOrdersAtNormal(g.mu, t.f);
+        clearAzimuthalOrdersAtNormal(g.mu, se);
+        for (auto& bt : batch_tables) clearAzimuthalOrdersAtNormal(g.mu, bt.back().f);
         tables.push_back(std::move(t));
         table.f_std_error.push_back(std::move(se));
         table.albedo_std_error.push_back(std::move(albedo_se));
