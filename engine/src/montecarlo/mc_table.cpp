@@ -28,15 +28,14 @@
 // fast model pushed through the same projection). It shrinks with more
 // nodes, at the price of more variance per cell.
 //
-// The node on the normal (mu = 1, the grid's Gauss-Radau end node): there
-// the azimuth is undefined, so f cannot depend on it and every order m >= 1
-// is exactly 0, both as exit (row) and as incidence (column). The cell
-// average would instead hold noise and the cell's odd part (f^m ~ sin^m
-// theta near the normal), and the basis (fast_model/layered_brdf.cpp)
-// mirrors the piece at the normal by the parity of f^m, so an odd order that
-// is not 0 on the normal makes eval() jump there: in the incidence plane the
-// view crossing the normal turns delta by pi (issue 26: steps of 1 to 5
-// standard errors). These entries are set to 0 with standard error 0.
+// The node on the normal (mu = 1, the grid's Gauss-Radau end node): f
+// cannot depend on an azimuth that is undefined there, so every order m >= 1
+// is exactly 0, as exit (row) and as incidence (column); these entries are
+// set to 0 with standard error 0. Their cell averages (noise and the cell's
+// odd part, f^m ~ sin^m theta) would make eval() step at the normal: the
+// basis (fast_model/layered_brdf.cpp) mirrors the piece there by the parity
+// of f^m, and in the incidence plane the view crossing the normal turns
+// delta by pi, flipping the odd orders' sign.
 //
 // Standard errors: per entry over paths (or over batch means with explicit
 // flakes, monte_carlo.h); for anything derived from the table (eval at a
