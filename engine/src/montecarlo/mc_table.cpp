@@ -28,6 +28,15 @@
 // fast model pushed through the same projection). It shrinks with more
 // nodes, at the price of more variance per cell.
 //
+// The node on the normal (mu = 1, the grid's Gauss-Radau end node): f
+// cannot depend on an azimuth that is undefined there, so every order m >= 1
+// is exactly 0, as exit (row) and as incidence (column); these entries are
+// set to 0 with standard error 0. Their cell averages (noise and the cell's
+// odd part, f^m ~ sin^m theta) would make eval() step at the normal: the
+// basis (fast_model/layered_brdf.cpp) mirrors the piece there by the parity
+// of f^m, and in the incidence plane the view crossing the normal turns
+// delta by pi, flipping the odd orders' sign.
+//
 // Standard errors: per entry over paths (or over batch means with explicit
 // flakes, monte_carlo.h); for anything derived from the table (eval at a
 // direction pair, colours) from the spread of the per-batch tables
@@ -59,6 +68,18 @@ void cellEdges(const std::vector<double>& mu, std::vector<double>& lower, std::v
     for (std::size_t i = 0; i < mu.size(); ++i) {
         lower.push_back(i == 0 ? 0.0 : 0.5 * (mu[i - 1] + mu[i]));
         upper.push_back(i + 1 == mu.size() ? 1.0 : 0.5 * (mu[i] + mu[i + 1]));
+    }
+}
+
+// Orders m >= 1 of the node on the normal: exactly 0 (see the top of the file).
+void clearAzimuthalOrdersAtNormal(const std::vector<double>& mu, std::vector<Eigen::MatrixXd>& f) {
+    for (std::size_t k = 0; k < mu.size(); ++k) {
+        if (mu[k] != 1.0) continue;
+        const auto kk = static_cast<Eigen::Index>(k);
+        for (std::size_t m = 1; m < f.size(); ++m) {
+            f[m].row(kk).setZero();
+            f[m].col(kk).setZero();
+        }
     }
 }
 
@@ -147,6 +168,9 @@ McTable tabulateMonteCarlo(const Recipe& recipe, const FastModelSettings& grid_s
             table.total_paths += r.incidence.paths;
             ++jobs_done;
         }
+        clearAzimuthalOrdersAtNormal(g.mu, t.f);
+        clearAzimuthalOrdersAtNormal(g.mu, se);
+        for (auto& bt : batch_tables) clearAzimuthalOrdersAtNormal(g.mu, bt.back().f);
         tables.push_back(std::move(t));
         table.f_std_error.push_back(std::move(se));
         table.albedo_std_error.push_back(std::move(albedo_se));

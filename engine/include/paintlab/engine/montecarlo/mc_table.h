@@ -6,8 +6,9 @@
 //
 // Escapes are projected into cells around the fast model's node cosines
 // (cell averages, not node values: see mc_table.cpp for the method and its
-// bias); standard errors per entry, and per-batch tables for anything
-// derived from the table.
+// bias; the node on the normal holds 0 in every order m >= 1, so the BRDF is
+// continuous there); standard errors per entry, and per-batch tables for
+// anything derived from the table.
 
 #include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/montecarlo/monte_carlo.h"
