@@ -175,15 +175,16 @@ int main(int argc, char** argv) {
     }
     const long photons = std::atol(argv[1]);
     const std::uint64_t seed = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 1;
-    const std::vector<Slab> slabs{{0.9, 1.0, 0.9},  {1.0, 1.0, 0.9},  {0.9, 1.0, 0.95}, {0.99, 4.0, 0.95},
+    const std::vector<Slab> slabs{{0.9, 1.0, 0.9},  {1.0, 1.0, 0.9},  {0.9, 1.0, 0.95},  {0.99, 4.0, 0.95},
                                   {0.5, 0.5, 0.95}, {0.95, 2.0, 0.8}, {0.99, 4.0, 0.75}, {0.9, 1.0, 0.5},
                                   {0.8, 2.0, 0.0},  {0.9, 8.0, 0.9}};
     const std::vector<double> incidences{0.0, 30.0, 60.0, 80.0};
     std::vector<View> views{{0.0, 0.0}};
     for (double t : {20.0, 40.0, 60.0, 75.0, 85.0})
         for (double p : {0.0, 90.0, 180.0}) views.push_back({t, p});
-    std::printf("albedo,optical_thickness,g,theta_i_deg,theta_o_deg,phi_o_deg,brdf_per_sr,standard_error_per_sr,"
-                "single_scattering_per_sr\n");
+    std::printf(
+        "albedo,optical_thickness,g,theta_i_deg,theta_o_deg,phi_o_deg,brdf_per_sr,standard_error_per_sr,"
+        "single_scattering_per_sr\n");
     std::uint64_t run = seed;
     for (const Slab& slab : slabs) {
         for (double ti : incidences) {
