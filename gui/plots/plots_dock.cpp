@@ -74,12 +74,13 @@ PlotsDock::PlotsDock(QWidget* parent) : QDockWidget(tr("Plots"), parent) {
     csv->setObjectName("plots_export_csv");
     auto* pin = new QPushButton(tr("Pin for comparison"), body);
     pin->setObjectName("plots_pin");
-    pin->setToolTip(tr("Overlay the current BRDF, dashed, on the in-plane and a*b* plots"));
+    pin->setToolTip(tr("Overlay the current BRDF, dashed, on the in-plane, paint spectra and a*b* plots"));
     auto* unpin = new QPushButton(tr("Clear comparison"), body);
     unpin->setObjectName("plots_unpin");
     m_log = new QCheckBox(tr("Log scale"), body);
     m_log->setObjectName("plots_log");
-    m_log->setToolTip(tr("Logarithmic in-plane axis and lobe radius"));
+    m_log->setToolTip(tr("Logarithmic axis of the in-plane plot and the paint spectra, and lobe radius "
+                         "(values <= 0 are then not drawn)"));
     m_status = new QLabel(body);
     m_status->setObjectName("plots_status");
     m_full = new QPushButton(tr("Compare with full model"), body);
@@ -184,6 +185,7 @@ PlotsDock::PlotsDock(QWidget* parent) : QDockWidget(tr("Plots"), parent) {
         });
     connect(m_log, &QCheckBox::toggled, this, [this](bool on) {
         m_inplane->setLogScale(on);
+        m_paint_spectra->setLogScale(on);
         m_lobe->setLogRadius(on);
     });
     connect(m_quantity, &QComboBox::currentTextChanged, this, [this](const QString& quantity) {
@@ -296,9 +298,12 @@ void PlotsDock::setComparisonKeepingFullModel(std::shared_ptr<const LayeredBrdf>
         auto curves =
             std::make_shared<std::vector<InplaneCurve>>(inplaneCurves(*brdf, inplaneIncidencesDeg()));
         auto report = std::make_shared<MultiAngleReport>(multiAngleColours(*brdf));
-        return LatestJob::Apply([this, curves, report, label, generation]() {
+        auto spectra =
+            std::make_shared<std::vector<NamedSpectrum>>(multiAngleSpectra(*report, brdf->wavelengthsNm()));
+        return LatestJob::Apply([this, curves, report, spectra, label, generation]() {
             if (generation != m_comparison_generation) return;  // cleared or replaced meanwhile
             m_inplane->setComparisonCurves(std::move(*curves), label);
+            m_paint_spectra->setComparisonSpectra(std::move(*spectra), label);
             m_ab->setComparisonReport(std::move(*report), label);
         });
     });
@@ -315,7 +320,11 @@ void PlotsDock::clearComparison() {
     m_comparison.reset();
     m_comparison_label.clear();
     m_inplane->clearComparison();
+    m_paint_spectra->clearComparison();
     m_ab->clearComparison();
+    // The status named the comparison (the full model's run or result): it is gone.
+    if (!m_full_label.isEmpty() || m_status->text().startsWith(tr("full model"))) m_status->clear();
+    m_full_label.clear();
 }
 
 void PlotsDock::compareWithFullModel() {
