@@ -592,10 +592,14 @@ void PlotsTest::abChartHasEqualScalesAndSeparateLabels() {
 // "Absorption and scattering coefficients (1/µm)" was cut off), and the
 // ingredient browser's spectrum chart labels its value axis.
 void PlotsTest::axisTitlesFit() {
+    // As tall as the plot is in the Plots dock at 1366x768 (~360 pixels).
+    m_ingredient_spectra->resize(720, 360);
+    QTRY_COMPARE_WITH_TIMEOUT(m_ingredient_spectra->height(), 360, kWaitMs);
     for (const std::string& quantity : m_ingredient_spectra->quantities()) {
         m_ingredient_spectra->setQuantity(quantity);
         m_ingredient_spectra->renderImage();
         const PlotWidget::ChartLayout l = m_ingredient_spectra->chartLayout();
+        qInfo("%s: axis title %.0f px, axis %.0f px", quantity.c_str(), l.left_title_px, l.data.height());
         QVERIFY2(l.left_title_px > 0.0 && l.left_title_px <= l.data.height(),
                  qPrintable(QStringLiteral("%1: title %2 px, axis %3 px")
                                 .arg(l.left_title)
@@ -603,6 +607,7 @@ void PlotsTest::axisTitlesFit() {
                                 .arg(l.data.height())));
     }
     m_ingredient_spectra->setQuantity(m_ingredient_spectra->quantities().front());
+    m_ingredient_spectra->resize(720, 480);
     SpectrumChart chart;
     chart.resize(chart.sizeHint());
     chart.show();
