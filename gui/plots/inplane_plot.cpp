@@ -119,7 +119,7 @@ std::string channelLabel(const char* channel, const std::vector<double>& values,
                          QStringList& notes) {
     const bool negative = anyNegative(values);
     if (negative)
-        notes << QStringLiteral("*%1 below 0 (down to %2): outside the sRGB gamut, drawn at 0")
+        notes << QStringLiteral("*%1 < 0 (to %2): outside the sRGB gamut, drawn at 0")
                      .arg(channel)
                      .arg(*std::min_element(values.begin(), values.end()), 0, 'f', 3);
     return QStringLiteral("%1%2 (linear sRGB, %3)")
@@ -285,6 +285,14 @@ void InplanePlot::updateChart() {
         setValueAxis(chart, log_scale, lo, hi);
     });
     emit dataChanged();
+}
+
+void InplanePlot::layoutForSize(int width_px, int /*height_px*/) {
+    if (!m_vtk) return;
+    // A narrow plot (the main window's central one) keeps its width for the
+    // curves: the legend goes below them.
+    constexpr int kNarrowPx = 640;  // device pixels
+    placeLegend(m_vtk->chart, width_px < kNarrowPx ? LegendPlace::Below : LegendPlace::Right);
 }
 
 bool InplanePlot::exportCsv(const QString& path) const {

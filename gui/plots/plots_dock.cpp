@@ -83,6 +83,10 @@ PlotsDock::PlotsDock(QWidget* parent) : QDockWidget(tr("Plots"), parent) {
                          "(values <= 0 are then not drawn)"));
     m_status = new QLabel(body);
     m_status->setObjectName("plots_status");
+    // Its text (times, the full model's label) must not widen the dock past
+    // the screen: it takes the room left and is cut there.
+    m_status->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    m_status->setMinimumWidth(0);
     m_full = new QPushButton(tr("Compare with full model"), body);
     m_full->setObjectName("plots_full_model");
     m_full->setToolTip(tr("Run the Monte Carlo full model (explicit flakes, preview grid) for the recipe "
@@ -323,7 +327,10 @@ void PlotsDock::clearComparison() {
     m_paint_spectra->clearComparison();
     m_ab->clearComparison();
     // The status named the comparison (the full model's run or result): it is gone.
-    if (!m_full_label.isEmpty() || m_status->text().startsWith(tr("full model"))) m_status->clear();
+    if (!m_full_label.isEmpty() || m_status->text().startsWith(tr("full model"))) {
+        m_status->clear();
+        m_status->setToolTip({});
+    }
     m_full_label.clear();
 }
 
@@ -358,6 +365,7 @@ void PlotsDock::fullModelFinished(const FullModelJob::Result& result) {
         label += tr(" of the recipe as at %1").arg(m_full_started);
     m_full_label = label;
     m_status->setText(label);
+    m_status->setToolTip(label);
     setComparisonKeepingFullModel(result.brdf, label);
     emit fullModelEnded(true);
 }

@@ -631,6 +631,11 @@ void PlotsTest::dockComparisonIsOnThePaintSpectraToo() {
     dock.setComparison(m_fewer, QStringLiteral("half the flakes"));
     QTRY_VERIFY_WITH_TIMEOUT(!dock.computing() && dock.inplanePlot()->hasComparison(), kWaitMs);
     QCOMPARE(dock.paintSpectra()->comparisonSpectra().size(), std::size_t{6});
+    // The status line's text (times, a full model's label) does not widen the
+    // dock past a laptop screen (it made the Plots dock ~1500 pixels wide).
+    QVERIFY(!dock.status()->text().isEmpty());
+    QVERIFY2(dock.minimumSizeHint().width() <= 1024,
+             qPrintable(QStringLiteral("%1 pixels").arg(dock.minimumSizeHint().width())));
     const QString path = m_dir.filePath("spectra_cmp.csv");
     QVERIFY(dock.paintSpectra()->exportCsv(path));
     const Csv csv = readCsv(path);
