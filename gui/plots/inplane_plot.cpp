@@ -119,9 +119,10 @@ std::string channelLabel(const char* channel, const std::vector<double>& values,
                          QStringList& notes) {
     const bool negative = anyNegative(values);
     if (negative)
-        notes << QStringLiteral("*%1 < 0 (to %2): outside the sRGB gamut, drawn at 0")
+        notes << QStringLiteral("*%1 < 0 (to %2): outside the sRGB gamut,")
                      .arg(channel)
-                     .arg(*std::min_element(values.begin(), values.end()), 0, 'f', 3);
+                     .arg(*std::min_element(values.begin(), values.end()), 0, 'f', 3)
+              << QStringLiteral("its spectrum is positive: drawn at 0");
     return QStringLiteral("%1%2 (linear sRGB, %3)")
         .arg(channel, negative ? QStringLiteral("*") : QString(), degrees(theta_i_deg))
         .toStdString();

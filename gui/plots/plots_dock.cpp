@@ -87,6 +87,7 @@ PlotsDock::PlotsDock(QWidget* parent) : QDockWidget(tr("Plots"), parent) {
     // the screen: it takes the room left and is cut there.
     m_status->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
     m_status->setMinimumWidth(0);
+    m_status->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
     m_full = new QPushButton(tr("Compare with full model"), body);
     m_full->setObjectName("plots_full_model");
     m_full->setToolTip(tr("Run the Monte Carlo full model (explicit flakes, preview grid) for the recipe "
@@ -108,8 +109,7 @@ PlotsDock::PlotsDock(QWidget* parent) : QDockWidget(tr("Plots"), parent) {
     for (QWidget* w : std::initializer_list<QWidget*>{png, csv, pin, unpin, m_log, m_full, m_full_seconds,
                                                       m_full_progress, m_full_cancel})
         bar->addWidget(w);
-    bar->addStretch(1);
-    bar->addWidget(m_status);
+    bar->addWidget(m_status, 1);  // the room left, text at its right end
     layout->addLayout(bar);
 
     m_tabs = new QTabWidget(body);
