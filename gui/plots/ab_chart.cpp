@@ -82,8 +82,8 @@ public:
         for (std::size_t k = 0; k < at.size() && k < labels.size(); ++k) {
             float bounds[4] = {0, 0, 0, 0};
             painter->ComputeStringBounds(labels[k], bounds);
-            const double w = bounds[2];
-            const double h = bounds[3];
+            const auto w = static_cast<double>(bounds[2]);
+            const auto h = static_cast<double>(bounds[3]);
             const QPointF p = at[k];
             const QPointF corners[] = {{p.x() + kGap, p.y() + 2.0},     {p.x() + kGap, p.y() - h - 2.0},
                                        {p.x() - kGap - w, p.y() + 2.0}, {p.x() - kGap - w, p.y() - h - 2.0},
@@ -245,7 +245,8 @@ void AbChart::updateChart() {
             line->SetColor(60, 60, 60, 255);
             line->SetWidth(2.0F);
             line->GetPen()->SetLineType(vtkPen::DASH_LINE);
-            line->SetLabel(label.toStdString());
+            // Short in the legend ("full model"), which must fit right of the box.
+            line->SetLabel(label.section(QStringLiteral(" ("), 0, 0).toStdString());
             if (auto* points = vtkPlotPoints::SafeDownCast(line)) {
                 points->SetMarkerStyle(vtkPlotPoints::CROSS);
                 points->SetMarkerSize(9.0F);

@@ -62,8 +62,9 @@ public:
             l.scene = QRectF(0, 0, scene->GetSceneWidth(), scene->GetSceneHeight());
         vtkAxis* x = chart->GetAxis(vtkAxis::BOTTOM);
         vtkAxis* y = chart->GetAxis(vtkAxis::LEFT);
-        l.data = QRectF(QPointF(x->GetPoint1()[0], y->GetPoint1()[1]),
-                        QPointF(x->GetPoint2()[0], y->GetPoint2()[1]))
+        const auto d = [](float v) { return static_cast<double>(v); };
+        l.data = QRectF(QPointF(d(x->GetPoint1()[0]), d(y->GetPoint1()[1])),
+                        QPointF(d(x->GetPoint2()[0]), d(y->GetPoint2()[1])))
                      .normalized();
         l.left_min = y->GetUnscaledMinimum();
         l.left_max = y->GetUnscaledMaximum();
@@ -76,12 +77,12 @@ public:
             painter->ApplyTextProp(y->GetTitleProperties());
             float bounds[4] = {0, 0, 0, 0};
             painter->ComputeStringBounds(y->GetTitle(), bounds);
-            l.left_title_px = std::max(bounds[2], bounds[3]);
+            l.left_title_px = d(std::max(bounds[2], bounds[3]));
         }
         if (chart->GetShowLegend()) {
             vtkChartLegend* legend = chart->GetLegend();
             const vtkRectf r = legend->GetBoundingRect(painter);  // in scene pixels, from its Point
-            l.legend = QRectF(r.GetX(), r.GetY(), r.GetWidth(), r.GetHeight());
+            l.legend = QRectF(d(r.GetX()), d(r.GetY()), d(r.GetWidth()), d(r.GetHeight()));
             for (vtkIdType k = 0; k < chart->GetNumberOfPlots(); ++k) {
                 vtkPlot* plot = chart->GetPlot(k);
                 if (plot->GetVisible() && plot->GetLegendVisibility())
