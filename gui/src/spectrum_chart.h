@@ -31,7 +31,8 @@ public:
     QRect valueAxisTitleRect() const { return m_value_title_rect; }
 
     QSize sizeHint() const override { return {420, 260}; }
-    QSize minimumSizeHint() const override { return {220, 150}; }
+    // Small enough not to raise the main window's minimum height (docks stack).
+    QSize minimumSizeHint() const override { return {200, 120}; }
 
 protected:
     void paintEvent(QPaintEvent* event) override;
