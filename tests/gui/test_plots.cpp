@@ -6,8 +6,13 @@
 // aspecular order, a changed recipe changes the data, comparisons overlay a
 // second series, PNG export writes an image of the widget's size, the lobe
 // rotates with the mouse, and the main window's Plots dock follows the
-// scheduler. Screenshots of each plot go to the build directory
-// (screenshots/plots_*.png); baselines are not compared here.
+// scheduler. Issue 27 (items 9-12): no negative reflectance drawn without a
+// word, log axes that keep the curves (in-plane and paint spectra), legends
+// outside the data, an a*b* chart with equal scales and separate labels, axis
+// titles that fit, a comparison on the paint spectra too; each read back from
+// the chart's own layout (PlotWidget::chartLayout). Screenshots of each plot
+// go to the build directory (screenshots/plots_*.png); baselines are not
+// compared here.
 //
 // The BRDFs use the preview preset: quick under ASan, and the plots do not
 // depend on the preset. Times are printed, not asserted (docs/PERFORMANCE.md).
