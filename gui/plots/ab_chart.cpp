@@ -4,7 +4,12 @@
 
 #include "paintlab/engine/brdf.h"
 
+#include <QPointF>
+#include <QSizeF>
+
 #include <vtkAxis.h>
+#include <vtkChart.h>
+#include <vtkChartLegend.h>
 #include <vtkChartXY.h>
 #include <vtkContext2D.h>
 #include <vtkContextItem.h>
@@ -16,6 +21,7 @@
 #include <vtkPen.h>
 #include <vtkPlot.h>
 #include <vtkPlotPoints.h>
+#include <vtkRect.h>
 #include <vtkRenderer.h>
 #include <vtkTable.h>
 #include <vtkTextProperty.h>
@@ -46,6 +52,7 @@ public:
     vtkChartXY* chart = nullptr;
     std::vector<std::pair<double, double>> points;
     std::vector<std::string> labels;
+    std::vector<QRectF> placed;  // where each label went in the last drawing
 
     bool Paint(vtkContext2D* painter) override {
         if (chart == nullptr) return false;
@@ -56,17 +63,50 @@ public:
             const double hi = axis->GetMaximum();
             const auto p1 = static_cast<double>(axis->GetPosition1()[k]);
             const auto p2 = static_cast<double>(axis->GetPosition2()[k]);
-            return static_cast<float>(hi > lo ? p1 + (value - lo) / (hi - lo) * (p2 - p1) : p1);
+            return hi > lo ? p1 + (value - lo) / (hi - lo) * (p2 - p1) : p1;
         };
         vtkTextProperty* text = painter->GetTextProp();
         text->SetColor(0.1, 0.1, 0.1);
         text->SetFontSize(13);
         text->SetBold(false);
+        text->SetOrientation(0.0);  // the painter's text property is shared: an axis title left it at 90
         text->SetJustificationToLeft();
         text->SetVerticalJustificationToBottom();
-        for (std::size_t k = 0; k < points.size() && k < labels.size(); ++k)
-            painter->DrawString(screen(x, points[k].first, 0) + 9.0F, screen(y, points[k].second, 1) + 5.0F,
-                                labels[k]);
+        std::vector<QPointF> at;
+        for (const auto& [a, b] : points) at.emplace_back(screen(x, a, 0), screen(y, b, 1));
+        // Each label beside its point, at the first of eight places that
+        // covers no label placed before and no other point (markers ~14 px).
+        constexpr double kGap = 9.0;
+        constexpr double kMarker = 8.0;
+        placed.clear();
+        for (std::size_t k = 0; k < at.size() && k < labels.size(); ++k) {
+            float bounds[4] = {0, 0, 0, 0};
+            painter->ComputeStringBounds(labels[k], bounds);
+            const auto w = static_cast<double>(bounds[2]);
+            const auto h = static_cast<double>(bounds[3]);
+            const QPointF p = at[k];
+            const QPointF corners[] = {{p.x() + kGap, p.y() + 2.0},     {p.x() + kGap, p.y() - h - 2.0},
+                                       {p.x() - kGap - w, p.y() + 2.0}, {p.x() - kGap - w, p.y() - h - 2.0},
+                                       {p.x() - w / 2, p.y() + kGap},   {p.x() - w / 2, p.y() - kGap - h},
+                                       {p.x() + kGap, p.y() - h / 2},   {p.x() - kGap - w, p.y() - h / 2}};
+            const auto free = [&](const QRectF& r) {
+                for (const QRectF& other : placed)
+                    if (r.intersects(other)) return false;
+                for (std::size_t j = 0; j < at.size(); ++j)
+                    if (j != k && r.intersects(QRectF(at[j].x() - kMarker, at[j].y() - kMarker, 2 * kMarker,
+                                                      2 * kMarker)))
+                        return false;
+                return true;
+            };
+            QRectF chosen(corners[0], QSizeF(w, h));
+            for (const QPointF& c : corners)
+                if (free(QRectF(c, QSizeF(w, h)))) {
+                    chosen = QRectF(c, QSizeF(w, h));
+                    break;
+                }
+            placed.push_back(chosen);
+            painter->DrawString(static_cast<float>(chosen.x()), static_cast<float>(chosen.y()), labels[k]);
+        }
         return true;
     }
 
@@ -111,6 +151,7 @@ AbChart::AbChart(QWidget* parent) : PlotWidget(parent) {
         m_vtk->chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("a*");
         m_vtk->chart->GetAxis(vtkAxis::LEFT)->SetTitle("b*");
         m_vtk->chart->SetShowLegend(true);
+        m_vtk->chart->SetLayoutStrategy(vtkChart::AXES_TO_RECT);  // the box is set in layoutForSize
         m_vtk->labels->chart = m_vtk->chart;
         m_vtk->view->GetScene()->AddItem(m_vtk->labels);  // over the chart
     });
@@ -144,6 +185,36 @@ void AbChart::clearComparison() {
     updateChart();
 }
 
+void AbChart::layoutForSize(int width_px, int height_px) {
+    if (!m_vtk) return;
+    // Room for the tick numbers and axis titles (left, bottom), the title
+    // (top) and the legend (right): the rest is the square box of axes.
+    constexpr float kLeft = 70.0F;
+    constexpr float kBottom = 50.0F;
+    constexpr float kTop = 40.0F;
+    constexpr float kRight = 150.0F;
+    const float room_w = static_cast<float>(width_px) - kLeft - kRight;
+    const float room_h = static_cast<float>(height_px) - kBottom - kTop;
+    const float side = std::max(40.0F, std::min(room_w, room_h));
+    const float x0 = kLeft + std::max(0.0F, (room_w - side) / 2.0F);
+    const float y0 = kBottom + std::max(0.0F, (room_h - side) / 2.0F);
+    m_vtk->chart->SetSize(vtkRectf(x0, y0, side, side));
+    // The legend right of the box, its lower left corner at mid-height
+    // (vtkChartXY places no legend itself when its alignment is CUSTOM).
+    vtkChartLegend* legend = m_vtk->chart->GetLegend();
+    legend->SetHorizontalAlignment(vtkChartLegend::CUSTOM);
+    legend->SetVerticalAlignment(vtkChartLegend::CUSTOM);
+    legend->SetPoint(x0 + side + 12.0F, y0 + side / 2.0F);
+}
+
+std::vector<QRectF> AbChart::labelRects() const {
+    std::vector<QRectF> out;
+    runOnRenderThread([this, &out] {
+        if (m_vtk) out = m_vtk->labels->placed;
+    });
+    return out;
+}
+
 std::vector<double> AbChart::pathAspecularDeg() const {
     std::vector<double> out;
     runOnRenderThread([this, &out] {
@@ -174,7 +245,8 @@ void AbChart::updateChart() {
             line->SetColor(60, 60, 60, 255);
             line->SetWidth(2.0F);
             line->GetPen()->SetLineType(vtkPen::DASH_LINE);
-            line->SetLabel(label.toStdString());
+            // Short in the legend ("full model"), which must fit right of the box.
+            line->SetLabel(label.section(QStringLiteral(" ("), 0, 0).toStdString());
             if (auto* points = vtkPlotPoints::SafeDownCast(line)) {
                 points->SetMarkerStyle(vtkPlotPoints::CROSS);
                 points->SetMarkerSize(9.0F);

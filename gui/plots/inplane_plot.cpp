@@ -18,7 +18,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <initializer_list>
+#include <limits>
 #include <string>
+#include <utility>
 
 namespace paintlab::gui {
 
@@ -43,42 +46,86 @@ std::array<unsigned char, 3> incidenceColour(std::size_t k, std::size_t count) {
 
 QString degrees(double v) { return QString::number(v, 'g', 4) + QStringLiteral(" deg"); }
 
+// What a value is drawn as. Linear sRGB channels below zero are colours
+// outside the sRGB gamut (the spectral BRDF itself is never negative): drawn
+// at zero, and their legend says so. A log axis cannot show zero or less:
+// such points are not drawn (NaN breaks the line) and the title says so.
+double shown(double v, bool log_scale, bool clip_at_zero) {
+    if (log_scale && !(v > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+    return clip_at_zero ? std::max(v, 0.0) : v;
+}
+
+bool anyNonPositive(const std::vector<double>& values) {
+    return std::any_of(values.begin(), values.end(), [](double v) { return !(v > 0.0); });
+}
+
+bool anyNegative(const std::vector<double>& values) {
+    return std::any_of(values.begin(), values.end(), [](double v) { return v < 0.0; });
+}
+
 // Fills a table: column 0 the view angle, then Y per curve, then R, G, B of
-// the curve at `primary`. A log axis cannot show zero: values are floored
-// far below any visible reflectance.
-void fillTable(vtkTable* t, const std::vector<InplaneCurve>& curves, std::size_t primary, bool log_scale,
-               const QString& suffix) {
+// the curve at `primary` (clipped at zero; see shown()).
+void fillTable(vtkTable* t, const std::vector<InplaneCurve>& curves, std::size_t primary, bool log_scale) {
     t->Initialize();
-    const auto addColumn = [t](const QString& name) {
+    const auto addColumn = [t](const char* name) {
         vtkNew<vtkDoubleArray> column;
-        column->SetName(name.toUtf8().constData());
+        column->SetName(name);
         t->AddColumn(column);
     };
-    addColumn(QStringLiteral("view_deg"));
-    for (const InplaneCurve& c : curves)
-        addColumn(QStringLiteral("Y, light at %1%2").arg(degrees(c.theta_i_deg), suffix));
+    addColumn("view_deg");
+    for (std::size_t k = 0; k < curves.size(); ++k)
+        addColumn(QStringLiteral("Y%1").arg(k).toUtf8().constData());
     const bool channels = primary < curves.size();
     if (channels)
-        for (const char* ch : {"R", "G", "B"})
-            addColumn(
-                QStringLiteral("%1, light at %2%3").arg(ch, degrees(curves[primary].theta_i_deg), suffix));
+        for (const char* ch : {"R", "G", "B"}) addColumn(ch);
     if (curves.empty()) return;
     const auto n = static_cast<vtkIdType>(curves.front().view_deg.size());
     t->SetNumberOfRows(n);
-    const auto shown = [log_scale](double v) { return log_scale ? std::max(v, 1e-6) : v; };
     for (vtkIdType i = 0; i < n; ++i) {
         const auto k = static_cast<std::size_t>(i);
         t->SetValue(i, 0, curves.front().view_deg[k]);
         vtkIdType col = 1;
-        for (const InplaneCurve& c : curves) t->SetValue(i, col++, shown(c.y[k]));
+        for (const InplaneCurve& c : curves) t->SetValue(i, col++, shown(c.y[k], log_scale, false));
         if (channels) {
             const InplaneCurve& p = curves[primary];
-            t->SetValue(i, col++, shown(p.r[k]));
-            t->SetValue(i, col++, shown(p.g[k]));
-            t->SetValue(i, col++, shown(p.b[k]));
+            t->SetValue(i, col++, shown(p.r[k], log_scale, true));
+            t->SetValue(i, col++, shown(p.g[k], log_scale, true));
+            t->SetValue(i, col++, shown(p.b[k], log_scale, true));
         }
     }
     t->Modified();
+}
+
+// The smallest positive and the largest value of the tables' value columns
+// (all but the first), as drawn.
+std::pair<double, double> positiveRange(std::initializer_list<vtkTable*> tables) {
+    double lo = std::numeric_limits<double>::infinity();
+    double hi = 0.0;
+    for (vtkTable* t : tables)
+        for (vtkIdType col = 1; col < t->GetNumberOfColumns(); ++col)
+            for (vtkIdType row = 0; row < t->GetNumberOfRows(); ++row) {
+                const double v = t->GetValue(row, col).ToDouble();
+                if (v > 0.0) {
+                    lo = std::min(lo, v);
+                    hi = std::max(hi, v);
+                }
+            }
+    return {lo, hi};
+}
+
+// The legend of one channel of the primary curve, marked "*" if it goes
+// below zero; `notes` gets the line of the title that explains the mark.
+std::string channelLabel(const char* channel, const std::vector<double>& values, double theta_i_deg,
+                         QStringList& notes) {
+    const bool negative = anyNegative(values);
+    if (negative)
+        notes << QStringLiteral("*%1 < 0 (to %2): outside the sRGB gamut,")
+                     .arg(channel)
+                     .arg(*std::min_element(values.begin(), values.end()), 0, 'f', 3)
+              << QStringLiteral("its spectrum is positive: drawn at 0");
+    return QStringLiteral("%1%2 (linear sRGB, %3)")
+        .arg(channel, negative ? QStringLiteral("*") : QString(), degrees(theta_i_deg))
+        .toStdString();
 }
 
 }  // namespace
@@ -88,7 +135,9 @@ InplanePlot::InplanePlot(QWidget* parent) : PlotWidget(parent) {
         m_vtk = std::make_unique<Vtk>();
         showChart(m_vtk->view, m_vtk->chart);
         m_vtk->chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("view angle (deg, negative: light side)");
-        m_vtk->chart->GetAxis(vtkAxis::LEFT)->SetTitle("pi f");
+        vtkAxis* left = m_vtk->chart->GetAxis(vtkAxis::LEFT);
+        left->SetTitle("reflectance factor \u03c0f");  // pi f: 1 for a white diffuser
+        useUnicodeFont(left->GetTitleProperties());
         m_vtk->chart->SetShowLegend(true);
     });
     updateChart();
@@ -170,16 +219,35 @@ void InplanePlot::updateChart() {
         std::find_if(m_curves.begin(), m_curves.end(),
                      [this](const Curve& c) { return c.theta_i_deg == m_curve.theta_i_deg; }) -
         m_curves.begin());
-    const std::string title = m_curves.size() == 1
-                                  ? QStringLiteral("In-plane reflectance factor, light at %1")
-                                        .arg(degrees(m_curve.theta_i_deg))
-                                        .toStdString()
-                                  : std::string("In-plane reflectance factor at several incidences");
+    QStringList lines{
+        m_curves.size() == 1
+            ? QStringLiteral("In-plane reflectance factor, light at %1").arg(degrees(m_curve.theta_i_deg))
+            : QStringLiteral("In-plane reflectance factor at several incidences")};
+    if (!m_comparison.empty()) lines << QStringLiteral("dashed: %1").arg(m_comparison_label);
+    std::vector<std::string> channel_labels;
+    if (primary < m_curves.size()) {
+        const Curve& p = m_curves[primary];
+        channel_labels = {channelLabel("R", p.r, p.theta_i_deg, lines),
+                          channelLabel("G", p.g, p.theta_i_deg, lines),
+                          channelLabel("B", p.b, p.theta_i_deg, lines)};
+    }
+    if (m_log_scale) {
+        bool dropped = false;
+        for (const std::vector<Curve>* set : {&m_curves, &m_comparison})
+            for (const Curve& c : *set) dropped = dropped || anyNonPositive(c.y);
+        if (primary < m_curves.size())
+            for (const std::vector<double>* v : {&m_curve.r, &m_curve.g, &m_curve.b})
+                dropped = dropped || anyNonPositive(*v);
+        if (dropped) lines << QStringLiteral("log axis: values <= 0 are not drawn");
+    }
+    const QString title = lines.join(QLatin1Char('\n'));
+    // The comparison's legend line names it short: "full model", "version 3".
+    const QString short_label = m_comparison_label.section(QStringLiteral(" ("), 0, 0);
     // The render thread draws copies: the GUI thread may change the curves meanwhile.
-    onRenderThread([this, curves = m_curves, comparison = m_comparison, primary, title,
-                    log_scale = m_log_scale, suffix = QStringLiteral(" (%1)").arg(m_comparison_label)] {
-        fillTable(m_vtk->table, curves, primary, log_scale, QString());
-        fillTable(m_vtk->comparison, comparison, comparison.size(), log_scale, suffix);
+    onRenderThread([this, curves = m_curves, comparison = m_comparison, primary, title = title.toStdString(),
+                    log_scale = m_log_scale, channel_labels, comparison_label = short_label.toStdString()] {
+        fillTable(m_vtk->table, curves, primary, log_scale);
+        fillTable(m_vtk->comparison, comparison, comparison.size(), log_scale);
         vtkChartXY* chart = m_vtk->chart;
         chart->ClearPlots();
         chart->SetTitle(title);
@@ -192,23 +260,40 @@ void InplanePlot::updateChart() {
                 const auto c = incidenceColour(k, drawn.size());
                 line->SetColor(c[0], c[1], c[2], 255);
                 line->SetWidth(drawn[k].theta_i_deg == kPrimaryIncidenceDeg ? 2.5F : 1.8F);
-                if (dashed) line->GetPen()->SetLineType(vtkPen::DASH_LINE);
+                if (dashed) {
+                    // One legend line for the whole comparison: its curves have the current ones' colours.
+                    line->GetPen()->SetLineType(vtkPen::DASH_LINE);
+                    line->SetLabel("dashed: " + comparison_label);
+                    line->SetLegendVisibility(k == 0);
+                } else {
+                    line->SetLabel("Y, light at " + degrees(drawn[k].theta_i_deg).toStdString());
+                }
             }
             if (!channels) return;
             const unsigned char rgb[3][3] = {{200, 30, 30}, {30, 150, 30}, {30, 60, 200}};
-            for (const auto& c : rgb) {
+            for (std::size_t k = 0; k < 3; ++k) {
                 vtkPlot* line = chart->AddPlot(vtkChart::LINE);
                 line->SetInputData(t, 0, col++);
-                line->SetColor(c[0], c[1], c[2], 255);
+                line->SetColor(rgb[k][0], rgb[k][1], rgb[k][2], 255);
                 line->SetWidth(1.2F);
+                line->SetLabel(channel_labels[k]);
             }
         };
         addLines(m_vtk->table, curves, false, true);
         addLines(m_vtk->comparison, comparison, true, false);
-        chart->GetAxis(vtkAxis::LEFT)->SetLogScale(log_scale);
+        const auto [lo, hi] = positiveRange({m_vtk->table, m_vtk->comparison});
         chart->RecalculateBounds();
+        setValueAxis(chart, log_scale, lo, hi);
     });
     emit dataChanged();
+}
+
+void InplanePlot::layoutForSize(int width_px, int /*height_px*/) {
+    if (!m_vtk) return;
+    // A narrow plot (the main window's central one) keeps its width for the
+    // curves: the legend goes below them.
+    constexpr int kNarrowPx = 640;  // device pixels
+    placeLegend(m_vtk->chart, width_px < kNarrowPx ? LegendPlace::Below : LegendPlace::Right);
 }
 
 bool InplanePlot::exportCsv(const QString& path) const {

@@ -60,6 +60,9 @@ public:
     // Columns series,theta_i_deg,view_deg,R,G,B,Y; series "current" or the comparison's label.
     bool exportCsv(const QString& path) const override;
 
+protected:
+    void layoutForSize(int width_px, int height_px) override;
+
 private:
     void compute(const LayeredBrdf& brdf);
     void pickPrimary();

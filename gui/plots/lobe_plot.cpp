@@ -213,12 +213,12 @@ std::array<double, 3> LobePlot::cameraPosition() const {
 }
 
 void LobePlot::updateScene() {
-    const QString title =
-        tr("BRDF lobe, light at theta %1 deg, phi %2 deg\nradius: Y of pi f%3 (peak %4); colour: its hue")
-            .arg(m_theta_i_deg, 0, 'g', 3)
-            .arg(m_phi_i_deg, 0, 'g', 3)
-            .arg(m_log_radius ? tr(", log over 3 decades") : QString())
-            .arg(m_grid.max_y, 0, 'g', 3);
+    const QString title = tr("BRDF lobe, light at theta %1 deg, phi %2 deg\nradius: CIE Y of the reflectance "
+                             "factor%3 (peak %4); colour: its hue")
+                              .arg(m_theta_i_deg, 0, 'g', 3)
+                              .arg(m_phi_i_deg, 0, 'g', 3)
+                              .arg(m_log_radius ? tr(", log over 3 decades") : QString())
+                              .arg(m_grid.max_y, 0, 'g', 3);
     // The render thread builds the surface from copies: the GUI thread may change them meanwhile.
     onRenderThread([this, g = m_grid, log_radius = m_log_radius,
                     wi = directionFromAnglesDeg(m_theta_i_deg, m_phi_i_deg), title = title.toStdString()] {

@@ -14,14 +14,21 @@
 #include <QPainter>
 
 #include <vtkAxis.h>
+#include <vtkChartLegend.h>
 #include <vtkChartXY.h>
+#include <vtkContext2D.h>
+#include <vtkContextItem.h>
 #include <vtkContextScene.h>
 #include <vtkContextView.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkNew.h>
 #include <vtkOpenGLState.h>
+#include <vtkPlot.h>
 #include <vtkRenderer.h>
 #include <vtkTextProperty.h>
+
+#include <algorithm>
+#include <cmath>
 
 #include <filesystem>
 #include <string>
@@ -30,11 +37,75 @@
 
 namespace paintlab::gui {
 
+namespace {
+
+constexpr const char* kDejaVuSans = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+// Drawn after the chart in the same scene: records where the chart put its
+// parts in this drawing (PlotWidget::chartLayout).
+class LayoutProbe : public vtkContextItem {
+public:
+    // As vtkStandardNewMacro (see ab_chart.cpp for why not the macro).
+    static LayoutProbe* New() {
+        auto* item = new LayoutProbe;
+        item->InitializeObjectBase();
+        return item;
+    }
+
+    vtkChartXY* chart = nullptr;
+    PlotWidget::ChartLayout layout;
+
+    bool Paint(vtkContext2D* painter) override {
+        if (chart == nullptr) return false;
+        PlotWidget::ChartLayout l;
+        if (vtkContextScene* scene = GetScene())
+            l.scene = QRectF(0, 0, scene->GetSceneWidth(), scene->GetSceneHeight());
+        vtkAxis* x = chart->GetAxis(vtkAxis::BOTTOM);
+        vtkAxis* y = chart->GetAxis(vtkAxis::LEFT);
+        const auto d = [](float v) { return static_cast<double>(v); };
+        l.data = QRectF(QPointF(d(x->GetPoint1()[0]), d(y->GetPoint1()[1])),
+                        QPointF(d(x->GetPoint2()[0]), d(y->GetPoint2()[1])))
+                     .normalized();
+        l.left_min = y->GetUnscaledMinimum();
+        l.left_max = y->GetUnscaledMaximum();
+        l.bottom_min = x->GetUnscaledMinimum();
+        l.bottom_max = x->GetUnscaledMaximum();
+        l.left_log = y->GetLogScaleActive();
+        l.left_title = QString::fromStdString(y->GetTitle());
+        l.title = QString::fromStdString(chart->GetTitle());
+        if (!l.left_title.isEmpty()) {
+            painter->ApplyTextProp(y->GetTitleProperties());
+            float bounds[4] = {0, 0, 0, 0};
+            painter->ComputeStringBounds(y->GetTitle(), bounds);
+            l.left_title_px = d(std::max(bounds[2], bounds[3]));
+        }
+        if (chart->GetShowLegend()) {
+            vtkChartLegend* legend = chart->GetLegend();
+            const vtkRectf r = legend->GetBoundingRect(painter);  // in scene pixels, from its Point
+            l.legend = QRectF(d(r.GetX()), d(r.GetY()), d(r.GetWidth()), d(r.GetHeight()));
+            for (vtkIdType k = 0; k < chart->GetNumberOfPlots(); ++k) {
+                vtkPlot* plot = chart->GetPlot(k);
+                if (plot->GetVisible() && plot->GetLegendVisibility())
+                    l.legend_labels << QString::fromStdString(plot->GetLabel());
+            }
+        }
+        layout = l;
+        return true;
+    }
+
+protected:
+    LayoutProbe() = default;
+    ~LayoutProbe() override = default;
+};
+
+}  // namespace
+
 // Everything here belongs to the render thread: created, used and destroyed there.
 struct PlotWidget::Gl {
     QOpenGLContext context;
     std::unique_ptr<QOpenGLFramebufferObject> framebuffer;
     vtkNew<vtkGenericOpenGLRenderWindow> window;
+    vtkNew<LayoutProbe> probe;  // of the chart shown (showChart), if any
 };
 
 PlotWidget::PlotWidget(QWidget* parent) : QWidget(parent) {
@@ -137,6 +208,7 @@ QImage PlotWidget::drawNow() {
             std::make_unique<QOpenGLFramebufferObject>(size, QOpenGLFramebufferObject::CombinedDepthStencil);
     gl.framebuffer->bind();
     vtkGenericOpenGLRenderWindow* w = gl.window;
+    layoutForSize(size.width(), size.height());
     w->SetSize(size.width(), size.height());
     w->SetIsCurrent(true);
     // Other plots' windows share nothing with this one, but Qt binds and
@@ -208,25 +280,60 @@ void PlotWidget::showEvent(QShowEvent* event) {
     }
 }
 
-void PlotWidget::useReadableFont(vtkChartXY* chart) {
-    static const char* const kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+void PlotWidget::useUnicodeFont(vtkTextProperty* text) {
     std::error_code error;
-    if (!std::filesystem::exists(kFont, error)) return;
-    const auto use = [](vtkTextProperty* text) {
-        text->SetFontFamily(VTK_FONT_FILE);
-        text->SetFontFile(kFont);
-    };
+    if (!std::filesystem::exists(kDejaVuSans, error)) return;
+    text->SetFontFamily(VTK_FONT_FILE);
+    text->SetFontFile(kDejaVuSans);
+}
+
+void PlotWidget::useReadableFont(vtkChartXY* chart) {
     // The axes' numbers only: titles and legends keep the built-in font, whose
     // letters read well (DejaVu's thin l and d strokes fade at these sizes).
     for (int axis = vtkAxis::LEFT; axis <= vtkAxis::TOP; ++axis)
-        use(chart->GetAxis(axis)->GetLabelProperties());
+        useUnicodeFont(chart->GetAxis(axis)->GetLabelProperties());
 }
 
-void PlotWidget::showChart(vtkContextView* view, vtkChartXY* chart) const {
+void PlotWidget::showChart(vtkContextView* view, vtkChartXY* chart, LegendPlace legend) const {
     view->SetRenderWindow(renderWindow());
     view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
     view->GetScene()->AddItem(chart);
     useReadableFont(chart);
+    placeLegend(chart, legend);
+    m_gl->probe->chart = chart;
+    view->GetScene()->AddItem(m_gl->probe);  // after the chart: sees this drawing's layout
+}
+
+void PlotWidget::placeLegend(vtkChartXY* chart, LegendPlace legend) {
+    // Outside the axes' box (vtkChartXY makes room for a legend that is not
+    // inline), so that it never hides a curve's peak.
+    vtkChartLegend* box = chart->GetLegend();
+    box->SetInline(false);
+    box->SetHorizontalAlignment(legend == LegendPlace::Right ? vtkChartLegend::RIGHT
+                                                             : vtkChartLegend::CENTER);
+    box->SetVerticalAlignment(legend == LegendPlace::Right ? vtkChartLegend::TOP : vtkChartLegend::BOTTOM);
+}
+
+void PlotWidget::setValueAxis(vtkChartXY* chart, bool log_scale, double lo, double hi, double decades) {
+    vtkAxis* axis = chart->GetAxis(vtkAxis::LEFT);
+    if (!log_scale || !(hi > 0.0)) {
+        axis->SetLogScale(false);
+        axis->SetBehavior(vtkAxis::AUTO);
+        return;
+    }
+    const double top = hi * 1.5;  // room above the peak: half a tick on a log axis
+    const double bottom = std::max(lo > 0.0 ? lo / 1.5 : 0.0, hi * std::pow(10.0, -decades));
+    axis->SetBehavior(vtkAxis::FIXED);
+    axis->SetLogScale(true);
+    axis->SetUnscaledRange(bottom, top);
+}
+
+PlotWidget::ChartLayout PlotWidget::chartLayout() const {
+    ChartLayout layout;
+    runOnRenderThread([this, &layout] {
+        if (m_gl) layout = m_gl->probe->layout;
+    });
+    return layout;
 }
 
 bool PlotWidget::exportPng(const QString& path) { return saveImageAtomically(renderImage(), path); }

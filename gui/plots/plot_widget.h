@@ -17,6 +17,7 @@
 // Only forward declarations of VTK types appear here; no VTK header is included.
 
 #include <QImage>
+#include <QRectF>
 #include <QString>
 #include <QStringList>
 #include <QWidget>
@@ -30,6 +31,7 @@ class QOffscreenSurface;
 class vtkChartXY;
 class vtkContextView;
 class vtkGenericOpenGLRenderWindow;
+class vtkTextProperty;
 
 namespace paintlab::gui {
 
@@ -59,6 +61,24 @@ public:
     // Why there is no image, if OpenGL could not be set up (empty otherwise).
     const QString& failure() const { return m_failure; }
 
+    // Where the chart's parts were in its last drawing (pixels, y up from the
+    // bottom; empty before the first drawing or for a plot that is no 2D
+    // chart), read back on the render thread: what the tests check for
+    // overlap and clipping.
+    struct ChartLayout {
+        QRectF scene;                               // the whole drawing
+        QRectF data;                                // the axes' box
+        QRectF legend;                              // empty without a legend
+        double left_title_px = 0;                   // length of the left axis' title along the axis
+        double left_min = 0.0, left_max = 0.0;      // the left axis' range
+        double bottom_min = 0.0, bottom_max = 0.0;  // the bottom axis' range
+        bool left_log = false;                      // a logarithmic left axis in effect
+        QStringList legend_labels;                  // of the plots shown in the legend
+        QString left_title;
+        QString title;  // the chart's, lines joined by '\n'
+    };
+    ChartLayout chartLayout() const;
+
 signals:
     // The plotted data changed (after setBrdf and the like).
     void dataChanged();
@@ -87,10 +107,26 @@ protected:
     // chart sizes ("D.1D" for 0.10); the built-in font stays if the file is
     // missing. Render thread only.
     static void useReadableFont(vtkChartXY* chart);
+    // The legend of a 2D chart sits outside the axes' box, never over the
+    // curves: at the right (short labels) or below (long ones).
+    enum class LegendPlace { Right, Below };
     // A 2D chart drawn in this plot's window: `view` renders into it on a
-    // white background and shows `chart`, with readable axis numbers.
-    // Render thread only.
-    void showChart(vtkContextView* view, vtkChartXY* chart) const;
+    // white background and shows `chart`, with readable axis numbers and its
+    // legend outside the data. Render thread only.
+    void showChart(vtkContextView* view, vtkChartXY* chart, LegendPlace legend = LegendPlace::Right) const;
+    static void placeLegend(vtkChartXY* chart, LegendPlace legend);
+    // The left (value) axis: automatic and linear, or logarithmic over the
+    // positive values' range [lo, hi], at most `decades` decades below hi.
+    // Given its range explicitly, VTK's log axis never starts from a linear
+    // range that spans 0 (on which it stays linear while the curves are
+    // drawn in log10: the in-plane plot went blank). Render thread only.
+    static void setValueAxis(vtkChartXY* chart, bool log_scale, double lo, double hi, double decades = 4.0);
+    // DejaVu Sans for text that needs more than Latin letters (the "π" of
+    // "πf"); the built-in font stays if the file is missing. Render thread only.
+    static void useUnicodeFont(vtkTextProperty* text);
+    // Called on the render thread before each drawing, at its size in pixels:
+    // charts whose layout depends on the size (a*b*'s equal scales) set it here.
+    virtual void layoutForSize(int /*width_px*/, int /*height_px*/) {}
     static QString csvText(const QString& text);
 
 private:

@@ -74,14 +74,20 @@ PlotsDock::PlotsDock(QWidget* parent) : QDockWidget(tr("Plots"), parent) {
     csv->setObjectName("plots_export_csv");
     auto* pin = new QPushButton(tr("Pin for comparison"), body);
     pin->setObjectName("plots_pin");
-    pin->setToolTip(tr("Overlay the current BRDF, dashed, on the in-plane and a*b* plots"));
+    pin->setToolTip(tr("Overlay the current BRDF, dashed, on the in-plane, paint spectra and a*b* plots"));
     auto* unpin = new QPushButton(tr("Clear comparison"), body);
     unpin->setObjectName("plots_unpin");
     m_log = new QCheckBox(tr("Log scale"), body);
     m_log->setObjectName("plots_log");
-    m_log->setToolTip(tr("Logarithmic in-plane axis and lobe radius"));
+    m_log->setToolTip(tr("Logarithmic axis of the in-plane plot and the paint spectra, and lobe radius "
+                         "(values <= 0 are then not drawn)"));
     m_status = new QLabel(body);
     m_status->setObjectName("plots_status");
+    // Its text (times, the full model's label) must not widen the dock past
+    // the screen: it takes the room left and is cut there.
+    m_status->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+    m_status->setMinimumWidth(0);
+    m_status->setAlignment(Qt::AlignRight | Qt::AlignVCenter);
     m_full = new QPushButton(tr("Compare with full model"), body);
     m_full->setObjectName("plots_full_model");
     m_full->setToolTip(tr("Run the Monte Carlo full model (explicit flakes, preview grid) for the recipe "
@@ -103,8 +109,7 @@ PlotsDock::PlotsDock(QWidget* parent) : QDockWidget(tr("Plots"), parent) {
     for (QWidget* w : std::initializer_list<QWidget*>{png, csv, pin, unpin, m_log, m_full, m_full_seconds,
                                                       m_full_progress, m_full_cancel})
         bar->addWidget(w);
-    bar->addStretch(1);
-    bar->addWidget(m_status);
+    bar->addWidget(m_status, 1);  // the room left, text at its right end
     layout->addLayout(bar);
 
     m_tabs = new QTabWidget(body);
@@ -184,6 +189,7 @@ PlotsDock::PlotsDock(QWidget* parent) : QDockWidget(tr("Plots"), parent) {
         });
     connect(m_log, &QCheckBox::toggled, this, [this](bool on) {
         m_inplane->setLogScale(on);
+        m_paint_spectra->setLogScale(on);
         m_lobe->setLogRadius(on);
     });
     connect(m_quantity, &QComboBox::currentTextChanged, this, [this](const QString& quantity) {
@@ -296,9 +302,12 @@ void PlotsDock::setComparisonKeepingFullModel(std::shared_ptr<const LayeredBrdf>
         auto curves =
             std::make_shared<std::vector<InplaneCurve>>(inplaneCurves(*brdf, inplaneIncidencesDeg()));
         auto report = std::make_shared<MultiAngleReport>(multiAngleColours(*brdf));
-        return LatestJob::Apply([this, curves, report, label, generation]() {
+        auto spectra =
+            std::make_shared<std::vector<NamedSpectrum>>(multiAngleSpectra(*report, brdf->wavelengthsNm()));
+        return LatestJob::Apply([this, curves, report, spectra, label, generation]() {
             if (generation != m_comparison_generation) return;  // cleared or replaced meanwhile
             m_inplane->setComparisonCurves(std::move(*curves), label);
+            m_paint_spectra->setComparisonSpectra(std::move(*spectra), label);
             m_ab->setComparisonReport(std::move(*report), label);
         });
     });
@@ -315,7 +324,14 @@ void PlotsDock::clearComparison() {
     m_comparison.reset();
     m_comparison_label.clear();
     m_inplane->clearComparison();
+    m_paint_spectra->clearComparison();
     m_ab->clearComparison();
+    // The status named the comparison (the full model's run or result): it is gone.
+    if (!m_full_label.isEmpty() || m_status->text().startsWith(tr("full model"))) {
+        m_status->clear();
+        m_status->setToolTip({});
+    }
+    m_full_label.clear();
 }
 
 void PlotsDock::compareWithFullModel() {
@@ -349,6 +365,7 @@ void PlotsDock::fullModelFinished(const FullModelJob::Result& result) {
         label += tr(" of the recipe as at %1").arg(m_full_started);
     m_full_label = label;
     m_status->setText(label);
+    m_status->setToolTip(label);
     setComparisonKeepingFullModel(result.brdf, label);
     emit fullModelEnded(true);
 }

@@ -4,7 +4,7 @@
 // every new BRDF the render scheduler delivers and with the recipe itself
 // (for its ingredients' spectra). A comparison (a pinned earlier state, or any
 // BRDF another panel hands over: a saved version, the full model) is overlaid
-// dashed on the in-plane and a*b* plots. Export of the shown plot as PNG and
+// dashed on the in-plane, paint spectra and a*b* plots. Export of the shown plot as PNG and
 // of its data as CSV.
 //
 // The plot data (lobe grid, in-plane curves, multi-angle colours and spectra)
@@ -65,7 +65,7 @@ public:
     void setBrdf(std::shared_ptr<const LayeredBrdf> brdf);
     // The ingredients' spectra of this recipe (redrawn only when they change).
     void setRecipe(const Recipe& recipe);
-    // Overlaid dashed on the in-plane and a*b* plots until cleared or replaced.
+    // Overlaid dashed on the in-plane, paint spectra and a*b* plots until cleared or replaced.
     void setComparison(std::shared_ptr<const LayeredBrdf> brdf, const QString& label);
     // The current BRDF becomes the comparison ("pinned").
     void pinCurrentAsComparison();
@@ -79,7 +79,8 @@ public:
     bool fullModelRunning() const { return m_full_job.busy(); }
     QSpinBox* fullModelSeconds() const { return m_full_seconds; }
     QLabel* status() const { return m_status; }
-    // The label of the last full-model result (also shown in the status until the next plot update).
+    // The label of the last full-model result (also shown in the status until
+    // the next plot update); empty again after clearComparison.
     const QString& fullModelLabel() const { return m_full_label; }
 
     const std::shared_ptr<const LayeredBrdf>& brdf() const { return m_brdf; }

@@ -123,7 +123,7 @@ IngredientDock::IngredientDock(RecipeDocument* document, QWidget* parent)
     m_chart = new SpectrumChart(spectra_box);
     spectra_layout->addWidget(m_chart, 1);
     split->addWidget(spectra_box);
-    split->setSizes({150, 320, 200});  // in proportion: the fields get the most
+    split->setSizes({150, 260, 300});  // in proportion: the spectrum chart gets the most
     layout->addWidget(split, 1);
 
     auto* edit_row = new QHBoxLayout;

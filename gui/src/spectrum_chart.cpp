@@ -49,7 +49,12 @@ void SpectrumChart::clear() {
     update();
 }
 
+QString SpectrumChart::valueAxisTitle() const {
+    return m_unit.isEmpty() || m_unit == "1" ? m_title : m_title + " (" + m_unit + ")";
+}
+
 void SpectrumChart::paintEvent(QPaintEvent* /*event*/) {
+    m_value_title_rect = {};
     QPainter p(this);
     p.setRenderHint(QPainter::Antialiasing);
     const QFontMetrics fm = p.fontMetrics();
@@ -78,15 +83,27 @@ void SpectrumChart::paintEvent(QPaintEvent* /*event*/) {
     int label_width = 0;
     for (const double t : yticks)
         label_width = std::max(label_width, fm.horizontalAdvance(QString::number(t)));
-    const QRectF plot(label_width + 10.0, fm.height() + 8.0, width() - label_width - 20.0,
-                      height() - 2.0 * fm.height() - 20.0);
+    // Left of the tick numbers, the value axis' label turned upright.
+    const double title_band = fm.height() + 4.0;
+    const QRectF plot(title_band + label_width + 10.0, fm.height() + 8.0,
+                      width() - title_band - label_width - 20.0, height() - 2.0 * fm.height() - 20.0);
     if (plot.width() < 20 || plot.height() < 20) return;
     const auto X = [&](double x) { return plot.left() + (x - x0) / (x1 - x0) * plot.width(); };
     const auto Y = [&](double y) { return plot.bottom() - (y - y0) / (y1 - y0) * plot.height(); };
 
     p.setPen(ink);
-    const QString heading = m_unit.isEmpty() || m_unit == "1" ? m_title : m_title + " (" + m_unit + ")";
+    const QString heading = valueAxisTitle();
     p.drawText(QRectF(0, 2, width(), fm.height()), Qt::AlignHCenter, heading);
+    // Elided to the axis' length, so that it is never cut off.
+    const QString upright = fm.elidedText(heading, Qt::ElideRight, static_cast<int>(plot.height()));
+    const int upright_width = fm.horizontalAdvance(upright);
+    p.save();
+    p.translate(2.0, plot.center().y() + upright_width / 2.0);
+    p.rotate(-90.0);
+    p.drawText(QRectF(0, 0, upright_width, fm.height()), Qt::AlignLeft | Qt::AlignTop, upright);
+    p.restore();
+    m_value_title_rect =
+        QRectF(2.0, plot.center().y() - upright_width / 2.0, fm.height(), upright_width).toAlignedRect();
     QPen grid(palette().color(QPalette::Mid));
     grid.setStyle(Qt::DotLine);
     for (const double t : yticks) {
@@ -94,7 +111,7 @@ void SpectrumChart::paintEvent(QPaintEvent* /*event*/) {
         p.setPen(grid);
         p.drawLine(QPointF(plot.left(), Y(t)), QPointF(plot.right(), Y(t)));
         p.setPen(ink);
-        p.drawText(QRectF(0, Y(t) - fm.height() / 2.0, label_width + 6.0, fm.height()),
+        p.drawText(QRectF(title_band, Y(t) - fm.height() / 2.0, label_width + 6.0, fm.height()),
                    Qt::AlignRight | Qt::AlignVCenter, QString::number(t));
     }
     for (const double t : xticks) {

@@ -3,8 +3,10 @@
 // ingredient browser's preview (the VTK plots under plots/ are for the paint's
 // optics). Tabulated spectra are drawn as the linear interpolation the engine
 // uses with their samples marked; a constant one as a flat line over the
-// visible range. Axes with rounded ticks, the quantity and unit as title.
+// visible range. Axes with rounded ticks, the quantity and unit as title and
+// as the value axis' label (drawn upright along it).
 
+#include <QRect>
 #include <QString>
 #include <QWidget>
 
@@ -23,8 +25,13 @@ public:
     void clear();
     bool hasSpectrum() const { return !m_values.empty(); }
     const QString& title() const { return m_title; }
+    // The value axis' label ("sigma_a (1/µm)"), and where the last paint drew
+    // it (empty if it did not fit or nothing was drawn).
+    QString valueAxisTitle() const;
+    QRect valueAxisTitleRect() const { return m_value_title_rect; }
 
-    QSize sizeHint() const override { return {320, 180}; }
+    QSize sizeHint() const override { return {420, 260}; }
+    // Small enough not to raise the main window's minimum height (docks stack).
     QSize minimumSizeHint() const override { return {200, 120}; }
 
 protected:
@@ -35,6 +42,7 @@ private:
     QString m_unit;
     std::vector<double> m_wavelengths_nm;
     std::vector<double> m_values;
+    QRect m_value_title_rect;
 };
 
 // Up to about `count` round tick values covering [lo, hi] (1, 2, 5 times a power of ten apart).

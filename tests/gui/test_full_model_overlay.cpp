@@ -11,11 +11,13 @@
 
 #include "ab_chart.h"
 #include "inplane_plot.h"
+#include "spectra_plot.h"
 
 #include "paintlab/engine/fast_model/layered_brdf.h"
 
 #include <QApplication>
 #include <QElapsedTimer>
+#include <QLabel>
 #include <QMessageBox>
 #include <QProgressBar>
 #include <QPushButton>
@@ -93,6 +95,10 @@ void FullModelOverlayTest::fullModelOverlayIsLabelledAndNearTheFastModel() {
     QTRY_VERIFY_WITH_TIMEOUT(!dock->computing() && dock->inplanePlot()->hasComparison() &&
                                  dock->abChart()->hasComparison(),
                              kWaitMs);
+    // Issue 27 item 10: also on the Paint spectra (the tab a run may be started
+    // from): the six geometries' spectra of the full model, dashed.
+    QCOMPARE(dock->paintSpectra()->comparisonSpectra().size(), std::size_t{6});
+    QVERIFY(dock->status()->text().contains(QStringLiteral("full model")));
     qInfo("full model, 1 s budget: overlay after %.1f s (%s)", static_cast<double>(timer.elapsed()) * 1e-3,
           qPrintable(dock->fullModelLabel()));
     const QString label = dock->fullModelLabel();
@@ -156,7 +162,12 @@ void FullModelOverlayTest::fullModelOverlayIsLabelledAndNearTheFastModel() {
           full_sum / fast_sum);
     // "Clear comparison" removes it.
     clickButton(*dock, "plots_unpin");
-    QVERIFY(!dock->inplanePlot()->hasComparison() && !dock->abChart()->hasComparison());
+    QVERIFY(!dock->inplanePlot()->hasComparison() && !dock->abChart()->hasComparison() &&
+            !dock->paintSpectra()->hasComparison());
+    // The status no longer names a comparison that is gone (issue 27 item 10).
+    QVERIFY2(!dock->status()->text().contains(QStringLiteral("full model")),
+             qPrintable(dock->status()->text()));
+    QVERIFY(dock->fullModelLabel().isEmpty());
 }
 
 void FullModelOverlayTest::fullModelCancelStopsWithinASecond() {
