@@ -8,13 +8,37 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 namespace paintlab::fast {
 
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr int kFlakeCosines = 33;  // the flakes' extinction is smooth in the cosine (linear in between)
+constexpr int kFlakeCosines = 17;  // the flakes' extinction is smooth in the cosine (linear in between)
+
+// A slab whose truncated phase function differs from the true one by less
+// than this (in units of the phase function, whose average is 1) needs no
+// correction: the pigments of most paints (g below ~0.3 at the standard
+// preset's 8 orders), whose tables are exact to far better than the rest.
+constexpr double kNegligible = 1e-6;
+
+// A bound on |p - (1 - f) p*_{N,M}| for N moments and M table orders: the
+// moments the azimuthal truncation drops, sum_{l >= M} (2l + 1) |chi_l| (the
+// true chi_l; those below N also hold the delta-M shift f, added as f N^2).
+double truncationBound(const PathSlab& slab, int table_orders) {
+    const auto n = static_cast<int>(slab.chi.size());
+    double bound = slab.truncated * double(n) * double(n);
+    for (const PhaseLobe& lobe : slab.lobes) {
+        const double g = std::abs(lobe.g);
+        if (g >= 1.0) return 1.0;
+        // sum_{l >= M} (2l + 1) g^l = g^M ((2M + 1) (1 - g) + 2 g) / (1 - g)^2
+        const int M = std::max(0, table_orders);
+        bound +=
+            lobe.weight * std::pow(g, M) * ((2.0 * M + 1.0) * (1.0 - g) + 2.0 * g) / ((1.0 - g) * (1.0 - g));
+    }
+    return bound;
+}
 
 double henyeyGreensteinMixture(const std::vector<PhaseLobe>& lobes, double cos_theta) {
     double p = 0.0;
@@ -102,34 +126,42 @@ double PathSlab::extinctionPerUm(double mu) const {
 SingleScatteringCorrection::SingleScatteringCorrection(const Recipe& recipe, double wavelength_nm,
                                                        const FastModelSettings& settings, int table_orders)
     : m_ambient_index(recipe.ambient_refractive_index), m_table_orders(table_orders) {
-    // The slabs exactly as buildBandStack (stack_assembly.cpp) makes them.
-    const FlakeSampling sampling{settings.flake_polar, settings.flake_azimuth, settings.flake_table,
-                                 settings.flake_kernel_points_per_spread};
-    std::vector<double> cosines(kFlakeCosines);
-    for (int k = 0; k < kFlakeCosines; ++k)
-        cosines[static_cast<std::size_t>(k)] = double(k) / (kFlakeCosines - 1);
-    std::vector<PathSlab> slabs;
-    bool scatters = false;
+    // The slabs exactly as buildBandStack (stack_assembly.cpp) makes them, down
+    // to the deepest one whose correction matters; the flakes' extinction
+    // (thin-film tables) only for those.
+    std::vector<std::pair<SlabOptics, PathSlab>> slabs;
+    std::size_t needed = 0;
     for (const auto& layer : recipe.layers) {
         const auto bounds = sliceBoundaries(layer, settings.slices);
         for (std::size_t s = 1; s < bounds.size(); ++s) {
-            const SlabOptics optics = slabOptics(layer, wavelength_nm, bounds[s - 1], bounds[s]);
+            SlabOptics optics = slabOptics(layer, wavelength_nm, bounds[s - 1], bounds[s]);
             const ScaledMedium medium = scaledMedium(optics, settings.nodes);
             PathSlab slab;
             slab.index = optics.binder_index;
             slab.thickness_um = optics.thickness_um;
             slab.sigma_s_per_um = optics.sigma_s_per_um;
             slab.pigment_extinction_per_um = medium.sigma_a + medium.sigma_s;
-            if (!optics.mirror_flakes.empty() || !optics.interference_flakes.empty())
-                slab.flake_extinction_per_um = flakeExtinction(optics, wavelength_nm, cosines, sampling);
             slab.lobes = optics.lobes;
             slab.chi = medium.chi;
             slab.truncated = medium.f;
-            scatters = scatters || slab.sigma_s_per_um > 0.0;
-            slabs.push_back(std::move(slab));
+            if (slab.sigma_s_per_um > 0.0 && truncationBound(slab, table_orders) > kNegligible)
+                needed = slabs.size() + 1;
+            slabs.emplace_back(std::move(optics), std::move(slab));
         }
     }
-    if (scatters) m_slabs = std::move(slabs);
+    std::vector<double> cosines(kFlakeCosines);
+    for (int k = 0; k < kFlakeCosines; ++k)
+        cosines[static_cast<std::size_t>(k)] = double(k) / (kFlakeCosines - 1);
+    // A coarser flake table than the kernels': the extinction only attenuates
+    // the correction, a small term, and the thin-film tables are the cost.
+    const FlakeSampling sampling{settings.flake_polar, settings.flake_azimuth,
+                                 std::min(settings.flake_table, 9), settings.flake_kernel_points_per_spread};
+    for (std::size_t k = 0; k < needed; ++k) {
+        auto& [optics, slab] = slabs[k];
+        if (!optics.mirror_flakes.empty() || !optics.interference_flakes.empty())
+            slab.flake_extinction_per_um = flakeExtinction(optics, wavelength_nm, cosines, sampling);
+        m_slabs.push_back(std::move(slab));
+    }
 }
 
 double SingleScatteringCorrection::operator()(double mu_i, double mu_o, double dphi) const {

@@ -75,14 +75,69 @@ PhaseMatrices phaseMatrices(const std::vector<double>& mu, const std::vector<dou
     return h;
 }
 
+namespace {
+
+// The coefficients of the recurrence in seminormalisedLegendre for every
+// m, l < n: its square roots dominate evaluating phaseFourierOrders at many
+// direction pairs, and they depend on n alone. One table per thread, kept
+// while n stays the same.
+struct LegendreCoefficients {
+    int n = 0;
+    std::vector<double> a,
+        b;  // a[m n + l] = (2l-1) / sqrt(l^2 - m^2), b[m n + l] = sqrt((l-1)^2 - m^2) / sqrt(l^2 - m^2)
+    std::vector<double> start;  // start[m] = prod_{k<=m} sqrt((2k-1)/(2k))
+
+    static const LegendreCoefficients& forMoments(int n) {
+        thread_local LegendreCoefficients table;
+        if (table.n != n) {
+            const auto size = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
+            table.n = n;
+            table.a.assign(size, 0.0);
+            table.b.assign(size, 0.0);
+            table.start.assign(static_cast<std::size_t>(n), 1.0);
+            for (int m = 0; m < n; ++m) {
+                if (m > 0)
+                    table.start[static_cast<std::size_t>(m)] =
+                        table.start[static_cast<std::size_t>(m) - 1] * std::sqrt((2.0 * m - 1.0) / (2.0 * m));
+                for (int l = m + 2; l < n; ++l) {
+                    const double norm = std::sqrt(static_cast<double>(l) * l - static_cast<double>(m) * m);
+                    const auto k = static_cast<std::size_t>(m) * static_cast<std::size_t>(n) +
+                                   static_cast<std::size_t>(l);
+                    table.a[k] = (2.0 * l - 1.0) / norm;
+                    table.b[k] = std::sqrt((l - 1.0) * (l - 1.0) - static_cast<double>(m) * m) / norm;
+                }
+            }
+        }
+        return table;
+    }
+
+    // Lambda_l^m(x) for l = m .. n-1 into out (entries below m untouched).
+    void values(int m, double x, double* out) const {
+        const double s = std::sqrt(std::max(0.0, 1.0 - x * x));
+        const double pmm = start[static_cast<std::size_t>(m)] * std::pow(s, m);
+        out[m] = pmm;
+        if (m + 1 < n) out[m + 1] = std::sqrt(2.0 * m + 1.0) * x * pmm;
+        const std::size_t row = static_cast<std::size_t>(m) * static_cast<std::size_t>(n);
+        for (int l = m + 2; l < n; ++l)
+            out[l] = a[row + static_cast<std::size_t>(l)] * x * out[l - 1] -
+                     b[row + static_cast<std::size_t>(l)] * out[l - 2];
+    }
+};
+
+}  // namespace
+
 void phaseFourierOrders(double mu, double mu_prime, const std::vector<double>& chi, std::span<double> out) {
     const int n_moments = static_cast<int>(chi.size());
-    std::vector<double> a(chi.size());
-    std::vector<double> b(chi.size());
     std::fill(out.begin(), out.end(), 0.0);
+    if (n_moments == 0) return;
+    const LegendreCoefficients& legendre = LegendreCoefficients::forMoments(n_moments);
+    thread_local std::vector<double> a;
+    thread_local std::vector<double> b;
+    a.resize(chi.size());
+    b.resize(chi.size());
     for (int m = 0; m < std::min(static_cast<int>(out.size()), n_moments); ++m) {
-        seminormalisedLegendre(m, mu, a);
-        seminormalisedLegendre(m, mu_prime, b);
+        legendre.values(m, mu, a.data());
+        legendre.values(m, mu_prime, b.data());
         double h = 0.0;
         for (int l = m; l < n_moments; ++l) {
             const auto k = static_cast<std::size_t>(l);
@@ -94,7 +149,8 @@ void phaseFourierOrders(double mu, double mu_prime, const std::vector<double>& c
 
 double phaseFourierSum(double mu, double mu_prime, double cos_dphi, const std::vector<double>& chi,
                        int orders) {
-    std::vector<double> terms(static_cast<std::size_t>(std::max(0, orders)));
+    thread_local std::vector<double> terms;
+    terms.assign(static_cast<std::size_t>(std::max(0, orders)), 0.0);
     phaseFourierOrders(mu, mu_prime, chi, terms);
     // cos(m dphi) by the Chebyshev recurrence.
     double sum = 0.0;
