@@ -12,6 +12,7 @@
 #include "author_setting.h"
 #include "brdf_plan_scene.h"
 #include "main_window.h"
+#include "plots_dock.h"
 #include "production_dialog.h"
 #include "recipe_editor_dock.h"
 #include "recipe_structure_panel.h"
@@ -73,6 +74,7 @@ private slots:
     void init();
     void cleanup();
     void accuracyVerdictAgreesWithItsDetails();
+    void verdictButtonRunsTheFullModel();
     void typedValuesAreAppliedOrRefusedVisibly();
     void slidersMoveByFactorsAndUnitsAgree();
     void productionExportProposesAFolderAndNamesKinds();
@@ -187,6 +189,18 @@ void GuiMessagesTest::accuracyVerdictAgreesWithItsDetails() {
     QCOMPARE(requested, 1);
 }
 
+// Item 8 in the window: the verdict's button starts the Plots dock's full-model comparison.
+void GuiMessagesTest::verdictButtonRunsTheFullModel() {
+    QVERIFY(m_window->selectRecipe(kPearl));
+    QPushButton* button = m_window->accuracyDock()->fullModelButton();
+    QTRY_VERIFY_WITH_TIMEOUT(!button->isHidden(), kGuiWaitMs);
+    QVERIFY(!m_window->plotsDock()->fullModelRunning());
+    QTest::mouseClick(button, Qt::LeftButton);
+    QVERIFY(m_window->plotsDock()->fullModelRunning());
+    m_window->plotsDock()->cancelFullModel();
+    QTRY_VERIFY_WITH_TIMEOUT(!m_window->plotsDock()->fullModelRunning(), kGuiWaitMs);
+}
+
 // Item 13: what is typed is read as typed (scientific notation too) and
 // applied, or refused with a message at the field; a value outside the
 // usual range is applied with a warning there. Each applied value is one undo step.
@@ -255,6 +269,8 @@ void GuiMessagesTest::typedValuesAreAppliedOrRefusedVisibly() {
 // fraction reads the same in its field and the component table.
 void GuiMessagesTest::slidersMoveByFactorsAndUnitsAgree() {
     QVERIFY(m_window->selectRecipe(kPearl));
+    // 40 µm on 1-100 µm: at log(40) / log(100) = 0.80 of the slider.
+    QCOMPARE(m_window->editorDock()->sliderFor("thickness_um")->value(), 801);
     for (const char* key : {"thickness_um", "volume_fraction"}) {
         QSlider* slider = m_window->editorDock()->sliderFor(key);
         QDoubleSpinBox* shown = field(key);
