@@ -36,6 +36,13 @@
 
 namespace paintlab::gui {
 
+namespace {
+
+// The status bar's hint while no recipe is open.
+QString pickHint() { return MainWindow::tr(": pick a recipe in the Recipes list to start"); }
+
+}  // namespace
+
 MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMainWindow(parent) {
     setWindowTitle(tr("PaintLab"));
     setObjectName("main_window");
@@ -75,6 +82,10 @@ MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMa
     connect(&m_draft, &RecoveryDraft::failed, this,
             [this](const QString& message) { statusBar()->showMessage(message); });
     connect(&m_document, &RecipeDocument::recipeChanged, this, &MainWindow::requestRender);
+    // The first start's "pick a recipe" is done once one is loaded.
+    connect(&m_document, &RecipeDocument::recipeLoaded, this, [this]() {
+        if (statusBar()->currentMessage().endsWith(pickHint())) statusBar()->clearMessage();
+    });
     connect(&m_scheduler, &RenderScheduler::finished, this, [this](const RenderResult& result) {
         m_render->showResult(result);
         m_accuracy->showResult(result, m_document.hasRecipe() ? &m_document.recipe() : nullptr);
@@ -168,8 +179,8 @@ void MainWindow::openDatabase(const std::filesystem::path& file) {
         db::initDemoDatabase(*m_db);  // fills an empty database with the demo data, else nothing
         m_draft.setDatabase(m_db->file());
         fillRecipeList();
-        statusBar()->showMessage(tr("Database %1: pick a recipe in the Recipes list to start")
-                                     .arg(QString::fromStdString(m_db->file().string())));
+        statusBar()->showMessage(tr("Database %1").arg(QString::fromStdString(m_db->file().string())) +
+                                 (m_document.hasRecipe() ? QString() : pickHint()));
     } catch (const std::exception& e) {
         m_db.reset();
         showError(tr("Cannot open the database"), QString::fromUtf8(e.what()));

@@ -327,6 +327,8 @@ void GuiMessagesTest::emptyStartSaysWhatToDo() {
     QVERIFY(m_window->statusBar()->currentMessage().contains(QStringLiteral("pick a recipe")));
     QVERIFY(m_window->selectRecipe(kPearl));
     QVERIFY(m_window->editorDock()->findChild<QLabel*>(QStringLiteral("editor_empty_hint")) == nullptr);
+    QVERIFY2(!m_window->statusBar()->currentMessage().contains(QStringLiteral("pick a recipe")),
+             qPrintable(m_window->statusBar()->currentMessage()));
 }
 
 int main(int argc, char** argv) {
