@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+
 namespace paintlab::db {
 
 namespace {
@@ -169,7 +171,10 @@ std::string productionHtml(const ProductionSheet& sheet) {
         out += "<table>\n<tr><th>Ingredient</th><th>Kind</th><th>Density g/cm³</th><th>Dry vol. %</th>"
                "<th>Dry mass %</th><th>Wet mass %</th><th>Mass g</th><th>Weighed</th></tr>\n";
         for (const auto& line : layer.lines) {
-            out += "<tr><td>" + html(line.name) + "</td><td class=\"text\">" + html(line.kind) + "</td><td>" +
+            // The printable sheet is read by people: "interference flake", not the code.
+            std::string kind = line.kind;
+            std::replace(kind.begin(), kind.end(), '_', ' ');
+            out += "<tr><td>" + html(line.name) + "</td><td class=\"text\">" + html(kind) + "</td><td>" +
                    fixed(line.density_g_cm3, 3) + "</td><td>" + fixed(100.0 * line.dry_volume_fraction, 2) +
                    "</td><td>" + fixed(100.0 * line.dry_mass_fraction, 2) + "</td><td>" +
                    fixed(100.0 * line.wet_mass_fraction, 2) + "</td><td>" + fixed(1000.0 * line.mass_kg, 2) +

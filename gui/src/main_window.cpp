@@ -4,6 +4,7 @@
 #include "author_setting.h"
 #include "file_output.h"
 #include "inplane_plot.h"
+#include "plots_dock.h"
 #include "recipe_editor_dock.h"
 #include "render_dock.h"
 #include "undo_shortcut_filter.h"
@@ -34,6 +35,13 @@
 #include <exception>
 
 namespace paintlab::gui {
+
+namespace {
+
+// The status bar's hint while no recipe is open.
+QString pickHint() { return MainWindow::tr(": pick a recipe in the Recipes list to start"); }
+
+}  // namespace
 
 MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMainWindow(parent) {
     setWindowTitle(tr("PaintLab"));
@@ -74,9 +82,13 @@ MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMa
     connect(&m_draft, &RecoveryDraft::failed, this,
             [this](const QString& message) { statusBar()->showMessage(message); });
     connect(&m_document, &RecipeDocument::recipeChanged, this, &MainWindow::requestRender);
+    // The first start's "pick a recipe" is done once one is loaded.
+    connect(&m_document, &RecipeDocument::recipeLoaded, this, [this]() {
+        if (statusBar()->currentMessage().endsWith(pickHint())) statusBar()->clearMessage();
+    });
     connect(&m_scheduler, &RenderScheduler::finished, this, [this](const RenderResult& result) {
         m_render->showResult(result);
-        m_accuracy->showResult(result);
+        m_accuracy->showResult(result, m_document.hasRecipe() ? &m_document.recipe() : nullptr);
         if (result.brdf) m_plot->setBrdf(*result.brdf);
     });
     connect(&m_scheduler, &RenderScheduler::failed, this,
@@ -90,6 +102,12 @@ MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMa
     });
     connect(m_render, &RenderDock::saveImageRequested, this, &MainWindow::saveImage);
     connect(m_accuracy, &AccuracyDock::policyChanged, this, [this]() { requestRender(false); });
+    // The verdict's "Compare with the full model": the Plots dock's own run.
+    connect(m_accuracy, &AccuracyDock::fullModelRequested, this, [this]() {
+        m_plots->show();
+        m_plots->raise();
+        m_plots->compareWithFullModel();
+    });
 
     // First start: a layout that shows every dock; later the one the user left.
     resize(1500, 950);
@@ -161,7 +179,8 @@ void MainWindow::openDatabase(const std::filesystem::path& file) {
         db::initDemoDatabase(*m_db);  // fills an empty database with the demo data, else nothing
         m_draft.setDatabase(m_db->file());
         fillRecipeList();
-        statusBar()->showMessage(tr("Database %1").arg(QString::fromStdString(m_db->file().string())));
+        statusBar()->showMessage(tr("Database %1").arg(QString::fromStdString(m_db->file().string())) +
+                                 (m_document.hasRecipe() ? QString() : pickHint()));
     } catch (const std::exception& e) {
         m_db.reset();
         showError(tr("Cannot open the database"), QString::fromUtf8(e.what()));

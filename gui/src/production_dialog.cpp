@@ -20,6 +20,7 @@
 #include <QRadioButton>
 #include <QSettings>
 #include <QSignalBlocker>
+#include <QStandardPaths>
 #include <QVBoxLayout>
 
 #include <algorithm>
@@ -56,6 +57,12 @@ QString fileStem(const QString& recipe) {
     }
     while (out.endsWith('-')) out.chop(1);
     return out.isEmpty() ? QStringLiteral("recipe") : out;
+}
+
+// The first proposal's folder: Documents/PaintLab (made when the first sheet
+// is written there), not the home folder's root; later the last one used.
+QString defaultFolder() {
+    return QDir(QStandardPaths::writableLocation(QStandardPaths::DocumentsLocation)).filePath("PaintLab");
 }
 
 }  // namespace
@@ -240,7 +247,7 @@ void ProductionDialog::setOutputFile(const QString& path) {
     }
     // A proposal: the last folder, named after the recipe and version.
     const QSettings settings;
-    const QString folder = settings.value("production/lastFolder", QDir::homePath()).toString();
+    const QString folder = settings.value("production/lastFolder", defaultFolder()).toString();
     const std::optional<int> v = version();
     QString stem = fileStem(recipeName());
     if (v) stem += QStringLiteral("-v%1").arg(*v);
@@ -300,6 +307,7 @@ bool ProductionDialog::exportSheet() {
         showError(tr("Cannot export"), QString::fromUtf8(e.what()));
         return false;
     }
+    if (QFileInfo(path).absolutePath() == defaultFolder()) QDir().mkpath(defaultFolder());
     saveSettings();
     const std::string recipe = name.toStdString();
     const std::optional<int> v = version();

@@ -5,7 +5,8 @@
 // sheet of the database's production API (production.h), which names the
 // recipe, its version and its SHA-256 checksum. The sheet is computed and
 // written on a DatabaseWorker; the dialog is not modal and the last choices
-// are kept with QSettings.
+// are kept with QSettings (the file is first proposed in Documents/PaintLab,
+// then in the folder last written to).
 
 #include "database_worker.h"
 

@@ -2,10 +2,12 @@
 
 #include "depth_profile_edit.h"
 #include "depth_profile_section.h"
+#include "parameter_field.h"
 #include "recipe_structure_panel.h"
 #include "set_parameter_command.h"
 
-#include <QDoubleSpinBox>
+#include "paintlab/engine/io/number_format.h"
+
 #include <QEvent>
 #include <QGridLayout>
 #include <QGroupBox>
@@ -43,6 +45,7 @@ RecipeEditorDock::RecipeEditorDock(RecipeDocument* document, QWidget* parent)
     scroll->setWidget(content);
     setWidget(scroll);
     connect(document, &RecipeDocument::recipeLoaded, this, &RecipeEditorDock::rebuild);
+    rebuild();
     connect(document, &RecipeDocument::recipeChanged, this, [this]() {
         // An edit that added, removed, moved or renamed a layer or component (or
         // its undo) changes the rows or their titles.
@@ -87,6 +90,12 @@ QSlider* RecipeEditorDock::sliderFor(std::string_view key) const {
     return nullptr;
 }
 
+QLabel* RecipeEditorDock::messageFor(std::string_view key) const {
+    for (const Row& row : m_rows)
+        if (row.ref.decl->key == key) return row.message;
+    return nullptr;
+}
+
 void RecipeEditorDock::rebuild() {
     // Open depth-profile editors stay open, found by layer and component name
     // in the recipe shown until now (a component added, removed or moved, a
@@ -103,6 +112,17 @@ void RecipeEditorDock::rebuild() {
         delete item;
     }
     m_rows.clear();
+    if (!m_document->hasRecipe()) {
+        // Until a recipe is loaded: what to do.
+        auto* hint = new QLabel(tr("No recipe open: pick one in the Recipes list, or use File > Open recipe "
+                                   "file..., to edit its layers and ingredients here."),
+                                m_form);
+        hint->setObjectName("editor_empty_hint");
+        hint->setWordWrap(true);
+        m_layout->addWidget(hint);
+        m_layout->addStretch(1);
+        return;
+    }
     const Recipe& recipe = m_document->recipe();
     m_shape = shapeOf(recipe);
     // One group per layer / component, in recipe order.
@@ -114,10 +134,12 @@ void RecipeEditorDock::rebuild() {
             QString title = QString::fromStdString(layer.name);
             if (ref.component >= 0) {
                 const Component& c = layer.components[static_cast<std::size_t>(ref.component)];
-                title +=
-                    QString::fromUtf8(" \u203a ") + QString::fromStdString(componentName(c)) + " (" +
-                    QString::fromUtf8(componentKind(c).data(), static_cast<int>(componentKind(c).size())) +
-                    ")";
+                // "interference flake", not the code.
+                const QString kind =
+                    QString::fromUtf8(componentKind(c).data(), static_cast<int>(componentKind(c).size()))
+                        .replace('_', ' ');
+                title += QString::fromUtf8(" \u203a ") + QString::fromStdString(componentName(c)) + " (" +
+                         kind + ")";
             }
             auto* box = new QGroupBox(title, m_form);
             grid = new QGridLayout(box);
@@ -129,20 +151,26 @@ void RecipeEditorDock::rebuild() {
         const int line = grid->rowCount();
         auto* label = new QLabel(QString::fromUtf8(d.label.data(), static_cast<int>(d.label.size())), m_form);
         label->setToolTip(QString::fromUtf8(d.help.data(), static_cast<int>(d.help.size())));
-        row.spin = new QDoubleSpinBox(m_form);
-        row.spin->setDecimals(4);
-        row.spin->setRange(d.min, d.max);
-        row.spin->setSingleStep((row.range.hi - row.range.lo) / 100.0);
-        if (d.unit != "1")
-            row.spin->setSuffix(" " + QString::fromUtf8(d.unit.data(), static_cast<int>(d.unit.size())));
-        row.spin->setValue(value);
+        row.spin = new ParameterField(d, m_form);
+        row.spin->setSingleStep((row.range.hi - row.range.lo) * displayUnit(d).scale / 100.0);
+        row.spin->showValue(value);
         row.spin->setObjectName(QString::fromUtf8(d.key.data(), static_cast<int>(d.key.size())));
+        row.spin->setToolTip(tr("Allowed %1 to %2; usual %3 to %4")
+                                 .arg(QString::fromStdString(displayText(d, d.min)),
+                                      QString::fromStdString(displayText(d, d.max)),
+                                      QString::fromStdString(displayText(d, d.typicalMin)),
+                                      QString::fromStdString(displayText(d, d.typicalMax))));
         row.slider = new QSlider(Qt::Horizontal, m_form);
         row.slider->setRange(0, kSliderSteps);
         row.slider->setObjectName(row.spin->objectName() + "_slider");
+        row.message = new QLabel(m_form);
+        row.message->setObjectName(row.spin->objectName() + "_message");
+        row.message->setWordWrap(true);
+        row.message->hide();
         grid->addWidget(label, line, 0);
         grid->addWidget(row.spin, line, 1);
         grid->addWidget(row.slider, line, 2);
+        grid->addWidget(row.message, line + 1, 0, 1, 3);
         m_rows.push_back(row);
     }
     // Below the rows of each pigment or flake: its depth-profile editor, opened on demand.
@@ -163,13 +191,16 @@ void RecipeEditorDock::rebuild() {
         connect(row.slider, &QSlider::sliderPressed, this,
                 [this]() { m_drag = RecipeDocument::nextDragNumber(); });
         connect(row.slider, &QSlider::valueChanged, this, [this, r](int step) {
-            const double v = r->range.lo + (r->range.hi - r->range.lo) * step / kSliderSteps;
-            edit(*r, v, r->slider->isSliderDown());
+            // Rounded to 4 significant digits: a dragged value reads as a lab would write it.
+            const double v = r->range.valueAt(static_cast<double>(step) / kSliderSteps);
+            const double digits = std::pow(10.0, std::floor(std::log10(std::abs(v))) - 3.0);
+            edit(*r, v > 0.0 ? std::round(v / digits) * digits : v, r->slider->isSliderDown());
+            showMessage(*r, {}, false);
         });
         // The drag is over: the final, full-quality render of what it left.
         connect(row.slider, &QSlider::sliderReleased, m_document, &RecipeDocument::settle);
         connect(row.spin, &QDoubleSpinBox::editingFinished, this,
-                [this, r]() { edit(*r, r->spin->value(), false); });
+                [this, i = static_cast<std::size_t>(&row - m_rows.data())]() { commitTyped(m_rows[i]); });
     }
     refreshValues();
 }
@@ -179,13 +210,52 @@ void RecipeEditorDock::refreshValues() {
     for (Row& row : m_rows) {
         const double* field = scalarField(recipe, row.ref);
         if (field == nullptr) continue;
-        const QSignalBlocker block_spin(row.spin);
         const QSignalBlocker block_slider(row.slider);
-        row.spin->setValue(*field);
-        if (*field < row.range.lo || *field > row.range.hi) row.range = sliderRange(*row.ref.decl, *field);
-        const double t = (*field - row.range.lo) / (row.range.hi - row.range.lo);
-        row.slider->setValue(static_cast<int>(std::lround(t * kSliderSteps)));
+        // A message is about the value it was given for: another value (an undo) ends it.
+        if (row.spin->recipeValue() != *field) showMessage(row, {}, false);
+        row.spin->showValue(*field);
+        // A logarithmic slider's left end stands for everything below it (0 included).
+        if (*field > row.range.hi || (!row.range.log && *field < row.range.lo))
+            row.range = sliderRange(*row.ref.decl, *field);
+        row.slider->setValue(static_cast<int>(std::lround(row.range.position(*field) * kSliderSteps)));
     }
+}
+
+void RecipeEditorDock::showMessage(const Row& row, const QString& text, bool error) {
+    row.message->setText(text);
+    row.message->setStyleSheet(error ? QStringLiteral("QLabel { color: #b00020; }")
+                                     : QStringLiteral("QLabel { color: #8a5a00; }"));
+    row.message->setVisible(!text.isEmpty());
+}
+
+void RecipeEditorDock::commitTyped(Row& row) {
+    const double* current = scalarField(m_document->recipe(), row.ref);
+    if (current == nullptr) return;
+    const ParameterDecl& decl = *row.ref.decl;
+    QString typed = row.spin->typedText();
+    // Nothing typed: the arrows or the wheel changed the value, or nothing did.
+    if (typed.isEmpty()) {
+        if (row.spin->cleanText() == row.spin->textFromValue(*current * displayUnit(decl).scale)) return;
+        typed = QString::fromStdString(io::formatNumber(row.spin->value(), io::NumberFormat::Shortest));
+    }
+    const TypedValue checked = checkTypedValue(decl, typed.toStdString());
+    const QString message = QString::fromStdString(checked.message);
+    switch (checked.verdict) {
+    case TypedValue::Verdict::NotANumber:
+    case TypedValue::Verdict::Refuse:
+        // The field goes back to the recipe's value and says why.
+        row.spin->showValue(*current);
+        showMessage(row, tr("%1; kept %2").arg(message, QString::fromStdString(displayText(decl, *current))),
+                    true);
+        return;
+    case TypedValue::Verdict::ApplyWithWarning:
+    case TypedValue::Verdict::Apply:
+        break;
+    }
+    // The value shown as typed ("1e3" reads 1000 µm), and one undo step.
+    row.spin->showValue(checked.value);
+    edit(row, checked.value, false);
+    showMessage(row, message, false);
 }
 
 void RecipeEditorDock::edit(const Row& row, double value, bool interactive) {

@@ -16,12 +16,13 @@
 #include <utility>
 #include <vector>
 
-class QDoubleSpinBox;
+class QLabel;
 class QSlider;
 class QVBoxLayout;
 
 namespace paintlab::gui {
 
+class ParameterField;
 class RecipeStructurePanel;
 
 class RecipeEditorDock : public QDockWidget {
@@ -31,6 +32,8 @@ public:
 
     // The slider of the first parameter with this declaration key (for tests), or nullptr.
     QSlider* sliderFor(std::string_view key) const;
+    // The message under that parameter's field (a refused or unusual value), or nullptr.
+    QLabel* messageFor(std::string_view key) const;
     RecipeStructurePanel* structurePanel() const { return m_structure; }
 
 protected:
@@ -41,8 +44,9 @@ private:
     struct Row {
         ParameterRef ref;
         SliderRange range;
-        QDoubleSpinBox* spin = nullptr;
+        ParameterField* spin = nullptr;
         QSlider* slider = nullptr;
+        QLabel* message = nullptr;  // under the row: what a typed value did (hidden when nothing)
     };
     // The layers' names and their components' "kind name", in recipe order:
     // what the rows' group titles show.
@@ -52,6 +56,9 @@ private:
     bool structureChanged() const;
     void refreshValues();
     void edit(const Row& row, double value, bool interactive);
+    // The field's text committed (Enter, focus out): applied, refused or warned about at the field.
+    void commitTyped(Row& row);
+    static void showMessage(const Row& row, const QString& text, bool error);
     static constexpr int kSliderSteps = 1000;
 
     RecipeDocument* m_document;

@@ -1,6 +1,12 @@
 #include "recipe_parameters.h"
 
+#include "paintlab/engine/io/number_format.h"
+
 #include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <string_view>
 #include <type_traits>
 #include <variant>
 
@@ -82,7 +88,86 @@ SliderRange sliderRange(const ParameterDecl& decl, double value) {
     lo = std::max(lo, decl.min);
     hi = std::min(hi, decl.max);
     if (!(hi > lo)) hi = lo + 1.0;  // a degenerate declaration still gives a usable slider
-    return {lo, hi};
+    SliderRange range{lo, hi, isLogarithmic(decl) && hi > 0.0};
+    // A logarithmic scale cannot reach 0: three decades below the top.
+    if (range.log) range.lo = std::max(lo, hi * 1e-3);
+    return range;
+}
+
+double SliderRange::position(double value) const {
+    const double t = log ? std::log(std::max(value, lo) / lo) / std::log(hi / lo) : (value - lo) / (hi - lo);
+    return std::clamp(t, 0.0, 1.0);
+}
+
+double SliderRange::valueAt(double position) const {
+    const double t = std::clamp(position, 0.0, 1.0);
+    return log ? lo * std::pow(hi / lo, t) : lo + (hi - lo) * t;
+}
+
+bool isLogarithmic(const ParameterDecl& decl) {
+    const std::string_view key = decl.key;
+    return key == "volume_fraction" || key.ends_with("thickness_um") || key.ends_with("thickness_nm");
+}
+
+DisplayUnit displayUnit(const ParameterDecl& decl) {
+    if (decl.key == "volume_fraction") return {"%", 100.0};
+    if (decl.unit == "1") return {"", 1.0};
+    return {std::string(decl.unit), 1.0};
+}
+
+std::string displayText(const ParameterDecl& decl, double value) {
+    const DisplayUnit unit = displayUnit(decl);
+    std::string text = io::formatNumber(value * unit.scale);
+    if (!unit.unit.empty()) text += " " + unit.unit;
+    return text;
+}
+
+TypedValue checkTypedValue(const ParameterDecl& decl, const std::string& text) {
+    const DisplayUnit unit = displayUnit(decl);
+    std::string_view typed = text;
+    const auto trim = [&typed]() {
+        while (!typed.empty() && std::isspace(static_cast<unsigned char>(typed.front())) != 0)
+            typed.remove_prefix(1);
+        while (!typed.empty() && std::isspace(static_cast<unsigned char>(typed.back())) != 0)
+            typed.remove_suffix(1);
+    };
+    trim();
+    if (!unit.unit.empty() && typed.ends_with(unit.unit)) {
+        typed.remove_suffix(unit.unit.size());  // "40 µm" typed with its unit
+        trim();
+    }
+    std::string number(typed);
+    // A decimal comma (a keyboard of another locale) when there is no point.
+    if (number.find('.') == std::string::npos) std::replace(number.begin(), number.end(), ',', '.');
+    if (!number.empty() && number.front() == '+') number.erase(0, 1);
+    double shown = 0.0;
+    const auto [end, error] = std::from_chars(number.data(), number.data() + number.size(), shown);
+    TypedValue out;
+    if (number.empty() || error != std::errc() || end != number.data() + number.size() ||
+        !std::isfinite(shown)) {
+        out.message = "'" + text + "' is not a number";
+        return out;
+    }
+    out.value = shown / unit.scale;
+    const std::string label(decl.label);
+    out.verdict = TypedValue::Verdict::Refuse;
+    if (!decl.allows(out.value)) {
+        const bool low = decl.minExclusive ? out.value <= decl.min : out.value < decl.min;
+        out.message = low ? displayText(decl, out.value) + " is not allowed: " + label + " must be " +
+                                (decl.minExclusive ? "above " : "at least ") + displayText(decl, decl.min)
+                          : displayText(decl, out.value) + " is not allowed: " + label + " can be at most " +
+                                displayText(decl, decl.max);
+        return out;
+    }
+    out.verdict = TypedValue::Verdict::Apply;
+    if (!decl.isTypical(out.value)) {
+        out.verdict = TypedValue::Verdict::ApplyWithWarning;
+        out.message = displayText(decl, out.value) + " is " +
+                      (out.value < decl.typicalMin ? "below" : "above") + " the usual range, " +
+                      io::formatNumber(decl.typicalMin * unit.scale) + "\u2013" +
+                      displayText(decl, decl.typicalMax) + ": check it";
+    }
+    return out;
 }
 
 }  // namespace paintlab::gui

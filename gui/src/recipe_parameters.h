@@ -34,11 +34,44 @@ double* scalarField(Recipe& recipe, const ParameterRef& ref);
 const double* scalarField(const Recipe& recipe, const ParameterRef& ref);
 
 // The slider range of a parameter: its typical range widened to hold the
-// current value, clipped to what the declaration allows.
+// current value, clipped to what the declaration allows. Thicknesses and
+// volume fractions move on a logarithmic scale (a drag changes them by a
+// factor, as labs vary them: 20 -> 40 µm as far as 2 -> 4 µm), over three
+// decades at most below the top when the range starts at 0; the rest linearly.
 struct SliderRange {
     double lo = 0.0;
     double hi = 1.0;
+    bool log = false;
+    // Position in [0, 1] of a value (clamped), and the value at a position.
+    double position(double value) const;
+    double valueAt(double position) const;
 };
 SliderRange sliderRange(const ParameterDecl& decl, double value);
+
+// Whether a parameter is a thickness or a concentration (logarithmic slider).
+bool isLogarithmic(const ParameterDecl& decl);
+
+// The unit people read a parameter in, and the factor from the recipe's
+// value to it: volume fractions in % (as the component table shows them),
+// the rest in their declared unit ("" for dimensionless).
+struct DisplayUnit {
+    std::string unit;
+    double scale = 1.0;
+};
+DisplayUnit displayUnit(const ParameterDecl& decl);
+
+// What a value typed into a parameter's field does. `text` is read as a
+// number in the display unit (scientific notation allowed: "1e3"); the
+// value (in the recipe's unit) is applied unless refused.
+struct TypedValue {
+    enum class Verdict { Apply, ApplyWithWarning, Refuse, NotANumber };
+    Verdict verdict = Verdict::NotANumber;
+    double value = 0.0;   // in the recipe's unit
+    std::string message;  // why it was refused or what is unusual; empty if nothing
+};
+TypedValue checkTypedValue(const ParameterDecl& decl, const std::string& text);
+
+// "40 µm", "6 %": a value in its display unit, 6 significant digits.
+std::string displayText(const ParameterDecl& decl, double value);
 
 }  // namespace paintlab::gui

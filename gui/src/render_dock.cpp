@@ -33,6 +33,9 @@ RenderDock::RenderDock(QWidget* parent) : QDockWidget(tr("Render"), parent) {
     auto* body = new QWidget(this);
     auto* layout = new QVBoxLayout(body);
     m_view = new ComparisonView(body);
+    // The first start's empty state says what to do.
+    m_view->setPlaceholder(
+        tr("No recipe open.\nPick one in the Recipes list,\nor File > Open recipe file..."));
     layout->addWidget(m_view, 1);
     auto* compare = new QHBoxLayout();
     m_mode = new QComboBox(body);
@@ -87,6 +90,7 @@ RenderDock::RenderDock(QWidget* parent) : QDockWidget(tr("Render"), parent) {
 double RenderDock::exposureEv() const { return m_exposure->value(); }
 
 void RenderDock::showResult(const RenderResult& result) {
+    m_view->setPlaceholder(tr("No image yet"));  // a recipe is open: a scene is still to come
     m_status->setText(timesText(result));
     if (result.image.isNull()) return;
     m_image = result.image;
