@@ -72,6 +72,10 @@ void addBuildOptions(CLI::App* command, BuildOptions& o) {
         ->capture_default_str();
     command->add_option("--seed", o.settings.seed, "Random seed")->capture_default_str();
     command
+        ->add_option("--passes", o.settings.passes,
+                     "Passes averaged (seeds seed, seed + 1, ...): the noise falls as 1/sqrt(passes)")
+        ->capture_default_str();
+    command
         ->add_option("--env-lights", o.settings.env_lights,
                      "K_env: HDR hotspots made explicit lights (at most)")
         ->capture_default_str();

@@ -24,6 +24,7 @@
 #include <cstring>
 #include <optional>
 #include <span>
+#include <utility>
 
 namespace paintlab::raymaps {
 
@@ -98,6 +99,7 @@ void validateRayMapSettings(const RayMapSettings& s) {
     checkRange(s.env_lights, 0, 32, "env_lights");
     checkRange(s.environment_points, 0, 1 << 20, "environment_points");
     checkRange(s.environment_rays, 0, 65536, "environment_rays");
+    checkRange(s.passes, 1, 65536, "passes");
     if (!(s.env_light_threshold >= 1.0 && s.env_light_threshold <= 1e9))
         throw InputError("<argument>", "env_light_threshold",
                          std::to_string(s.env_light_threshold) + " is outside [1, 1e9]");
@@ -112,28 +114,90 @@ void validateRayMapSettings(const RayMapSettings& s) {
                          std::to_string(s.scene_unit_m) + " is outside [1e-12, 1e6]");
 }
 
-RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, const std::filesystem::path& out,
-                         const RayMapProgress& progress) {
+namespace {
+
+// The passes' average of one paint pixel: `paint` holds the means (moments,
+// visibility and mirror over the camera samples that met the paint, weight
+// over all), `paint.samples` the samples summed over the passes.
+struct PaintMean {
+    int x = 0;
+    PaintAccumulator paint;
+};
+
+// a += (b - a) * w, exactly b when w is 1 (the first pass).
+template <typename T> void blend(T& a, const T& b, double w) {
+    if (w == 1.0)
+        a = b;
+    else
+        a += (b - a) * w;
+}
+
+// Folds one pass's pixel into the mean of the passes before it (`passes` of them).
+void foldPaint(PaintAccumulator& mean, const PaintAccumulator& pass, int passes) {
+    const int before = mean.samples;
+    const double w = static_cast<double>(pass.samples) / (before + pass.samples);
+    for (std::size_t i = 0; i < mean.moments.size(); ++i) blend(mean.moments[i], pass.moments[i], w);
+    for (std::size_t k = 0; k < mean.visibility.size(); ++k) blend(mean.visibility[k], pass.visibility[k], w);
+    blend(mean.mirror, pass.mirror, w);
+    mean.samples = before + pass.samples;
+    // The weight counts every camera sample of the pixel: a pass without paint
+    // here added 0 (weights passes/(passes+1), 1/(passes+1)).
+    blend(mean.weight, pass.weight, 1.0 / (passes + 1));
+    // The frame nearest the pixel centre (a centred frame is the same for every seed).
+    if (!mean.centred && (pass.centred || pass.frame_offset2 < mean.frame_offset2)) {
+        mean.normal = pass.normal;
+        mean.view = pass.view;
+        mean.position = pass.position;
+        mean.footprint = pass.footprint;
+        mean.frame_offset2 = pass.frame_offset2;
+        mean.centred = pass.centred;
+    }
+}
+
+}  // namespace
+
+struct ProgressiveRayMap::Impl {
+    Impl(Scene s, RayMapSettings rs)
+        : scene(std::move(s)), settings(std::move(rs)), geometry(buildSceneGeometry(scene)),
+          environment(EnvironmentMap::load(scene.environment)), tracer(geometry),
+          proxy(settings.paint_proxy_albedo.value_or(Rgb3::Constant(kPaintProxyAlbedo))),
+          pt(scene, tracer, environment, settings.max_depth, proxy),
+          pt_indirect(scene, tracer, environment, settings.indirect_depth, proxy), camera(scene.camera) {}
+
+    Scene scene;
+    RayMapSettings settings;
+    SceneGeometry geometry;
+    EnvironmentMap environment;
+    SceneTracer tracer;
+    Rgb3 proxy;
+    PathTracer pt;
+    PathTracer pt_indirect;
+    PinholeCamera camera;
+    std::vector<DirectionalLight> hotspots;
+    std::optional<EnvironmentMap> residual;
+    std::optional<EnvironmentMoments> environment_moments;
+    RayMapHeader header;
+    int passes = 0;
+    double seconds = 0.0;                      // set-up and passes
+    std::vector<Rgb3> baked;                   // mean per pixel, row-major
+    std::vector<std::vector<PaintMean>> rows;  // paint pixels per row, ascending x
+};
+
+ProgressiveRayMap::ProgressiveRayMap(const Scene& scene, const RayMapSettings& settings) {
     validateRayMapSettings(settings);
     const auto start = std::chrono::steady_clock::now();
-    const SceneGeometry geometry = buildSceneGeometry(scene);
-    const EnvironmentMap environment = EnvironmentMap::load(scene.environment);
-    const SceneTracer tracer(geometry);
-    const Rgb3 proxy = settings.paint_proxy_albedo.value_or(Rgb3::Constant(kPaintProxyAlbedo));
-    const PathTracer pt(scene, tracer, environment, settings.max_depth, proxy);
-    const PathTracer pt_indirect(scene, tracer, environment, settings.indirect_depth, proxy);
-    const PinholeCamera camera(scene.camera);
-
-    RayMapHeader header;
+    m_impl = std::make_unique<Impl>(scene, settings);
+    const PathTracer& pt = m_impl->pt;
+    RayMapHeader& header = m_impl->header;
     header.width = scene.camera.width;
     header.height = scene.camera.height;
     header.cells = settings.cells;
     header.orders = settings.orders;
     header.band_rows = settings.band_rows;
     header.scene_file = scene.file.filename().string();
-    header.paint_proxy_albedo = proxy.mean();
-    header.camera_position = camera.origin();
-    header.pixel_angle_rad = camera.pixelAngle();
+    header.paint_proxy_albedo = m_impl->proxy.mean();
+    header.camera_position = m_impl->camera.origin();
+    header.pixel_angle_rad = m_impl->camera.pixelAngle();
     header.scene_unit_m = settings.scene_unit_m;
     for (const auto& sun : pt.suns())
         header.lights.push_back({ExplicitLight::Kind::Sun, sun.direction, sun.irradiance,
@@ -143,66 +207,127 @@ RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, con
     // K_env: the environment's hotspots become explicit lights of the paint
     // (the bake and the mirror rays keep the whole environment).
     std::vector<EnvironmentMap::Hotspot> spots;
-    const EnvironmentMap residual =
-        environment.withoutHotspots(settings.env_lights, settings.env_light_threshold, spots);
-    std::vector<DirectionalLight> hotspots;
+    m_impl->residual.emplace(
+        m_impl->environment.withoutHotspots(settings.env_lights, settings.env_light_threshold, spots));
     for (const auto& spot : spots) {
         const double cos_half = std::max(-1.0, 1.0 - spot.solid_angle_sr / (2.0 * kPi));
-        hotspots.push_back({spot.direction, spot.irradiance, cos_half});
+        m_impl->hotspots.push_back({spot.direction, spot.irradiance, cos_half});
         header.lights.push_back(
             {ExplicitLight::Kind::Sun, spot.direction, spot.irradiance, spot.solid_angle_sr});
     }
-    header.env_lights = static_cast<int>(hotspots.size());
+    header.env_lights = static_cast<int>(m_impl->hotspots.size());
     if (header.lights.size() > 255)
         throw InputError(scene.file.string(), "lights", "more than 255 explicit lights");
-    const RecordLayout layout{settings.cells, settings.orders, static_cast<int>(header.lights.size())};
+    if (settings.environment_points > 0)
+        m_impl->environment_moments.emplace(*m_impl->residual, settings.environment_points);
+    m_impl->baked.assign(static_cast<std::size_t>(header.width) * static_cast<std::size_t>(header.height),
+                         Rgb3::Zero());
+    m_impl->rows.resize(static_cast<std::size_t>(header.height));
+    m_impl->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
-    // The header is written last (it holds the statistics), so the bands go
-    // to memory first: a ray map is a few hundred bytes per paint pixel.
-    const int width = header.width;
-    const int bands = (header.height + settings.band_rows - 1) / settings.band_rows;
-    std::vector<RayMapBand> done(static_cast<std::size_t>(bands));
-    std::optional<EnvironmentMoments> environment_moments;
-    if (settings.environment_points > 0) environment_moments.emplace(residual, settings.environment_points);
-    const PixelTracer pixels(pt, pt_indirect, camera, settings, width, hotspots, residual,
-                             environment_moments ? &*environment_moments : nullptr);
+ProgressiveRayMap::~ProgressiveRayMap() = default;
+
+int ProgressiveRayMap::passes() const { return m_impl->passes; }
+
+const RayMapHeader& ProgressiveRayMap::header() const { return m_impl->header; }
+
+void ProgressiveRayMap::addPass(const RayMapProgress& progress) {
+    const auto start = std::chrono::steady_clock::now();
+    RayMapSettings settings = m_impl->settings;
+    settings.seed = m_impl->settings.seed + static_cast<std::uint64_t>(m_impl->passes);
+    const int width = m_impl->header.width;
+    const int height = m_impl->header.height;
+    const int band_rows = settings.band_rows;
+    const int bands = (height + band_rows - 1) / band_rows;
+    const PixelTracer pixels(m_impl->pt, m_impl->pt_indirect, m_impl->camera, settings, width,
+                             m_impl->hotspots, *m_impl->residual,
+                             m_impl->environment_moments ? &*m_impl->environment_moments : nullptr);
+    // The pass is traced aside and folded in at the end: a cancelled pass
+    // leaves the map as it was.
+    std::vector<Rgb3> baked(m_impl->baked.size());
+    std::vector<std::vector<PaintMean>> rows(m_impl->rows.size());
     for (int b = 0; b < bands; ++b) {
-        RayMapBand& band = done[static_cast<std::size_t>(b)];
-        band.first_row = b * settings.band_rows;
-        band.rows = std::min(settings.band_rows, header.height - band.first_row);
-        band.baked.assign(static_cast<std::size_t>(band.rows) * static_cast<std::size_t>(width) * 3, 0);
-        std::vector<std::vector<std::byte>> row_records(static_cast<std::size_t>(band.rows));
-        tbb::parallel_for(tbb::blocked_range<int>(0, band.rows), [&](const tbb::blocked_range<int>& range) {
-            PaintAccumulator paint;
-            for (int r = range.begin(); r != range.end(); ++r) {
-                const int y = band.first_row + r;
-                auto& records = row_records[static_cast<std::size_t>(r)];
-                for (int x = 0; x < width; ++x) {
-                    const Rgb3 baked = pixels.trace(x, y, paint);
-                    const std::size_t at =
-                        3 * (static_cast<std::size_t>(r) * static_cast<std::size_t>(width) +
-                             static_cast<std::size_t>(x));
-                    for (int c = 0; c < 3; ++c)
-                        band.baked[at + static_cast<std::size_t>(c)] = halfBits(baked[c]);
-                    if (paint.samples == 0) continue;
-                    const std::size_t offset = records.size();
-                    records.resize(offset + layout.bytes());
-                    encodeRecord(paint,
-                                 static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(width) +
-                                     static_cast<std::uint32_t>(x),
-                                 layout, records.data() + offset);
-                }
-            }
-        });
-        for (const auto& records : row_records) {
-            band.records.insert(band.records.end(), records.begin(), records.end());
-            band.record_count += records.size() / layout.bytes();
-        }
-        header.paint_pixels += band.record_count;
+        const int first = b * band_rows;
+        const int count = std::min(band_rows, height - first);
+        tbb::parallel_for(tbb::blocked_range<int>(first, first + count),
+                          [&](const tbb::blocked_range<int>& range) {
+                              PaintAccumulator paint;
+                              for (int y = range.begin(); y != range.end(); ++y) {
+                                  auto& row = rows[static_cast<std::size_t>(y)];
+                                  for (int x = 0; x < width; ++x) {
+                                      baked[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                                            static_cast<std::size_t>(x)] = pixels.trace(x, y, paint);
+                                      if (paint.samples > 0) row.push_back({x, paint});
+                                  }
+                              }
+                          });
         if (progress && !progress(static_cast<double>(b + 1) / bands)) throw Error("cancelled");
     }
-    header.rays = tracer.raysTraced();
-    header.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const int passes = m_impl->passes;
+    for (std::size_t i = 0; i < baked.size(); ++i) blend(m_impl->baked[i], baked[i], 1.0 / (passes + 1));
+    tbb::parallel_for(std::size_t{0}, rows.size(), [&](std::size_t y) {
+        std::vector<PaintMean>& mean = m_impl->rows[y];
+        std::vector<PaintMean> merged;
+        merged.reserve(std::max(mean.size(), rows[y].size()));
+        auto a = mean.begin();
+        for (PaintMean& p : rows[y]) {
+            for (; a != mean.end() && a->x < p.x; ++a) {
+                // No paint here in this pass: its weight is 0.
+                a->paint.weight *= static_cast<double>(passes) / (passes + 1);
+                merged.push_back(std::move(*a));
+            }
+            if (a != mean.end() && a->x == p.x) {
+                foldPaint(a->paint, p.paint, passes);
+                merged.push_back(std::move(*a++));
+            } else {
+                // First paint here: the passes before it had none.
+                p.paint.weight *= 1.0 / (passes + 1);
+                merged.push_back(std::move(p));
+            }
+        }
+        for (; a != mean.end(); ++a) {
+            a->paint.weight *= static_cast<double>(passes) / (passes + 1);
+            merged.push_back(std::move(*a));
+        }
+        mean = std::move(merged);
+    });
+    ++m_impl->passes;
+    m_impl->seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+RayMapHeader ProgressiveRayMap::write(const std::filesystem::path& out) const {
+    if (m_impl->passes == 0) throw Error("ray map " + out.string() + ": no pass traced");
+    RayMapHeader header = m_impl->header;
+    const RecordLayout layout{header.cells, header.orders, static_cast<int>(header.lights.size())};
+    const int width = header.width;
+    const int band_rows = m_impl->settings.band_rows;
+    const int bands = (header.height + band_rows - 1) / band_rows;
+    std::vector<RayMapBand> done(static_cast<std::size_t>(bands));
+    tbb::parallel_for(0, bands, [&](int b) {
+        RayMapBand& band = done[static_cast<std::size_t>(b)];
+        band.first_row = b * band_rows;
+        band.rows = std::min(band_rows, header.height - band.first_row);
+        const std::size_t first = static_cast<std::size_t>(band.first_row) * static_cast<std::size_t>(width);
+        band.baked.resize(static_cast<std::size_t>(band.rows) * static_cast<std::size_t>(width) * 3);
+        for (std::size_t i = 0; i < band.baked.size() / 3; ++i)
+            for (int c = 0; c < 3; ++c)
+                band.baked[3 * i + static_cast<std::size_t>(c)] = halfBits(m_impl->baked[first + i][c]);
+        for (int y = band.first_row; y < band.first_row + band.rows; ++y)
+            for (const PaintMean& p : m_impl->rows[static_cast<std::size_t>(y)]) {
+                const std::size_t offset = band.records.size();
+                band.records.resize(offset + layout.bytes());
+                encodeRecord(p.paint,
+                             static_cast<std::uint32_t>(y) * static_cast<std::uint32_t>(width) +
+                                 static_cast<std::uint32_t>(p.x),
+                             layout, band.records.data() + offset);
+                ++band.record_count;
+            }
+    });
+    header.paint_pixels = 0;
+    for (const RayMapBand& band : done) header.paint_pixels += band.record_count;
+    header.rays = m_impl->tracer.raysTraced();
+    header.seconds = m_impl->seconds;
 
     ChunkFileWriter writer(out, kRayMapMagic, kRayMapVersion);
     const std::string json = headerToJson(header);
@@ -213,6 +338,14 @@ RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, con
     }
     writer.finish();
     return header;
+}
+
+RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, const std::filesystem::path& out,
+                         const RayMapProgress& progress) {
+    ProgressiveRayMap map(scene, settings);
+    for (int k = 0; k < settings.passes; ++k)
+        map.addPass([&](double f) { return !progress || progress((k + f) / settings.passes); });
+    return map.write(out);
 }
 
 }  // namespace paintlab::raymaps

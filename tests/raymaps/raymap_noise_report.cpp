@@ -4,10 +4,12 @@
 // `paintlab-cli render` builds them), relit with the same recipe; the RMS
 // relative difference over the interior paint pixels per channel
 // (paint_comparison.h, seedNoise), printed as one map's noise (/ sqrt 2),
-// with the precompute time. Figures for docs/PERFORMANCE.md and
+// with the precompute time. --passes N: each map is the average of N passes
+// (ProgressiveRayMap), the two maps' seeds disjoint. Figures for docs/PERFORMANCE.md and
 // docs/VALIDATION.md:
 //   build/release/tests/raymaps/raymap_noise_report [--width W] [--aa N]
-//       [--light-rays N] [--bake-paths N] [--env-points N] [--env-rays N] [--preset P] [--scene NAME]...
+//       [--light-rays N] [--bake-paths N] [--env-points N] [--env-rays N] [--passes N] [--preset P]
+//       [--scene NAME]...
 //       [--recipe NAME]...
 
 #include "paint_comparison.h"
@@ -19,6 +21,7 @@
 #include "paintlab/raymaps/scene.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -67,6 +70,8 @@ Options parse(int argc, char** argv) {
             o.settings.environment_points = intArgument(v, "--env-points", 0);
         else if (a == "--env-rays")
             o.settings.environment_rays = intArgument(v, "--env-rays", 0);
+        else if (a == "--passes")
+            o.settings.passes = intArgument(v, "--passes");
         else if (a == "--preset")
             o.preset = v;
         else if (a == "--scene")
@@ -112,7 +117,7 @@ int main(int argc, char** argv) {
             s.seed = 1;
             const std::clock_t cpu = std::clock();  // all threads of the process
             const RayMapHeader ha = buildRayMap(scene, s, dir / "a.prm");
-            s.seed = 2;
+            s.seed = 1 + static_cast<std::uint64_t>(s.passes);  // seeds 1..N and N+1..2N
             const RayMapHeader hb = buildRayMap(scene, s, dir / "b.prm");
             const double cpu_s = 0.5 * static_cast<double>(std::clock() - cpu) / CLOCKS_PER_SEC;
             const auto map = RayMap::open(dir / "a.prm");

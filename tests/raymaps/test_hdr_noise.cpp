@@ -10,6 +10,7 @@
 #include "temp_dir.h"
 #include "write_exr.h"
 
+#include "paintlab/engine/error.h"
 #include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/recipe_json.h"
 #include "paintlab/raymaps/raymap.h"
@@ -18,8 +19,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -122,6 +125,94 @@ TEST(HdrNoise, OccludedEnvironmentNoiseIsHalfThatOfUniformSampling) {
     std::printf("per-pixel noise, sphere on a floor: %.2f %% (uniform rays only: %.2f %%)\n", 100 * now,
                 100 * before);
     EXPECT_LE(now, before / 2.0);
+}
+
+// Progressive refinement (ProgressiveRayMap): one map of `passes` passes
+// from seed `seed` on.
+std::unique_ptr<RayMap> refinedMap(const test::TempDir& dir, const Scene& scene, std::uint64_t seed,
+                                   int passes, const std::string& name) {
+    RayMapSettings s;
+    s.seed = seed;
+    s.passes = passes;
+    buildRayMap(scene, s, dir / name);
+    return RayMap::open(dir / name);
+}
+
+// The seed-to-seed noise (per map, worst channel) of two maps of `passes`
+// passes each, from disjoint seeds (1.. and 1001..).
+double refinedNoise(const test::TempDir& dir, const Scene& scene, int passes, const RelightTables& tables) {
+    const auto a = refinedMap(dir, scene, 1, passes, "a.prm");
+    const auto b = refinedMap(dir, scene, 1001, passes, "b.prm");
+    const compare::SeedNoise n =
+        compare::seedNoise(relight(*a, tables), relight(*b, tables), compare::interiorPaintMask(*a));
+    EXPECT_GE(n.pixels, 150);
+    return compare::SeedNoise::perMap(n.relative.maxCoeff());
+}
+
+// One pass of the progressive map is the map buildRayMap traced before it
+// existed: the same baked radiance and paint records, byte for byte.
+TEST(HdrNoise, OnePassRefinedMapEqualsTheSinglePassMap) {
+    const test::TempDir dir;
+    const Scene scene = courtyardScene(writeCourtyard(dir), true);
+    const RayMapSettings s;
+    ProgressiveRayMap progressive(scene, s);
+    EXPECT_THROW(progressive.write(dir / "none.prm"), Error);
+    progressive.addPass();
+    progressive.write(dir / "progressive.prm");
+    buildRayMap(scene, s, dir / "single.prm");
+    const auto a = RayMap::open(dir / "progressive.prm");
+    const auto b = RayMap::open(dir / "single.prm");
+    EXPECT_EQ(a->header().paint_pixels, b->header().paint_pixels);
+    EXPECT_GT(a->header().paint_pixels, 150U);
+    ASSERT_EQ(a->bandCount(), b->bandCount());
+    for (int i = 0; i < a->bandCount(); ++i) {
+        EXPECT_EQ(a->band(i).baked, b->band(i).baked) << "band " << i;
+        EXPECT_EQ(a->band(i).records, b->band(i).records) << "band " << i;
+    }
+}
+
+// A cancelled pass leaves the map as it was: the same file as before it.
+TEST(HdrNoise, CancelledPassKeepsThePassesBefore) {
+    const test::TempDir dir;
+    const Scene scene = courtyardScene(writeCourtyard(dir), true);
+    ProgressiveRayMap progressive(scene, RayMapSettings{});
+    std::vector<double> fractions;
+    progressive.addPass([&](double f) {
+        fractions.push_back(f);
+        return true;
+    });
+    ASSERT_FALSE(fractions.empty());
+    EXPECT_DOUBLE_EQ(fractions.back(), 1.0);
+    progressive.write(dir / "one.prm");
+    EXPECT_THROW(progressive.addPass([](double) { return false; }), Error);
+    EXPECT_EQ(progressive.passes(), 1);
+    progressive.write(dir / "again.prm");
+    const auto a = RayMap::open(dir / "one.prm");
+    const auto b = RayMap::open(dir / "again.prm");
+    for (int i = 0; i < a->bandCount(); ++i) EXPECT_EQ(a->band(i).records, b->band(i).records);
+}
+
+// The passes are independent estimates of the same per-pixel lighting (the
+// record's frame does not depend on the seed), so averaging 4 of them
+// divides the noise by sqrt(4) = 2: the ratio of the 4-pass map's noise to
+// the 1-pass map's is 0.5. Each noise is an RMS over ~300 interior paint
+// pixels whose squared differences are heavy-tailed (the floor found or
+// missed by a few rays): over 7 disjoint seed sets the ratio measured
+// 0.45-0.575 (mean 0.51, standard deviation 0.04). Bounds 0.38-0.65: about
+// 3 standard deviations; a map that kept one pass gives 1, two passes 0.71.
+TEST(HdrNoise, FourPassesHalveTheNoise) {
+    const test::TempDir dir;
+    const Scene scene = courtyardScene(writeCourtyard(dir, false), true);
+    const LayeredBrdf brdf = computeLayeredBrdf(loadRecipeFile(kData / "lambertian_index_matched.json"),
+                                                presetSettings(Preset::Preview));
+    const RelightTables tables(brdf, 4, 4);
+    const double one = refinedNoise(dir, scene, 1, tables);
+    const double four = refinedNoise(dir, scene, 4, tables);
+    std::printf("per-pixel noise, sphere on a floor: 1 pass %.2f %%, 4 passes %.2f %% (ratio %.3f)\n",
+                100 * one, 100 * four, four / one);
+    EXPECT_GT(one, 0.01);  // noise there is to halve
+    EXPECT_GT(four / one, 0.38);
+    EXPECT_LT(four / one, 0.65);
 }
 
 }  // namespace

@@ -53,6 +53,9 @@ struct RayMapSettings {
     // addition to light_rays, which are uniform in projected solid angle).
     int environment_rays = 64;
     std::uint64_t seed = 1;
+    // Passes traced by buildRayMap with seeds seed, seed + 1, ... and
+    // averaged (ProgressiveRayMap): the per-pixel noise falls as 1/sqrt(passes).
+    int passes = 1;
     // The Lambertian stand-in for paint that a secondary ray meets (paint
     // seen by paint in a mirror or through glass, paint lighting the floor),
     // linear sRGB albedo in [0, 1]: grey 0.35 (path_tracer.h) unless the
@@ -154,11 +157,49 @@ private:
 // Called with the fraction done (0..1); return false to cancel.
 using RayMapProgress = std::function<bool(double fraction)>;
 
-// Traces `scene` (camera, objects, environment, lights) and writes the ray
-// map to `out` (atomically: nothing under that name unless it succeeds).
-// Throws InputError for bad settings or scene content (missing files),
-// Error("cancelled") if progress returns false, Error on I/O failure.
+// Traces `scene` (camera, objects, environment, lights) in settings.passes
+// passes (ProgressiveRayMap) and writes the ray map to `out` (atomically:
+// nothing under that name unless it succeeds). Throws InputError for bad
+// settings or scene content (missing files), Error("cancelled") if progress
+// returns false, Error on I/O failure.
 RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, const std::filesystem::path& out,
                          const RayMapProgress& progress = {});
+
+// A ray map refined pass by pass (docs/RAYMAPS.md, "Progressive refinement"):
+// pass k traces the scene with seed settings.seed + k, and the map is the
+// passes' average, kept at full precision in memory until written: per
+// pixel the baked radiance and the paint's weight with weights k/(k+1) and
+// 1/(k+1), the paint's light moments, visibility and mirror radiance by the
+// camera samples that met the paint (the same for inner pixels). A record's
+// frame is the pixel centre's, the same for every seed (at the paint's edge,
+// the sample's nearest the centre). The per-pixel noise falls as
+// 1/sqrt(passes); the file's format, size and relight time do not change.
+// One pass writes the map buildRayMap writes (byte for byte but the
+// statistics' seconds). settings.passes is not used here.
+class ProgressiveRayMap {
+public:
+    // Throws InputError as buildRayMap does.
+    ProgressiveRayMap(const Scene& scene, const RayMapSettings& settings);
+    ~ProgressiveRayMap();
+    ProgressiveRayMap(const ProgressiveRayMap&) = delete;
+    ProgressiveRayMap& operator=(const ProgressiveRayMap&) = delete;
+    ProgressiveRayMap(ProgressiveRayMap&&) = delete;
+    ProgressiveRayMap& operator=(ProgressiveRayMap&&) = delete;
+
+    // Traces pass passes() and averages it in; `progress` gets this pass's
+    // fraction. Error("cancelled") if it returns false: the map keeps the
+    // passes before.
+    void addPass(const RayMapProgress& progress = {});
+    int passes() const;
+    // The map's layout (statistics are filled by write).
+    const RayMapHeader& header() const;
+    // Writes the average of the passes so far (atomically); Error if none.
+    // Statistics: rays and seconds (set-up included) of all passes.
+    RayMapHeader write(const std::filesystem::path& out) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> m_impl;
+};
 
 }  // namespace paintlab::raymaps
