@@ -542,6 +542,7 @@ void LayeredBrdf::fourierCoefficients(double cos_o, double cos_i, std::span<doub
     Eigen::VectorXd out_odd;
     Eigen::VectorXd in_even;
     Eigen::VectorXd in_odd;
+    std::vector<double> correction(m_single_scattering ? orders : 0);
     for (std::size_t b = 0; b < bands; ++b) {
         const BandTable& t = m_bands[b];
         interpolationBasis(t, m_ambient_index, std::min(cos_o, 1.0), out_even, out_odd);
@@ -556,7 +557,6 @@ void LayeredBrdf::fourierCoefficients(double cos_o, double cos_i, std::span<doub
             out[m * bands + b] = transmit * weight * value;
         }
         if (m_single_scattering) {
-            std::vector<double> correction(orders);
             (*m_single_scattering)[b].fourierCoefficients(cos_i, std::min(cos_o, 1.0), correction);
             for (std::size_t m = 0; m < orders; ++m) out[m * bands + b] += correction[m];
         }

@@ -52,7 +52,6 @@ public:
 
     // No slab scatters: the correction is zero.
     bool empty() const { return m_slabs.empty(); }
-    int tableOrders() const { return m_table_orders; }
 
     // Exact minus truncated single scattering (1/sr) between ambient
     // directions with cosines mu_i, mu_o and azimuths phi_o - phi_i = dphi.
