@@ -43,12 +43,16 @@ nlohmann::ordered_json measurementJson(const Measurement& m, bool with_descripti
         out["illuminant"] = m.illuminant;
         out["observer"] = m.observer;
         out["readings"] = nlohmann::ordered_json::array();
-        for (const auto& r : m.readings)
-            out["readings"].push_back({{"illumination_deg", r.illumination_deg},
-                                       {"aspecular_deg", r.aspecular_deg},
-                                       {"L", r.L},
-                                       {"a", r.a},
-                                       {"b", r.b}});
+        if (!m.wavelengths_nm.empty()) out["wavelengths_nm"] = m.wavelengths_nm;
+        for (const auto& r : m.readings) {
+            nlohmann::ordered_json reading{{"illumination_deg", r.illumination_deg},
+                                           {"aspecular_deg", r.aspecular_deg},
+                                           {"L", r.L},
+                                           {"a", r.a},
+                                           {"b", r.b}};
+            if (!r.reflectance.empty()) reading["reflectance"] = r.reflectance;
+            out["readings"].push_back(std::move(reading));
+        }
     } else {
         if (!m.channels.empty()) out["channels"] = m.channels;
         if (!m.wavelengths_nm.empty()) out["wavelengths_nm"] = m.wavelengths_nm;
@@ -85,20 +89,29 @@ void readMeasurementJson(const nlohmann::json& json, bool with_description, Meas
     if (m.kind == MeasurementKind::MultiAngle) {
         if (f.has("illuminant")) m.illuminant = f.string("illuminant", true);
         if (f.has("observer")) m.observer = f.string("observer", true);
+        if (f.has("wavelengths_nm")) m.wavelengths_nm = f.numbers("wavelengths_nm");
         const Json& readings = f.require("readings", "the readings");
         if (!readings.is_array()) f.fail("readings", "expected an array");
+        bool lab_from_spectra = false;
         for (std::size_t i = 0; i < readings.size(); ++i) {
             Fields r(readings[i], f.elementPath("readings", i), source);
             MultiAngleReading reading;
             if (r.has("illumination_deg"))
                 reading.illumination_deg = r.number("illumination_deg", "a number");
             reading.aspecular_deg = r.number("aspecular_deg", "a number");
-            reading.L = r.number("L", "a number");
-            reading.a = r.number("a", "a number");
-            reading.b = r.number("b", "a number");
+            if (r.has("reflectance")) reading.reflectance = r.numbers("reflectance");
+            // A spectral reading may leave CIELAB out: it follows from the spectrum.
+            if (reading.reflectance.empty() || r.has("L") || r.has("a") || r.has("b")) {
+                reading.L = r.number("L", "a number");
+                reading.a = r.number("a", "a number");
+                reading.b = r.number("b", "a number");
+            } else {
+                lab_from_spectra = true;
+            }
             r.finish();
-            m.readings.push_back(reading);
+            m.readings.push_back(std::move(reading));
         }
+        if (lab_from_spectra) labFromSpectra(m, source);
     } else {
         if (f.has("channels")) {
             const Json& channels = f.require("channels", "channel names");
@@ -215,11 +228,23 @@ Measurement parseMeasurementCsv(std::string_view text, const std::string& source
         const std::string b = firstColumn(table, {"b", "b*"});
         const bool by_geometry = table.column("geometry").has_value();
         if (!by_geometry) table.requireColumns({"aspecular_deg"});
-        if (l.empty()) table.requireColumns({"L"});
-        if (a.empty()) table.requireColumns({"a"});
-        if (b.empty()) table.requireColumns({"b"});
-        table.allowOnlyColumns(
-            {"geometry", "aspecular_deg", "illumination_deg", "L", "a", "b", "L*", "a*", "b*"});
+        std::vector<std::string> spectrum_columns;
+        for (const auto& column : table.header())
+            if (const auto wavelength = wavelengthColumn(column)) {
+                m.wavelengths_nm.push_back(*wavelength);
+                spectrum_columns.push_back(column);
+            }
+        // Spectral readings may leave CIELAB out (it follows from the spectrum).
+        const bool lab_from_spectra = !spectrum_columns.empty() && l.empty() && a.empty() && b.empty();
+        if (!lab_from_spectra) {
+            if (l.empty()) table.requireColumns({"L"});
+            if (a.empty()) table.requireColumns({"a"});
+            if (b.empty()) table.requireColumns({"b"});
+        }
+        std::vector<std::string_view> allowed{"geometry", "aspecular_deg", "illumination_deg", "L", "a", "b",
+                                              "L*",       "a*",            "b*"};
+        allowed.insert(allowed.end(), spectrum_columns.begin(), spectrum_columns.end());
+        table.allowOnlyColumns(allowed);
         for (const auto& record : table.records()) {
             MultiAngleReading reading;
             if (by_geometry && !table.field(record, "geometry").empty()) {
@@ -232,11 +257,16 @@ Measurement parseMeasurementCsv(std::string_view text, const std::string& source
                 reading.aspecular_deg = table.requiredNumber(record, "aspecular_deg");
                 reading.illumination_deg = table.number(record, "illumination_deg").value_or(45.0);
             }
-            reading.L = table.requiredNumber(record, l);
-            reading.a = table.requiredNumber(record, a);
-            reading.b = table.requiredNumber(record, b);
-            m.readings.push_back(reading);
+            if (!lab_from_spectra) {
+                reading.L = table.requiredNumber(record, l);
+                reading.a = table.requiredNumber(record, a);
+                reading.b = table.requiredNumber(record, b);
+            }
+            for (const auto& column : spectrum_columns)
+                reading.reflectance.push_back(table.requiredNumber(record, column));
+            m.readings.push_back(std::move(reading));
         }
+        if (lab_from_spectra) labFromSpectra(m, source);
     }
     validateMeasurement(m, source);
     return m;
@@ -249,10 +279,15 @@ std::string measurementToJson(const Measurement& measurement) {
 std::string measurementToCsv(const Measurement& m) {
     std::string out;
     if (m.kind == MeasurementKind::MultiAngle) {
-        out = io::csvLine({"illumination_deg", "aspecular_deg", "L", "a", "b"});
-        for (const auto& r : m.readings)
-            out += io::csvLine({io::csvNumber(r.illumination_deg), io::csvNumber(r.aspecular_deg),
-                                io::csvNumber(r.L), io::csvNumber(r.a), io::csvNumber(r.b)});
+        std::vector<std::string> header{"illumination_deg", "aspecular_deg", "L", "a", "b"};
+        for (const double w : m.wavelengths_nm) header.push_back(io::csvNumber(w) + "nm");
+        out = io::csvLine(header);
+        for (const auto& r : m.readings) {
+            std::vector<std::string> fields{io::csvNumber(r.illumination_deg), io::csvNumber(r.aspecular_deg),
+                                            io::csvNumber(r.L), io::csvNumber(r.a), io::csvNumber(r.b)};
+            for (const double v : r.reflectance) fields.push_back(io::csvNumber(v));
+            out += io::csvLine(fields);
+        }
         return out;
     }
     std::vector<std::string> header{"theta_i_deg", "phi_i_deg", "theta_o_deg", "phi_o_deg"};

@@ -6,10 +6,13 @@
 #include "measurement_json.h"
 #include "sqlite.h"
 
+#include "paintlab/engine/colour/cie_tables.h"
 #include "paintlab/engine/error.h"
+#include "paintlab/engine/fast_model/brdf_colour.h"
 #include "paintlab/engine/io/number_format.h"
 
 #include <cmath>
+#include <span>
 
 namespace paintlab::db {
 
@@ -71,6 +74,41 @@ std::vector<Fit> readFits(const Connection& c, Statement& s) {
     return out;
 }
 
+void requireWavelengths(std::span<const double> wavelengths_nm, const std::string& source) {
+    for (std::size_t i = 0; i < wavelengths_nm.size(); ++i) {
+        const std::string field = "wavelengths_nm[" + std::to_string(i) + "]";
+        requireFinite(wavelengths_nm[i], source, field);
+        if (wavelengths_nm[i] <= 0.0) throw InputError(source, field, "a wavelength must be positive");
+        if (i > 0 && wavelengths_nm[i] <= wavelengths_nm[i - 1])
+            throw InputError(source, field, "wavelengths must be strictly increasing");
+    }
+}
+
+// A multi-angle reading's spectrum: one reflectance factor per wavelength, >= 0.
+void requireReflectance(const MultiAngleReading& r, std::size_t wavelengths, const std::string& source,
+                        const std::string& field) {
+    if (r.reflectance.size() != wavelengths)
+        throw InputError(source, field + ".reflectance",
+                         std::to_string(r.reflectance.size()) + " values for " + std::to_string(wavelengths) +
+                             " wavelengths" +
+                             (wavelengths == 0 ? " (give wavelengths_nm with spectral readings)" : ""));
+    for (std::size_t j = 0; j < r.reflectance.size(); ++j) {
+        const std::string at = field + ".reflectance[" + std::to_string(j) + "]";
+        requireFinite(r.reflectance[j], source, at);
+        if (r.reflectance[j] < 0.0) throw InputError(source, at, "a reflectance factor cannot be negative");
+    }
+}
+
+Observer observerOf(const Measurement& m) {
+    return m.observer == "2deg" ? Observer::Cie1931_2deg : Observer::Cie1964_10deg;
+}
+
+Illuminant illuminantOf(const Measurement& m) {
+    if (m.illuminant == "D50") return Illuminant::D50;
+    if (m.illuminant == "A") return Illuminant::A;
+    return Illuminant::D65;
+}
+
 }  // namespace
 
 std::string_view measurementKindName(MeasurementKind kind) {
@@ -81,6 +119,19 @@ std::optional<MeasurementKind> parseMeasurementKind(std::string_view name) {
     if (name == "brdf") return MeasurementKind::Brdf;
     if (name == "multiangle") return MeasurementKind::MultiAngle;
     return std::nullopt;
+}
+
+void labFromSpectra(Measurement& m, const std::string& source) {
+    if (m.wavelengths_nm.empty()) return;
+    const ColourConditions conditions{illuminantOf(m), observerOf(m)};
+    for (std::size_t i = 0; i < m.readings.size(); ++i) {
+        auto& r = m.readings[i];
+        requireReflectance(r, m.wavelengths_nm.size(), source, "readings[" + std::to_string(i) + "]");
+        const Lab lab = spectrumColour(m.wavelengths_nm, r.reflectance, conditions).lab;
+        r.L = lab.L;
+        r.a = lab.a;
+        r.b = lab.b;
+    }
 }
 
 void validateMeasurement(const Measurement& m, const std::string& source) {
@@ -101,8 +152,11 @@ void validateMeasurement(const Measurement& m, const std::string& source) {
             requireRange(r.L, 0.0, 400.0, source, field + ".L", "");
             requireFinite(r.a, source, field + ".a");
             requireFinite(r.b, source, field + ".b");
+            if (!m.wavelengths_nm.empty() || !r.reflectance.empty())
+                requireReflectance(r, m.wavelengths_nm.size(), source, field);
         }
-        if (!m.samples.empty() || !m.channels.empty() || !m.wavelengths_nm.empty())
+        requireWavelengths(m.wavelengths_nm, source);
+        if (!m.samples.empty() || !m.channels.empty())
             throw InputError(source, "samples", "a multiangle measurement has readings, not BRDF samples");
         return;
     }
@@ -112,13 +166,7 @@ void validateMeasurement(const Measurement& m, const std::string& source) {
     if (m.channels.empty() == m.wavelengths_nm.empty())
         throw InputError(source, "channels",
                          "give either channel names (R, G, B) or wavelengths_nm, not both");
-    for (std::size_t i = 0; i < m.wavelengths_nm.size(); ++i) {
-        const std::string field = "wavelengths_nm[" + std::to_string(i) + "]";
-        requireFinite(m.wavelengths_nm[i], source, field);
-        if (m.wavelengths_nm[i] <= 0.0) throw InputError(source, field, "a wavelength must be positive");
-        if (i > 0 && m.wavelengths_nm[i] <= m.wavelengths_nm[i - 1])
-            throw InputError(source, field, "wavelengths must be strictly increasing");
-    }
+    requireWavelengths(m.wavelengths_nm, source);
     for (const auto& channel : m.channels)
         if (channel.empty()) throw InputError(source, "channels", "a channel has no name");
     const std::size_t channels = m.channels.size() + m.wavelengths_nm.size();

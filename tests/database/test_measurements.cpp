@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <cctype>
+#include <cmath>
 
 namespace paintlab::db {
 namespace {
@@ -47,7 +48,7 @@ TEST(Measurements, MultiAngleCsvIsReadAndRoundTrips) {
     const Measurement m = parseMeasurementCsv(kMultiAngleCsv, "panel.csv", description("silver panel"));
     EXPECT_EQ(m.kind, MeasurementKind::MultiAngle);
     ASSERT_EQ(m.readings.size(), 6U);
-    EXPECT_EQ(m.readings[0], (MultiAngleReading{45.0, -15.0, 131.2, -0.8, 2.1}));
+    EXPECT_EQ(m.readings[0], (MultiAngleReading{45.0, -15.0, 131.2, -0.8, 2.1, {}}));
     EXPECT_EQ(m.readings[5].aspecular_deg, 110.0);
     TempDir dir;
     Database db = Database::open(dir / "m.db");
@@ -100,6 +101,51 @@ TEST(Measurements, RgbBrdfJsonIsRead) {
                                         "rgb.json");
     EXPECT_EQ(m.channels, (std::vector<std::string>{"R", "G", "B"}));
     EXPECT_EQ(m.samples.at(0).values, (std::vector<double>{1, 2, 3}));
+}
+
+// A multi-angle spectrophotometer's export: reflectance factors per geometry
+// and no CIELAB. A flat spectrum R has, for any illuminant and observer,
+// Y = R and x, y of the white, so L* = 116 R^(1/3) - 16 and a* = b* = 0
+// (CIE 15:2004): an independent check of the computed CIELAB.
+TEST(Measurements, SpectralMultiAngleCsvGivesLabAndRoundTrips) {
+    const std::string csv = "geometry,400nm,550nm,700nm\n"
+                            "45as15,0.5,0.5,0.5\n"
+                            "45as45,0.2,0.2,0.2\n"
+                            "45as110,0.01,0.01,0.01\n";
+    const Measurement m = parseMeasurementCsv(csv, "byk.csv", description("spectral panel"));
+    EXPECT_EQ(m.kind, MeasurementKind::MultiAngle);
+    EXPECT_EQ(m.wavelengths_nm, (std::vector<double>{400, 550, 700}));
+    ASSERT_EQ(m.readings.size(), 3U);
+    EXPECT_EQ(m.readings[1].reflectance, (std::vector<double>{0.2, 0.2, 0.2}));
+    const auto lstar = [](double y) {
+        return y > 216.0 / 24389.0 ? 116.0 * std::cbrt(y) - 16.0 : 24389.0 / 27.0 * y;
+    };
+    // 1e-3 in L*: the CIE tables' white is normalised to Y = 1 to double precision;
+    // the tolerance only absorbs the summation's rounding.
+    for (std::size_t i = 0; i < m.readings.size(); ++i) {
+        const auto& r = m.readings[i];
+        EXPECT_NEAR(r.L, lstar(r.reflectance[0]), 1e-3) << i;
+        EXPECT_NEAR(r.a, 0.0, 1e-3) << i;
+        EXPECT_NEAR(r.b, 0.0, 1e-3) << i;
+    }
+    TempDir dir;
+    Database db = Database::open(dir / "m.db");
+    createMeasurement(db, m);
+    auto stored = findMeasurement(db, "spectral panel");
+    ASSERT_TRUE(stored.has_value());
+    stored->id = 0;
+    EXPECT_TRUE(*stored == m);
+    EXPECT_TRUE(parseMeasurementJson(measurementToJson(*stored), "m.json") == m);
+    EXPECT_TRUE(parseMeasurementCsv(measurementToCsv(*stored), "m.csv", description("spectral panel")) == m);
+}
+
+TEST(Measurements, SpectralMultiAngleJsonWithoutLabIsRead) {
+    const auto m = parseMeasurementJson(R"({"format": "paintlab-measurement", "format_version": 1,
+        "name": "spectral", "kind": "multiangle", "observer": "2deg", "wavelengths_nm": [400, 700],
+        "readings": [{"aspecular_deg": 15, "reflectance": [0.5, 0.5]}]})",
+                                        "s.json");
+    ASSERT_EQ(m.readings.size(), 1U);
+    EXPECT_NEAR(m.readings[0].L, 116.0 * std::cbrt(0.5) - 16.0, 1e-3);  // as above
 }
 
 TEST(Measurements, FitsLinkARecipeVersionAndAMeasurement) {
@@ -192,7 +238,20 @@ INSTANTIATE_TEST_SUITE_P(
             "json unknown field", "u.json",
             R"({"format": "paintlab-measurement", "format_version": 1, "name": "x", "kind": "multiangle",
                            "readings": [{"aspecular_deg": 15, "L": 50, "a": 0, "b": 0, "c": 1}]})",
-            "readings[0].c"}),
+            "readings[0].c"},
+        BadMeasurement{"negative reflectance", "negr.csv", "aspecular_deg,400,700\n15,0.5,-0.1\n",
+                       "readings[0].reflectance[1]"},
+        BadMeasurement{
+            "reflectance without wavelengths", "nowl.json",
+            R"({"format": "paintlab-measurement", "format_version": 1, "name": "x", "kind": "multiangle",
+                           "readings": [{"aspecular_deg": 15, "L": 50, "a": 0, "b": 0, "reflectance": [1]}]})",
+            "readings[0].reflectance"},
+        BadMeasurement{
+            "reflectance size", "size.json",
+            R"({"format": "paintlab-measurement", "format_version": 1, "name": "x", "kind": "multiangle",
+                "wavelengths_nm": [400, 500, 600],
+                "readings": [{"aspecular_deg": 15, "reflectance": [1, 1]}]})",
+            "readings[0].reflectance"}),
     [](const auto& test_info) {
         std::string name = test_info.param.label;
         for (char& c : name)

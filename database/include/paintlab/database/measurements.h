@@ -4,7 +4,9 @@
 //
 // - multiangle: CIELAB at the geometries of a multi-angle spectrophotometer
 //   (ASTM E2194 / DIN 6175-2: illumination 45° from the normal, aspecular
-//   angles -15, 15, 25, 45, 75, 110°), as BYK-mac or MA-T instruments export it;
+//   angles -15, 15, 25, 45, 75, 110°), as BYK-mac or MA-T instruments export it,
+//   and optionally the spectral reflectance factor per geometry (what such
+//   instruments measure; CIELAB follows from it);
 // - brdf: goniophotometer samples f(wi, wo) in 1/sr at (theta_i, phi_i,
 //   theta_o, phi_o) in degrees, spectral (one value per wavelength) or RGB.
 //
@@ -33,6 +35,10 @@ struct MultiAngleReading {
     double L = 0.0;                  // CIELAB under the measurement's illuminant and observer
     double a = 0.0;
     double b = 0.0;
+    // Spectral reflectance factor (pi f relative to the perfect diffuser, 1 =
+    // white; above 1 near the specular direction), one per
+    // Measurement::wavelengths_nm; empty when only CIELAB was measured.
+    std::vector<double> reflectance;
     friend bool operator==(const MultiAngleReading&, const MultiAngleReading&) = default;
 };
 
@@ -58,7 +64,8 @@ struct Measurement {
     std::string illuminant = "D65";
     std::string observer = "10deg";  // "2deg" or "10deg"
     std::vector<MultiAngleReading> readings;
-    // brdf: channel names ("R", "G", "B") or wavelengths (nm); exactly one of them
+    // brdf: channel names ("R", "G", "B") or wavelengths (nm); exactly one of them.
+    // multiangle: wavelengths (nm) of the readings' spectra, or empty.
     std::vector<std::string> channels;
     std::vector<double> wavelengths_nm;
     std::vector<BrdfSample> samples;
@@ -77,7 +84,8 @@ struct MeasurementSummary {
 };
 
 // Checks a measurement: name, kind-specific data present and finite, angles
-// in range, BRDF values >= 0 and one per channel. Throws InputError(source, field, ...).
+// in range, BRDF values and reflectance factors >= 0 and one per channel or
+// wavelength (all readings spectral or none). Throws InputError(source, field, ...).
 void validateMeasurement(const Measurement& measurement, const std::string& source);
 
 // Each throws DatabaseError naming the file when SQLite fails and InputError
@@ -85,6 +93,10 @@ void validateMeasurement(const Measurement& measurement, const std::string& sour
 std::int64_t createMeasurement(Database& db, const Measurement& measurement);
 std::optional<Measurement> findMeasurement(Database& db, std::string_view name);
 std::vector<MeasurementSummary> listMeasurements(Database& db);  // by name
+
+// CIELAB of every spectral reading from its reflectance factor, under the
+// measurement's illuminant and observer (for files that give only spectra).
+void labFromSpectra(Measurement& measurement, const std::string& source);
 
 // A fit of a recipe version to a measurement: how the recipe's prediction
 // compared with the measured points.
