@@ -141,8 +141,8 @@ ImportResult importSpectra(Database& db, const std::string& text, FileFormat for
     return result;
 }
 
-ImportResult importMeasurement(Database& db, const std::filesystem::path& file, const std::string& text,
-                               FileFormat format, const ImportOptions& options) {
+Measurement parseMeasurementFile(const std::filesystem::path& file, const std::string& text, FileFormat format,
+                                 const ImportOptions& options) {
     const std::string source = file.string();
     Measurement m;
     if (format == FileFormat::Json) {
@@ -157,6 +157,13 @@ ImportResult importMeasurement(Database& db, const std::filesystem::path& file, 
                          "measurements are imported from JSON or CSV, not " +
                              std::string(fileFormatName(format)));
     }
+    return m;
+}
+
+ImportResult importMeasurement(Database& db, const std::filesystem::path& file, const std::string& text,
+                               FileFormat format, const ImportOptions& options) {
+    const std::string source = file.string();
+    const Measurement m = parseMeasurementFile(file, text, format, options);
     try {
         createMeasurement(db, m);
     } catch (const InputError& e) {
@@ -246,6 +253,12 @@ ContentKind parseContentKind(std::string_view name) {
     throw InputError("<argument>", "--kind",
                      "unknown kind '" + std::string(name) +
                          "' (ingredients, spectra, measurement or recipe)");
+}
+
+Measurement readMeasurementFile(const std::filesystem::path& file, const ImportOptions& options) {
+    const FileFormat format = options.format ? *options.format : formatOfFile(file);
+    const std::string text = jsonio::readBoundedTextFile(file, kMaxImportBytes);
+    return parseMeasurementFile(file, text, format, options);
 }
 
 ImportResult importFile(Database& db, const std::filesystem::path& file, const ImportOptions& options) {

@@ -60,6 +60,10 @@ struct ImportResult {
 // format, bad record), DatabaseError naming the database when SQLite fails.
 ImportResult importFile(Database& db, const std::filesystem::path& file, const ImportOptions& options = {});
 
+// A measurement file (JSON or CSV, as importFile reads it) without storing
+// it: for a fit to a file. Throws InputError naming the file.
+Measurement readMeasurementFile(const std::filesystem::path& file, const ImportOptions& options = {});
+
 // Ingredients by exact name (any kind; empty names = every ingredient), as
 // JSON or CSV text. Throws InputError naming the database for a name it does not hold.
 std::string exportIngredients(Database& db, const std::vector<std::string>& names, FileFormat format);
