@@ -187,8 +187,8 @@ void WorkstationTest::screenshotsMatchBaselines() {
     waitIdle();
     // The measured times are the one thing that differs from run to run (and
     // by 4x under the sanitizers): shown as "#.# ms" in the screenshots.
-    paintlab::test::maskMeasuredTimes(*m_window);
     QTest::qWait(200);  // let the last repaint of the plots land
+    paintlab::test::maskMeasuredTimes(*m_window);
     constexpr double kThreshold = 0.98;
     auto check = [&](QWidget& widget, const QString& name) {
         auto result = paintlab::test::compareWithBaseline(widget, name, kThreshold);
