@@ -180,6 +180,12 @@ void MainWindow::buildMenus() {
     QAction* reset =
         view->addAction(tr("&Reset layout"), this, [this]() { applyDefaultLayout(*this, layoutDocks()); });
     reset->setObjectName("reset_layout_action");
+    // The ray map at the view's size now (raymap_resolution.h): the one cached for it, else traced.
+    QAction* retrace = view->addAction(tr("Ray map for this &view size"), this, [this]() {
+        if (!m_scene.empty()) openScene(m_scene, {});
+    });
+    retrace->setObjectName("raymap_for_view_action");
+    retrace->setEnabled(m_raymap_follows_view);
     reset->setStatusTip(tr("Every dock back where it was at the first start, sized for this window"));
     view->addSeparator();
     QAction* log = view->addAction(tr("Logarithmic BRDF axis"));
@@ -259,6 +265,7 @@ void MainWindow::openScene(const std::filesystem::path& scene, const std::filesy
         const QSize view = m_render->viewPixels();
         box = rayMapBox({view.width(), view.height()});
     }
+    m_scene = scene;
     const std::filesystem::path map_file =
         raymap.empty()
             ? cachedRayMapPath(scene, box ? QStringLiteral("-view%1x%2").arg(box->width).arg(box->height)

@@ -169,6 +169,7 @@ private:
     QListWidget* m_recipes = nullptr;
     QDockWidget* m_inplane_dock = nullptr;
     bool m_raymap_follows_view = true;
+    std::filesystem::path m_scene;  // the scene last opened
     RecipeEditorDock* m_editor = nullptr;
     RenderDock* m_render = nullptr;
     AccuracyDock* m_accuracy = nullptr;

@@ -73,12 +73,12 @@ void applyDefaultLayout(QMainWindow& window, const LayoutDocks& docks) {
     if (wide) docks.accuracy->raise();
 
     // Sizes: the left column as wide as the editor's rows need (a field, a
-    // slider, a unit); the bottom a third of the height; the recipe list
+    // slider, a unit); the bottom 38 % of the height (two button rows, tabs, a plot); the recipe list
     // with room for its demo recipes and one more.
     const int left = std::clamp(width * 24 / 100, 360, 460);
     window.resizeDocks({docks.recipes}, {left}, Qt::Horizontal);
     if (wide) window.resizeDocks({docks.accuracy}, {std::clamp(width * 22 / 100, 340, 460)}, Qt::Horizontal);
-    window.resizeDocks({docks.plots}, {std::clamp(height * 34 / 100, 220, 380)}, Qt::Vertical);
+    window.resizeDocks({docks.plots}, {std::clamp(height * 38 / 100, 240, 400)}, Qt::Vertical);
     const int list = listHeight(docks.recipes, 6);
     window.resizeDocks({docks.recipes, docks.editor}, {list, std::max(200, height - list)}, Qt::Vertical);
 }

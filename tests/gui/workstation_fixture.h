@@ -24,7 +24,7 @@ inline QString writeTinyDemoScene(const QString& folder) {
     scene["camera"]["width"] = 64;
     scene["camera"]["height"] = 36;
     QDir().mkpath(folder + "/scenes");
-    const QString file = folder + "/scenes/car.json";
+    QString file = folder + "/scenes/car.json";
     std::ofstream(file.toStdString()) << scene.dump(2);
     return file;
 }
