@@ -77,7 +77,7 @@ void applyDefaultLayout(QMainWindow& window, const LayoutDocks& docks) {
     // with room for its demo recipes and one more.
     const int left = std::clamp(width * 24 / 100, 360, 460);
     window.resizeDocks({docks.recipes}, {left}, Qt::Horizontal);
-    if (wide) window.resizeDocks({docks.accuracy}, {std::clamp(width * 22 / 100, 340, 460)}, Qt::Horizontal);
+    if (wide) window.resizeDocks({docks.accuracy}, {std::clamp(width * 23 / 100, 340, 480)}, Qt::Horizontal);
     window.resizeDocks({docks.plots}, {std::clamp(height * 38 / 100, 240, 400)}, Qt::Vertical);
     const int list = listHeight(docks.recipes, 6);
     window.resizeDocks({docks.recipes, docks.editor}, {list, std::max(200, height - list)}, Qt::Vertical);
