@@ -12,7 +12,8 @@ namespace paintlab::gui {
 // At most 960 x 540 image pixels, 4x the demo scene's 480 x 270: the
 // precompute's time grows with the pixels (docs/PERFORMANCE.md, "Ray maps":
 // 5.3 s at 480 x 270 with the defaults on an idle 2-core machine), so tracing
-// stays within about half a minute; the relight of 960 x 540 takes ~5 ms.
+// stays near 20 s there (longer under load: gui/README.md); the relight
+// kernel of 960 x 540 takes ~5 ms.
 inline constexpr std::int64_t kMaxRayMapPixels = std::int64_t{960} * 540;
 
 struct PixelSize {
