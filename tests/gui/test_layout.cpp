@@ -98,6 +98,7 @@ private slots:
     void initTestCase();
     void fitsTheScreen_data();
     void fitsTheScreen();
+    void enlargingAndShrinkingAgainKeepsItTidy();
     void resetLayoutBringsBackTheDefault();
     void layoutPersistsAndAnOldOneIsIgnored();
     void rayMapResolutionFollowsTheViewWithinTheBudget();
@@ -192,6 +193,7 @@ void LayoutTest::fitsTheScreen_data() {
     QTest::addColumn<QSize>("size");
     QTest::newRow("1024x700") << QSize(1024, 700);
     QTest::newRow("1366x768") << QSize(1366, 768);
+    QTest::newRow("1500x988") << QSize(1500, 988);  // where the issue saw the editor scroll sideways
     QTest::newRow("1920x1080") << QSize(1920, 1080);
 }
 
@@ -260,6 +262,20 @@ void LayoutTest::fitsTheScreen() {
         *m_window, QStringLiteral("layout-%1x%2").arg(size.width()).arg(size.height()), 0.98);
     qInfo("%s", qPrintable(result.message));
     QVERIFY2(result.ok, qPrintable(result.message));
+}
+
+// The issue saw the overlap remain after enlarging the window again: the
+// laptop's layout stretched to a large screen and back, without a reset.
+void LayoutTest::enlargingAndShrinkingAgainKeepsItTidy() {
+    resizeTo(QSize(1024, 700));
+    m_window->findChild<QAction*>(QStringLiteral("reset_layout_action"))->trigger();
+    for (const QSize size : {QSize(1920, 1080), QSize(1024, 700), QSize(1366, 768)}) {
+        resizeTo(size);
+        const QStringList errors = layoutErrors();
+        QVERIFY2(errors.isEmpty(),
+                 qPrintable(
+                     QStringLiteral("%1x%2: %3").arg(size.width()).arg(size.height()).arg(errors.value(0))));
+    }
 }
 
 void LayoutTest::resetLayoutBringsBackTheDefault() {
