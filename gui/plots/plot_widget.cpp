@@ -109,7 +109,7 @@ struct PlotWidget::Gl {
 };
 
 PlotWidget::PlotWidget(QWidget* parent) : QWidget(parent) {
-    setMinimumSize(320, 240);
+    setMinimumSize(200, 100);               // a plot fits a laptop's bottom dock
     setAttribute(Qt::WA_OpaquePaintEvent);  // paintEvent covers every pixel
     m_surface = new QOffscreenSurface(nullptr, this);
     m_surface->setFormat(QSurfaceFormat::defaultFormat());

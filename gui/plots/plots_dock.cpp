@@ -106,11 +106,16 @@ PlotsDock::PlotsDock(QWidget* parent) : QDockWidget(tr("Plots"), parent) {
     m_full_cancel = new QPushButton(tr("Cancel"), body);
     m_full_cancel->setObjectName("plots_full_model_cancel");
     m_full_cancel->hide();
-    for (QWidget* w : std::initializer_list<QWidget*>{png, csv, pin, unpin, m_log, m_full, m_full_seconds,
-                                                      m_full_progress, m_full_cancel})
-        bar->addWidget(w);
-    bar->addWidget(m_status, 1);  // the room left, text at its right end
+    // Two rows, so the dock fits beside the recipe editor on a 1024-pixel
+    // screen: files and comparison first, the full model and the status below.
+    for (QWidget* w : std::initializer_list<QWidget*>{png, csv, pin, unpin, m_log}) bar->addWidget(w);
+    bar->addStretch(1);
     layout->addLayout(bar);
+    auto* full_row = new QHBoxLayout;
+    for (QWidget* w : std::initializer_list<QWidget*>{m_full, m_full_seconds, m_full_progress, m_full_cancel})
+        full_row->addWidget(w);
+    full_row->addWidget(m_status, 1);  // the room left, text at its right end
+    layout->addLayout(full_row);
 
     m_tabs = new QTabWidget(body);
     m_tabs->setObjectName("plots_tabs");

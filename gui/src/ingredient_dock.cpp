@@ -71,6 +71,9 @@ IngredientDock::IngredientDock(RecipeDocument* document, QWidget* parent)
     m_kind->addItem(tr("All kinds"), -1);
     for (int k = 0; k < kKinds; ++k)
         m_kind->addItem(qs(ingredientKindLabel(static_cast<db::IngredientKind>(k))), k);
+    // As narrow as ten characters (the longest kind is elided): the dock fits a 360-pixel column.
+    m_kind->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+    m_kind->setMinimumContentsLength(10);
     filters->addWidget(m_search, 1);
     filters->addWidget(m_kind);
     layout->addLayout(filters);
@@ -123,23 +126,28 @@ IngredientDock::IngredientDock(RecipeDocument* document, QWidget* parent)
     m_chart = new SpectrumChart(spectra_box);
     spectra_layout->addWidget(m_chart, 1);
     split->addWidget(spectra_box);
-    split->setSizes({150, 260, 300});  // in proportion: the spectrum chart gets the most
+    split->setSizes({250, 170, 250});  // in proportion: the list and the spectra first, the fields scroll
     layout->addWidget(split, 1);
 
-    auto* edit_row = new QHBoxLayout;
-    m_save = new QPushButton(tr("Save changes"), body);
-    m_save->setObjectName("ingredient_save");
-    m_revert = new QPushButton(tr("Revert"), body);
+    // Three short rows, so the dock fits a 360-pixel column: adding to the
+    // recipe, editing the ingredient, files and the status.
+    auto* add_row = new QHBoxLayout;
     m_add = new QPushButton(tr("Add to layer"), body);
     m_add->setObjectName("ingredient_add");
     m_add->setToolTip(tr("Add the selected ingredient to a layer of the recipe being edited (undoable)"));
     m_layer = new QComboBox(body);
     m_layer->setObjectName("ingredient_layer");
+    add_row->addWidget(m_add);
+    add_row->addWidget(m_layer, 1);
+    layout->addLayout(add_row);
+
+    auto* edit_row = new QHBoxLayout;
+    m_save = new QPushButton(tr("Save changes"), body);
+    m_save->setObjectName("ingredient_save");
+    m_revert = new QPushButton(tr("Revert"), body);
     edit_row->addWidget(m_save);
     edit_row->addWidget(m_revert);
     edit_row->addStretch(1);
-    edit_row->addWidget(m_add);
-    edit_row->addWidget(m_layer);
     layout->addLayout(edit_row);
 
     auto* file_row = new QHBoxLayout;

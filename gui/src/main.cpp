@@ -5,10 +5,12 @@
 #include "file_output.h"
 #include "main_window.h"
 #include "plot_render_thread.h"
+#include "plots_dock.h"
 
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QSurfaceFormat>
+#include <QTimer>
 
 #include "render_dock.h"
 
@@ -88,11 +90,19 @@ int main(int argc, char** argv) {
         QObject::connect(
             window.scheduler(), &paintlab::gui::RenderScheduler::becameIdle, &window, [&window, file]() {
                 if (window.renderDock()->image().isNull()) return;  // still tracing
-                // The plots' latest drawings (plot render thread) into their widgets.
-                paintlab::gui::PlotRenderThread::instance().settle();
-                const int code = paintlab::gui::saveImageAtomically(window.grab().toImage(), file) ? 0 : 1;
-                if (code != 0) std::fprintf(stderr, "paintlab: cannot write %s\n", qPrintable(file));
-                QApplication::exit(code);
+                // The plots' data (their worker) first, then their latest drawings
+                // (plot render thread) into their widgets.
+                auto* wait = new QTimer(&window);
+                QObject::connect(wait, &QTimer::timeout, &window, [&window, file, wait]() {
+                    if (window.plotsDock()->computing()) return;
+                    wait->stop();
+                    paintlab::gui::PlotRenderThread::instance().settle();
+                    const int code =
+                        paintlab::gui::saveImageAtomically(window.grab().toImage(), file) ? 0 : 1;
+                    if (code != 0) std::fprintf(stderr, "paintlab: cannot write %s\n", qPrintable(file));
+                    QApplication::exit(code);
+                });
+                wait->start(50);
             });
     }
     return QApplication::exec();

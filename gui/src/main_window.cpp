@@ -3,11 +3,15 @@
 #include "accuracy_dock.h"
 #include "author_setting.h"
 #include "file_output.h"
+#include "ingredient_dock.h"
 #include "inplane_plot.h"
 #include "plots_dock.h"
+#include "raymap_resolution.h"
 #include "recipe_editor_dock.h"
 #include "render_dock.h"
 #include "undo_shortcut_filter.h"
+#include "versions_dock.h"
+#include "window_layout.h"
 #include "workstation_paths.h"
 
 #include "paintlab/database/demo.h"
@@ -26,6 +30,7 @@
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QProgressDialog>
+#include <QScreen>
 #include <QSettings>
 #include <QStatusBar>
 #include <QThread>
@@ -46,21 +51,21 @@ QString pickHint() { return MainWindow::tr(": pick a recipe in the Recipes list 
 MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMainWindow(parent) {
     setWindowTitle(tr("PaintLab"));
     setObjectName("main_window");
-    m_plot = new InplanePlot(this);
-    setCentralWidget(m_plot);
-
-    auto* list_dock = new QDockWidget(tr("Recipes"), this);
-    list_dock->setObjectName("recipes");
-    m_recipes = new QListWidget(list_dock);
-    m_recipes->setObjectName("recipe_list");
-    list_dock->setWidget(m_recipes);
-    addDockWidget(Qt::LeftDockWidgetArea, list_dock);
-    m_editor = new RecipeEditorDock(&m_document, this);
-    addDockWidget(Qt::LeftDockWidgetArea, m_editor);
+    m_raymap_follows_view = options.raymap_follows_view;
+    // The relit scene in the middle, the docks around it (window_layout.h).
     m_render = new RenderDock(this);
-    addDockWidget(Qt::RightDockWidgetArea, m_render);
+    setCentralWidget(m_render);
+    m_recipes_dock = new QDockWidget(tr("Recipes"), this);
+    m_recipes_dock->setObjectName("recipes");
+    m_recipes = new QListWidget(m_recipes_dock);
+    m_recipes->setObjectName("recipe_list");
+    m_recipes_dock->setWidget(m_recipes);
+    m_editor = new RecipeEditorDock(&m_document, this);
     m_accuracy = new AccuracyDock(this);
-    addDockWidget(Qt::RightDockWidgetArea, m_accuracy);
+    m_inplane_dock = new QDockWidget(tr("In-plane BRDF"), this);
+    m_inplane_dock->setObjectName("inplane");
+    m_plot = new InplanePlot(m_inplane_dock);
+    m_inplane_dock->setWidget(m_plot);
     addDatabaseDocks();
     addPlotsDock();
     buildMenus();
@@ -109,19 +114,23 @@ MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMa
         m_plots->compareWithFullModel();
     });
 
-    // First start: a layout that shows every dock; later the one the user left.
-    resize(1500, 950);
-    resizeDocks({list_dock, m_editor}, {220, 700}, Qt::Vertical);
-    resizeDocks({m_editor, m_render}, {420, 640}, Qt::Horizontal);
-    QSettings settings;
-    restoreGeometry(settings.value("window/geometry").toByteArray());
-    restoreState(settings.value("window/state").toByteArray());
+    // First start: the default layout for the window's size; later the one the user left.
+    resize(QSize(1366, 768).boundedTo(screen()->availableGeometry().size()));
+    makeDocksScrollable(layoutDocks());
+    restoreLayout(*this, layoutDocks());
 
     connectComparison();
     openDatabase(options.database);
     connectDatabaseDocks();
+    // Once the window is shown and laid out: the ray map follows the view's size.
     if (options.open_scene)
-        openScene(options.scene.empty() ? demoScenePath() : options.scene, options.raymap);
+        QTimer::singleShot(0, this, [this, scene = options.scene, raymap = options.raymap]() {
+            openScene(scene.empty() ? demoScenePath() : scene, raymap);
+        });
+}
+
+LayoutDocks MainWindow::layoutDocks() const {
+    return {m_recipes_dock, m_editor, m_ingredients, m_accuracy, m_versions, m_plots, m_inplane_dock};
 }
 
 MainWindow::~MainWindow() {
@@ -168,6 +177,17 @@ void MainWindow::buildMenus() {
 
     QMenu* view = menuBar()->addMenu(tr("&View"));
     for (QDockWidget* dock : findChildren<QDockWidget*>()) view->addAction(dock->toggleViewAction());
+    QAction* reset =
+        view->addAction(tr("&Reset layout"), this, [this]() { applyDefaultLayout(*this, layoutDocks()); });
+    reset->setObjectName("reset_layout_action");
+    // The ray map at the view's size now (raymap_resolution.h): the one cached for it, else traced.
+    QAction* retrace = view->addAction(tr("Ray map for this &view size"), this, [this]() {
+        if (!m_scene.empty()) openScene(m_scene, {});
+    });
+    retrace->setObjectName("raymap_for_view_action");
+    retrace->setEnabled(m_raymap_follows_view);
+    reset->setStatusTip(tr("Every dock back where it was at the first start, sized for this window"));
+    view->addSeparator();
     QAction* log = view->addAction(tr("Logarithmic BRDF axis"));
     log->setCheckable(true);
     connect(log, &QAction::toggled, this, [this](bool on) { m_plot->setLogScale(on); });
@@ -239,7 +259,18 @@ bool MainWindow::openRecipeFile(const QString& path) {
 }
 
 void MainWindow::openScene(const std::filesystem::path& scene, const std::filesystem::path& raymap) {
-    const std::filesystem::path map_file = raymap.empty() ? cachedRayMapPath(scene) : raymap;
+    // A map traced now fills the view (raymap_resolution.h); the cache keeps one per view box.
+    std::optional<PixelSize> box;
+    if (m_raymap_follows_view && isVisible()) {
+        const QSize view = m_render->viewPixels();
+        box = rayMapBox({view.width(), view.height()});
+    }
+    m_scene = scene;
+    const std::filesystem::path map_file =
+        raymap.empty()
+            ? cachedRayMapPath(scene, box ? QStringLiteral("-view%1x%2").arg(box->width).arg(box->height)
+                                          : QString())
+            : raymap;
     const auto openMap = [this, map_file]() {
         try {
             m_scheduler.setRayMap(std::shared_ptr<const raymaps::RayMap>(raymaps::RayMap::open(map_file)));
@@ -258,6 +289,11 @@ void MainWindow::openScene(const std::filesystem::path& scene, const std::filesy
     raymaps::Scene loaded;
     try {
         loaded = raymaps::loadSceneFile(scene);
+        if (box) {
+            const PixelSize size = rayMapResolution(*box, {loaded.camera.width, loaded.camera.height});
+            loaded.camera.width = size.width;
+            loaded.camera.height = size.height;
+        }
     } catch (const std::exception& e) {
         showError(tr("Cannot open the scene"), QString::fromUtf8(e.what()));
         return;
@@ -378,9 +414,7 @@ void MainWindow::closeEvent(QCloseEvent* event) {
         event->ignore();
         return;
     }
-    QSettings settings;
-    settings.setValue("window/geometry", saveGeometry());
-    settings.setValue("window/state", saveState());
+    saveLayout(*this);
     QMainWindow::closeEvent(event);
 }
 

@@ -1,13 +1,15 @@
 #pragma once
-// The workstation's main window: the recipe list of the database, the recipe
-// editor, the in-plane BRDF plot, the render and accuracy docks. Dock layout,
-// window geometry and recent files are kept with QSettings. Unsaved edits are
+// The workstation's main window: the relit scene in the middle; the recipe
+// list of the database, the recipe editor, the in-plane BRDF plot, the plots
+// and accuracy docks around it (window_layout.h). Dock layout, window
+// geometry and recent files are kept with QSettings. Unsaved edits are
 // never dropped without asking (main_window_unsaved.cpp) and are kept in a
 // recovery draft (recovery_draft.h) until saved or discarded.
 
 #include "recipe_document.h"
 #include "recovery_draft.h"
 #include "render_scheduler.h"
+#include "window_layout.h"
 
 #include "paintlab/database/database.h"
 
@@ -18,6 +20,7 @@
 #include <memory>
 #include <optional>
 
+class QDockWidget;
 class QListWidget;
 class QMenu;
 class QThread;
@@ -35,6 +38,9 @@ struct WorkstationOptions {
     std::filesystem::path scene;     // empty: the demo scene
     std::filesystem::path raymap;    // empty: traced from the scene into the cache when missing
     bool open_scene = true;
+    // A map traced at start takes the view's resolution (raymap_resolution.h);
+    // false: the scene camera's own (tests' tiny scenes).
+    bool raymap_follows_view = true;
 };
 
 // The database docks and dialog (main_window_docks.cpp).
@@ -137,6 +143,9 @@ private:
     // than the edited recipe's last request (or `always`).
     void requestComparison(bool always);
 
+    // The docks window_layout.h arranges.
+    LayoutDocks layoutDocks() const;
+
     RecipeDocument m_document;
     RecoveryDraft m_draft{&m_document};
     RenderScheduler m_scheduler;
@@ -156,7 +165,11 @@ private:
     std::optional<ComparisonKey> m_comparison_key;
     Preset m_last_preset = Preset::Standard;
     std::optional<db::Database> m_db;
+    QDockWidget* m_recipes_dock = nullptr;
     QListWidget* m_recipes = nullptr;
+    QDockWidget* m_inplane_dock = nullptr;
+    bool m_raymap_follows_view = true;
+    std::filesystem::path m_scene;  // the scene last opened
     RecipeEditorDock* m_editor = nullptr;
     RenderDock* m_render = nullptr;
     AccuracyDock* m_accuracy = nullptr;

@@ -20,16 +20,10 @@
 namespace paintlab::gui {
 
 void MainWindow::addDatabaseDocks() {
-    // First start: the ingredients as a tab beside the recipe editor, the
-    // versions beside the accuracy panel (restoreState puts them where the user left them).
+    // Placed by window_layout.h (restoreLayout): by default the ingredients a
+    // tab beside the recipe editor, the versions beside the accuracy panel.
     m_ingredients = new IngredientDock(&m_document, this);
-    addDockWidget(Qt::LeftDockWidgetArea, m_ingredients);
-    tabifyDockWidget(m_editor, m_ingredients);
-    m_editor->raise();
     m_versions = new VersionsDock(&m_document, this);
-    addDockWidget(Qt::RightDockWidgetArea, m_versions);
-    tabifyDockWidget(m_accuracy, m_versions);
-    m_accuracy->raise();
 
     // Opening or reverting to a version replaces the edited recipe: asked first.
     m_versions->setLeaveGuard([this](const QString& next_step) { return resolveUnsavedEdits(next_step); });

@@ -12,8 +12,7 @@
 namespace paintlab::gui {
 
 void MainWindow::addPlotsDock() {
-    m_plots = new PlotsDock(this);
-    addDockWidget(Qt::BottomDockWidgetArea, m_plots);
+    m_plots = new PlotsDock(this);  // placed by window_layout.h
     connect(&m_scheduler, &RenderScheduler::finished, m_plots, [this](const RenderResult& result) {
         if (result.brdf) m_plots->setBrdf(result.brdf);
     });

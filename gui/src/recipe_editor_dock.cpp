@@ -24,6 +24,12 @@
 
 namespace paintlab::gui {
 
+namespace {
+
+constexpr int kTitleWidth = 240;  // pixels of a layer's or component's group title, at most
+
+}  // namespace
+
 RecipeEditorDock::RecipeEditorDock(RecipeDocument* document, QWidget* parent)
     : QDockWidget(tr("Recipe editor"), parent), m_document(document) {
     setObjectName("recipe_editor");
@@ -141,7 +147,11 @@ void RecipeEditorDock::rebuild() {
                 title += QString::fromUtf8(" \u203a ") + QString::fromStdString(componentName(c)) + " (" +
                          kind + ")";
             }
-            auto* box = new QGroupBox(title, m_form);
+            // A group box is at least as wide as its title: a long one is
+            // shortened ("…"), whole in the tooltip, so the rows fit a narrow dock.
+            auto* box = new QGroupBox(m_form);
+            box->setTitle(box->fontMetrics().elidedText(title, Qt::ElideMiddle, kTitleWidth));
+            box->setToolTip(title);
             grid = new QGridLayout(box);
             m_layout->addWidget(box);
         }

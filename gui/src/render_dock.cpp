@@ -28,10 +28,11 @@ QString timesText(const RenderResult& result) {
 
 }  // namespace
 
-RenderDock::RenderDock(QWidget* parent) : QDockWidget(tr("Render"), parent) {
+RenderDock::RenderDock(QWidget* parent) : QWidget(parent) {
     setObjectName("render");
-    auto* body = new QWidget(this);
+    QWidget* body = this;
     auto* layout = new QVBoxLayout(body);
+    layout->setContentsMargins(4, 4, 4, 2);
     m_view = new ComparisonView(body);
     // The first start's empty state says what to do.
     m_view->setPlaceholder(
@@ -46,16 +47,17 @@ RenderDock::RenderDock(QWidget* parent) : QDockWidget(tr("Render"), parent) {
     m_mode->setToolTip(tr("Compare the edited recipe (left) with another version (right): pick one in the "
                           "Versions dock, or pin the current recipe"));
     compare->addWidget(m_mode);
-    m_pin = new QPushButton(tr("Pin current as comparison"), body);
+    m_pin = new QPushButton(tr("Pin current"), body);
+    m_pin->setToolTip(tr("Keep the current recipe's render as the comparison"));
     m_pin->setObjectName("pin_comparison");
     compare->addWidget(m_pin);
     m_clear = new QPushButton(tr("Clear comparison"), body);
+    m_clear->setToolTip(tr("Show the edited recipe alone"));
     m_clear->setObjectName("clear_comparison");
     m_clear->setEnabled(false);
     compare->addWidget(m_clear);
     compare->addStretch(1);
-    layout->addLayout(compare);
-    auto* controls = new QHBoxLayout();
+    auto* controls = compare;  // one row under the picture: compare, exposure, save
     controls->addWidget(new QLabel(tr("Exposure"), body));
     m_exposure = new QDoubleSpinBox(body);
     m_exposure->setRange(-8.0, 8.0);
@@ -66,7 +68,6 @@ RenderDock::RenderDock(QWidget* parent) : QDockWidget(tr("Render"), parent) {
     auto* save = new QPushButton(tr("Save image..."), body);
     save->setToolTip(tr("Saves what is shown: a comparison with its labels"));
     controls->addWidget(save);
-    controls->addStretch(1);
     layout->addLayout(controls);
     m_status = new QLabel(body);
     m_status->setObjectName("render_status");
@@ -78,7 +79,6 @@ RenderDock::RenderDock(QWidget* parent) : QDockWidget(tr("Render"), parent) {
     m_comparison_status->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
     m_comparison_status->hide();
     layout->addWidget(m_comparison_status);
-    setWidget(body);
     connect(m_exposure, &QDoubleSpinBox::valueChanged, this, &RenderDock::exposureChanged);
     connect(save, &QPushButton::clicked, this, &RenderDock::saveImageRequested);
     connect(m_pin, &QPushButton::clicked, this, &RenderDock::pinCurrentRequested);
@@ -88,6 +88,8 @@ RenderDock::RenderDock(QWidget* parent) : QDockWidget(tr("Render"), parent) {
 }
 
 double RenderDock::exposureEv() const { return m_exposure->value(); }
+
+QSize RenderDock::viewPixels() const { return m_view->size() * m_view->devicePixelRatio(); }
 
 void RenderDock::showResult(const RenderResult& result) {
     m_view->setPlaceholder(tr("No image yet"));  // a recipe is open: a scene is still to come

@@ -1,18 +1,17 @@
 #pragma once
-// The relit scene: the latest image the render scheduler delivered, with the
-// exposure control, what it cost, and saving the image; and the comparison of
-// the edited recipe with another version (picked in the Versions dock, or the
-// current recipe pinned): single, side by side, or split by a draggable
-// vertical divider (left: the edited recipe, right: the comparison), each
-// side labelled with its version. Both sides come from renders of the same
-// ray map at the same settings (the main window asks both schedulers), so
-// the composition is pixel for pixel what each recipe gives (comparison_image.h).
+// The relit scene, the main window's central widget (window_layout.h): the
+// latest image scaled to the room it has (aspect kept), the latest image the render scheduler delivered, with
+// the exposure control, what it cost, and saving the image; and the comparison of the edited recipe with
+// another version (picked in the Versions dock, or the current recipe pinned): single, side by side, or split
+// by a draggable vertical divider (left: the edited recipe, right: the comparison), each side labelled with
+// its version. Both sides come from renders of the same ray map at the same settings (the main window asks
+// both schedulers), so the composition is pixel for pixel what each recipe gives (comparison_image.h).
 
 #include "comparison_image.h"
 #include "render_scheduler.h"
 
-#include <QDockWidget>
 #include <QImage>
+#include <QWidget>
 
 class QComboBox;
 class QDoubleSpinBox;
@@ -23,7 +22,7 @@ namespace paintlab::gui {
 
 class ComparisonView;
 
-class RenderDock : public QDockWidget {
+class RenderDock : public QWidget {
     Q_OBJECT
 public:
     explicit RenderDock(QWidget* parent = nullptr);
@@ -33,6 +32,8 @@ public:
     // The edited recipe's latest image (single view).
     const QImage& image() const { return m_image; }
     double exposureEv() const;
+    // The picture's room in device pixels (what a ray map traced for it should fill).
+    QSize viewPixels() const;
 
     // The label of the edited recipe's side ("current: <origin>").
     void setCurrentLabel(const QString& label);

@@ -75,11 +75,16 @@ VersionsDock::VersionsDock(RecipeDocument* document, QWidget* parent)
     m_revert->setToolTip(tr("Save the selected version's contents as a new version (versions never change)"));
     m_compare_render = new QPushButton(tr("Compare in render"), body);
     m_compare_render->setObjectName("compare_in_render");
-    m_compare_render->setToolTip(tr("Render the selected version beside the edited recipe (Render dock: "
-                                    "side by side or split)"));
-    for (QPushButton* b : {m_save, m_compare, m_open, m_revert, m_compare_render}) buttons->addWidget(b);
+    m_compare_render->setToolTip(tr("Render the selected version beside the edited recipe (the render "
+                                    "view: side by side or split)"));
+    // Two rows, so the dock fits a 340-pixel column: versions, then comparisons.
+    for (QPushButton* b : {m_save, m_open, m_revert}) buttons->addWidget(b);
     buttons->addStretch(1);
     layout->addLayout(buttons);
+    auto* compare_row = new QHBoxLayout;
+    for (QPushButton* b : {m_compare, m_compare_render}) compare_row->addWidget(b);
+    compare_row->addStretch(1);
+    layout->addLayout(compare_row);
     setWidget(body);
 
     connect(m_save, &QPushButton::clicked, this, &VersionsDock::askNoteAndSave);

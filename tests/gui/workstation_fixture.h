@@ -1,0 +1,40 @@
+#pragma once
+// What the workstation's GUI tests share: the demo car scene made tiny (64 x
+// 36 pixels, so that tracing and relighting take well under a second even
+// under ASan), and the measured times masked in the labels before a
+// screenshot is compared with its baseline (they are the one thing that
+// differs from run to run, and by 4x under the sanitizers).
+
+#include <QDir>
+#include <QLabel>
+#include <QRegularExpression>
+#include <QString>
+#include <QWidget>
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+namespace paintlab::test {
+
+// Writes the demo scene at 64 x 36 pixels into <folder>/scenes/car.json; returns its path.
+inline QString writeTinyDemoScene(const QString& folder) {
+    std::ifstream in(std::string(PAINTLAB_DEMO_DIR) + "/scenes/car_body_sky.json");
+    nlohmann::json scene = nlohmann::json::parse(in);
+    scene["camera"]["width"] = 64;
+    scene["camera"]["height"] = 36;
+    QDir().mkpath(folder + "/scenes");
+    QString file = folder + "/scenes/car.json";
+    std::ofstream(file.toStdString()) << scene.dump(2);
+    return file;
+}
+
+// "12.3 ms" becomes "#.# ms" in every label under `root`.
+inline void maskMeasuredTimes(QWidget& root) {
+    static const QRegularExpression time(QStringLiteral("[0-9]+\\.[0-9] ms"));
+    for (QLabel* label : root.findChildren<QLabel*>())
+        if (label->text().contains(time))
+            label->setText(label->text().replace(time, QStringLiteral("#.# ms")));
+}
+
+}  // namespace paintlab::test
