@@ -62,6 +62,7 @@ MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMa
     m_accuracy = new AccuracyDock(this);
     addDockWidget(Qt::RightDockWidgetArea, m_accuracy);
     addDatabaseDocks();
+    addMatchDock();
     addPlotsDock();
     buildMenus();
 
