@@ -31,7 +31,9 @@ struct ParameterPath {
     const ParameterDecl* decl = nullptr;  // its declaration (key, unit, ranges)
     double value = 0.0;                   // in the recipe
     // The allowed range of the declaration (parameters.h), the technological
-    // limits: the default bounds of a fit. An exclusive minimum is reported as is.
+    // limits: the default bounds of a fit. Where the minimum is exclusive (a
+    // thickness > 0) min is the typical minimum instead, a value the recipe
+    // may take.
     double min = 0.0;
     double max = 0.0;
     // Concentrations and thicknesses whose allowed range spans decades: the

@@ -4,7 +4,7 @@
 // sigmas. What the round-trip tests and benchmarks fit, and what the Match
 // dock overlays as "fitted" at the measured geometries.
 
-#include "paintlab/engine/fast_model/layered_brdf.h"
+#include "paintlab/engine/fit/fit.h"
 #include "paintlab/engine/fit/observations.h"
 #include "paintlab/engine/recipe.h"
 
@@ -20,7 +20,7 @@ MultiAngleMeasurement standardMultiAngleMeasurement(Side side = Side::Top,
                                                     std::vector<double> wavelengths_nm = {});
 
 // The observations with every value replaced by the recipe's model value
-// (fast model at `preset`): reflectance factors and Lab for multi-angle
+// (fast model at fitSettings(preset), fit.h): reflectance factors and Lab for multi-angle
 // readings (Lab only where the reading had Lab or no spectrum), BRDF values
 // as linear sRGB or per wavelength. Bottom-side observations see
 // recipeSeenFromBelow(recipe). Noise fields are kept. Throws as
