@@ -108,7 +108,7 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     form->addRow(tr("From below"), m_bottom);
     layout->addLayout(form);
 
-    m_parameters = makeTable({tr("Free"), tr("Now"), tr("Lower"), tr("Upper")}, "match_parameters");
+    m_parameters = makeTable({tr("Field (tick to fit)"), tr("Now"), tr("Lower"), tr("Upper")}, "match_parameters");
     m_parameters->setToolTip(
         tr("Tick the recipe fields the fit may change; bounds default to the allowed range"));
     layout->addWidget(m_parameters, 2);
