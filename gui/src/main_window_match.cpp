@@ -6,6 +6,7 @@
 #include "accuracy_dock.h"
 #include "main_window.h"
 #include "match_dock.h"
+#include "plots_dock.h"
 #include "replace_recipe_command.h"
 
 #include "paintlab/database/fit_observations.h"
@@ -25,6 +26,18 @@ void MainWindow::addMatchDock() {
     // small rows; imports elsewhere appear the next time).
     connect(m_match, &QDockWidget::visibilityChanged, this, [this](bool visible) {
         if (visible) refreshMatchMeasurements();
+    });
+    // The chosen panel overlaid on the a*b* chart and the paint spectra, as
+    // the plots' comparison; choosing none removes it (if it is still there).
+    connect(m_match, &MatchDock::measuredChanged, this, [this]() {
+        if (m_plots == nullptr) return;
+        const auto report = m_match->measuredReport();
+        if (report) {
+            m_plots->setMeasuredComparison(*report, m_match->measuredWavelengths(),
+                                           tr("measured: %1").arg(m_match->measuredName()));
+        } else if (m_plots->comparisonLabel().startsWith(tr("measured: "))) {
+            m_plots->clearComparison();
+        }
     });
     connect(m_match, &MatchDock::acceptRequested, this, [this](const Recipe& fitted, const QString& note) {
         m_document.undoStack()->push(new ReplaceRecipeCommand(&m_document, fitted, tr("Accept the fit")));

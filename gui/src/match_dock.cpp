@@ -108,7 +108,8 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     form->addRow(tr("From below"), m_bottom);
     layout->addLayout(form);
 
-    m_parameters = makeTable({tr("Field (tick to fit)"), tr("Now"), tr("Lower"), tr("Upper")}, "match_parameters");
+    m_parameters =
+        makeTable({tr("Field (tick to fit)"), tr("Now"), tr("Lower"), tr("Upper")}, "match_parameters");
     m_parameters->setToolTip(
         tr("Tick the recipe fields the fit may change; bounds default to the allowed range"));
     layout->addWidget(m_parameters, 2);
@@ -504,6 +505,17 @@ std::optional<MultiAngleReport> MatchDock::measuredReport() const {
         report.colours.push_back(std::move(c));
     }
     return report;
+}
+
+std::vector<double> MatchDock::measuredWavelengths() const {
+    const db::Measurement* m = chosen(m_measurement);
+    if (m == nullptr || m->kind != db::MeasurementKind::MultiAngle) return {};
+    return m->wavelengths_nm;
+}
+
+QString MatchDock::measuredName() const {
+    const db::Measurement* m = chosen(m_measurement);
+    return m == nullptr ? QString() : QString::fromStdString(m->name);
 }
 
 }  // namespace paintlab::gui

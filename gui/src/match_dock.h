@@ -81,6 +81,9 @@ public:
     // The chosen top measurement's multi-angle colours as a report (for the
     // plots' measured overlay); nullopt for none or a BRDF measurement.
     std::optional<MultiAngleReport> measuredReport() const;
+    // Its spectra's wavelengths (empty: CIELAB only) and its name.
+    std::vector<double> measuredWavelengths() const;
+    QString measuredName() const;
 
 signals:
     // Accept: the fitted recipe, a note for its version, and the result and

@@ -5,14 +5,17 @@
 // in one undoable step saved as a new version with the fit recorded. A
 // cancelled fit changes nothing; a choice that cannot run says which.
 
+#include "ab_chart.h"
 #include "author_setting.h"
 #include "cost_curve.h"
 #include "fit_runner.h"
 #include "gui_test_main.h"
 #include "main_window.h"
 #include "match_dock.h"
+#include "plots_dock.h"
 #include "replace_recipe_command.h"
 #include "save_screenshot.h"
+#include "spectra_plot.h"
 
 #include "paintlab/database/database.h"
 #include "paintlab/database/measurements.h"
@@ -46,7 +49,8 @@ constexpr double kTemplateUm = 2.0;  // the first guess, 100 % off
 // The recipe's multi-angle spectra at the standard preset, as an instrument
 // would export them (spectra and CIELAB per geometry), without noise.
 db::Measurement simulated(const paintlab::Recipe& truth) {
-    const auto brdf = paintlab::computeLayeredBrdf(truth, paintlab::presetSettings(paintlab::Preset::Standard));
+    const auto brdf =
+        paintlab::computeLayeredBrdf(truth, paintlab::presetSettings(paintlab::Preset::Standard));
     const auto report = paintlab::multiAngleColours(brdf);
     db::Measurement m;
     m.name = "red panel 7";
@@ -125,7 +129,8 @@ void MatchDockTest::aChoiceThatCannotRunSaysWhy() {
     QVERIFY(dock()->freeParameter(kBasecoat));
     auto* table = dock()->parameterTable();
     for (int row = 0; row < table->rowCount(); ++row)
-        if (table->item(row, 0)->data(Qt::UserRole + 1).toString() == kBasecoat) table->item(row, 2)->setText("abc");
+        if (table->item(row, 0)->data(Qt::UserRole + 1).toString() == kBasecoat)
+            table->item(row, 2)->setText("abc");
     dock()->run();
     QVERIFY(!dock()->running());
     QVERIFY2(dock()->status()->text().contains(kBasecoat), qPrintable(dock()->status()->text()));
@@ -150,6 +155,10 @@ void MatchDockTest::cancelledFitChangesNothing() {
 }
 
 void MatchDockTest::fitRecoversTheThicknessAndAcceptIsOneUndoableSavedStep() {
+    // The chosen panel is overlaid on the plots: its flop path and spectra.
+    QCOMPARE(m_window->plotsDock()->comparisonLabel(), QStringLiteral("measured: red panel 7"));
+    QVERIFY(m_window->plotsDock()->abChart()->hasComparison());
+    QCOMPARE(m_window->plotsDock()->paintSpectra()->comparisonSpectra().size(), std::size_t{6});
     QVERIFY(dock()->freeParameter(kBasecoat, 0.3, 5.0));
     QSignalSpy progressed(dock()->runner(), &paintlab::gui::FitRunner::progressed);
     dock()->run();
@@ -191,6 +200,8 @@ void MatchDockTest::cleanupTestCase() {
     m_window.reset();
 }
 
-int main(int argc, char** argv) { return paintlab::test::runGuiTest<MatchDockTest>(argc, argv, "paintlab-match-test"); }
+int main(int argc, char** argv) {
+    return paintlab::test::runGuiTest<MatchDockTest>(argc, argv, "paintlab-match-test");
+}
 
 #include "test_match_dock.moc"
