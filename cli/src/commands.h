@@ -30,6 +30,9 @@ void addAccuracyCommand(CLI::App& app, CommandAction& action);
 // Registers `mc` and `compare`: the Monte Carlo full model and its comparison with the fast model.
 void addMcCommands(CLI::App& app, CommandAction& action);
 
+// Registers `fit`: a recipe fitted to measurements (engine fit/fit.h, issue 28).
+void addFitCommand(CLI::App& app, CommandAction& action);
+
 // Registers `db` and its subcommands: init, list, show, recipe-save, recipe-history, backup.
 void addDbCommands(CLI::App& app, CommandAction& action);
 

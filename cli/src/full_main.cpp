@@ -6,6 +6,11 @@
 
 namespace {
 
+void addFullModelCommands(CLI::App& app, paintlab::cli::CommandAction& action) {
+    paintlab::cli::addMcCommands(app, action);
+    paintlab::cli::addFitCommand(app, action);
+}
+
 void addSceneCommands(CLI::App& app, paintlab::cli::CommandAction& action) {
     paintlab::cli::addRaymapCommands(app, action);
     paintlab::cli::addPlanCommand(app, action);
@@ -14,5 +19,5 @@ void addSceneCommands(CLI::App& app, paintlab::cli::CommandAction& action) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    return paintlab::cli::runCli(argc, argv, {paintlab::cli::addMcCommands, addSceneCommands});
+    return paintlab::cli::runCli(argc, argv, {addFullModelCommands, addSceneCommands});
 }

@@ -141,8 +141,8 @@ ImportResult importSpectra(Database& db, const std::string& text, FileFormat for
     return result;
 }
 
-Measurement parseMeasurementFile(const std::filesystem::path& file, const std::string& text, FileFormat format,
-                                 const ImportOptions& options) {
+Measurement parseMeasurementFile(const std::filesystem::path& file, const std::string& text,
+                                 FileFormat format, const ImportOptions& options) {
     const std::string source = file.string();
     Measurement m;
     if (format == FileFormat::Json) {

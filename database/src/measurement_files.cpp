@@ -241,8 +241,8 @@ Measurement parseMeasurementCsv(std::string_view text, const std::string& source
             if (a.empty()) table.requireColumns({"a"});
             if (b.empty()) table.requireColumns({"b"});
         }
-        std::vector<std::string_view> allowed{"geometry", "aspecular_deg", "illumination_deg", "L", "a", "b",
-                                              "L*",       "a*",            "b*"};
+        std::vector<std::string_view> allowed{
+            "geometry", "aspecular_deg", "illumination_deg", "L", "a", "b", "L*", "a*", "b*"};
         allowed.insert(allowed.end(), spectrum_columns.begin(), spectrum_columns.end());
         table.allowOnlyColumns(allowed);
         for (const auto& record : table.records()) {

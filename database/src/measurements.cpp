@@ -99,17 +99,17 @@ void requireReflectance(const MultiAngleReading& r, std::size_t wavelengths, con
     }
 }
 
-Observer observerOf(const Measurement& m) {
-    return m.observer == "2deg" ? Observer::Cie1931_2deg : Observer::Cie1964_10deg;
-}
+}  // namespace
 
-Illuminant illuminantOf(const Measurement& m) {
+Illuminant measurementIlluminant(const Measurement& m) {
     if (m.illuminant == "D50") return Illuminant::D50;
     if (m.illuminant == "A") return Illuminant::A;
     return Illuminant::D65;
 }
 
-}  // namespace
+Observer measurementObserver(const Measurement& m) {
+    return m.observer == "2deg" ? Observer::Cie1931_2deg : Observer::Cie1964_10deg;
+}
 
 std::string_view measurementKindName(MeasurementKind kind) {
     return kind == MeasurementKind::Brdf ? "brdf" : "multiangle";
@@ -123,7 +123,7 @@ std::optional<MeasurementKind> parseMeasurementKind(std::string_view name) {
 
 void labFromSpectra(Measurement& m, const std::string& source) {
     if (m.wavelengths_nm.empty()) return;
-    const ColourConditions conditions{illuminantOf(m), observerOf(m)};
+    const ColourConditions conditions{measurementIlluminant(m), measurementObserver(m)};
     for (std::size_t i = 0; i < m.readings.size(); ++i) {
         auto& r = m.readings[i];
         requireReflectance(r, m.wavelengths_nm.size(), source, "readings[" + std::to_string(i) + "]");

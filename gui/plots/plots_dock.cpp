@@ -318,6 +318,16 @@ void PlotsDock::setComparisonKeepingFullModel(std::shared_ptr<const LayeredBrdf>
     });
 }
 
+void PlotsDock::setMeasuredComparison(MultiAngleReport report, std::vector<double> wavelengths_nm,
+                                      const QString& label) {
+    cancelFullModel();
+    clearComparison();
+    m_comparison_label = label;
+    if (!wavelengths_nm.empty())
+        m_paint_spectra->setComparisonSpectra(multiAngleSpectra(report, wavelengths_nm), label);
+    m_ab->setComparisonReport(std::move(report), label);
+}
+
 void PlotsDock::pinCurrentAsComparison() {
     if (m_brdf)
         setComparison(m_brdf, tr("pinned %1").arg(QTime::currentTime().toString(QStringLiteral("HH:mm:ss"))));

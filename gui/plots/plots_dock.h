@@ -22,6 +22,8 @@
 #include "full_model_job.h"
 #include "latest_job.h"
 
+#include "paintlab/engine/multiangle.h"
+
 #include <QDockWidget>
 #include <QString>
 
@@ -67,6 +69,12 @@ public:
     void setRecipe(const Recipe& recipe);
     // Overlaid dashed on the in-plane, paint spectra and a*b* plots until cleared or replaced.
     void setComparison(std::shared_ptr<const LayeredBrdf> brdf, const QString& label);
+    // A measured panel as the comparison (Match dock): its a*b* flop path on
+    // the a*b* chart and, where it has spectra (at wavelengths_nm), its
+    // reflectance factor per geometry on the paint spectra. Replaces any
+    // other comparison; cleared like one.
+    void setMeasuredComparison(MultiAngleReport report, std::vector<double> wavelengths_nm,
+                               const QString& label);
     // The current BRDF becomes the comparison ("pinned").
     void pinCurrentAsComparison();
     void clearComparison();

@@ -67,6 +67,7 @@ MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMa
     m_plot = new InplanePlot(m_inplane_dock);
     m_inplane_dock->setWidget(m_plot);
     addDatabaseDocks();
+    addMatchDock();
     addPlotsDock();
     buildMenus();
 
@@ -130,7 +131,7 @@ MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMa
 }
 
 LayoutDocks MainWindow::layoutDocks() const {
-    return {m_recipes_dock, m_editor, m_ingredients, m_accuracy, m_versions, m_plots, m_inplane_dock};
+    return {m_recipes_dock, m_editor, m_ingredients, m_accuracy, m_versions, m_match, m_plots, m_inplane_dock};
 }
 
 MainWindow::~MainWindow() {

@@ -29,6 +29,7 @@ namespace paintlab::gui {
 
 class AccuracyDock;
 class InplanePlot;
+class MatchDock;
 class PlotsDock;
 class RecipeEditorDock;
 class RenderDock;
@@ -108,6 +109,7 @@ public:
     InplanePlot* plot() { return m_plot; }
     QListWidget* recipeList() { return m_recipes; }
     PlotsDock* plotsDock() { return m_plots; }
+    MatchDock* matchDock() { return m_match; }
 
 protected:
     void closeEvent(QCloseEvent* event) override;
@@ -188,6 +190,13 @@ private:
     IngredientDock* m_ingredients = nullptr;
     VersionsDock* m_versions = nullptr;
     ProductionDialog* m_production = nullptr;
+
+    // main_window_match.cpp: the Match dock (a recipe fitted to a measurement).
+    void addMatchDock();
+    void refreshMatchMeasurements();
+    // After an accepted fit was saved as a version: the fit's rows in the database.
+    void recordMatchFit(const QString& note);
+    MatchDock* m_match = nullptr;
 };
 
 }  // namespace paintlab::gui

@@ -26,7 +26,7 @@ int listHeight(const QDockWidget* dock, int rows) {
 
 void makeDocksScrollable(const LayoutDocks& docks) {
     for (QDockWidget* dock : {docks.recipes, docks.editor, docks.ingredients, docks.accuracy, docks.versions,
-                              docks.plots, docks.inplane}) {
+                              docks.match, docks.plots, docks.inplane}) {
         QWidget* content = dock->widget();
         if (content == nullptr || qobject_cast<QAbstractScrollArea*>(content) != nullptr) continue;
         auto* scroll = new QScrollArea(dock);
@@ -49,7 +49,7 @@ void applyDefaultLayout(QMainWindow& window, const LayoutDocks& docks) {
     window.setCorner(Qt::TopRightCorner, Qt::RightDockWidgetArea);
     window.setCorner(Qt::BottomRightCorner, Qt::BottomDockWidgetArea);
     for (QDockWidget* dock : {docks.recipes, docks.editor, docks.ingredients, docks.accuracy, docks.versions,
-                              docks.plots, docks.inplane}) {
+                              docks.match, docks.plots, docks.inplane}) {
         dock->setFloating(false);
         window.removeDockWidget(dock);  // also out of any tab group
     }
@@ -65,8 +65,9 @@ void applyDefaultLayout(QMainWindow& window, const LayoutDocks& docks) {
         window.tabifyDockWidget(docks.inplane, docks.accuracy);
         window.tabifyDockWidget(docks.accuracy, docks.versions);
     }
+    window.tabifyDockWidget(docks.versions, docks.match);
     for (QDockWidget* dock : {docks.recipes, docks.editor, docks.ingredients, docks.accuracy, docks.versions,
-                              docks.plots, docks.inplane})
+                              docks.match, docks.plots, docks.inplane})
         dock->show();
     docks.editor->raise();
     docks.plots->raise();

@@ -7,9 +7,9 @@
 //
 // Default, wide window (at least kWideLayoutWidth): the recipe list above the
 // recipe editor (the ingredients a tab beside it) on the left, the accuracy
-// verdict (the versions a tab beside it) on the right, the plots (and the
+// verdict (the versions and the Match dock tabs beside it) on the right, the plots (and the
 // in-plane plot, a tab beside them) below the scene and the right column.
-// Narrower (a laptop's 1024 x 700 or 1366 x 768): the accuracy and versions
+// Narrower (a laptop's 1024 x 700 or 1366 x 768): the accuracy, versions and match
 // become tabs of the bottom area too, so the scene keeps most of the width.
 
 #include <QByteArray>
@@ -21,7 +21,7 @@ namespace paintlab::gui {
 
 // The dock arrangement's version, stored with the state: bump it when docks
 // are added, removed or moved to other areas by default.
-inline constexpr int kLayoutVersion = 2;
+inline constexpr int kLayoutVersion = 3;  // 3: the Match dock
 inline constexpr int kWideLayoutWidth = 1600;
 
 struct LayoutDocks {
@@ -30,6 +30,7 @@ struct LayoutDocks {
     QDockWidget* ingredients = nullptr;
     QDockWidget* accuracy = nullptr;
     QDockWidget* versions = nullptr;
+    QDockWidget* match = nullptr;  // tabbed after the versions
     QDockWidget* plots = nullptr;
     QDockWidget* inplane = nullptr;
 };

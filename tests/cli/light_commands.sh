@@ -6,7 +6,7 @@
 # covers the libraries linked, their dependencies and anything dlopen'ed.
 set -uo pipefail
 cli=$1 recipe=$2
-heavy='lib(embree|OpenImageIO|assimp|opencv|OpenEXR|openvdb|avcodec|Qt6|vtk)'
+heavy='lib(embree|OpenImageIO|assimp|opencv|OpenEXR|openvdb|avcodec|Qt6|vtk|ceres|glog)'
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 status=0

@@ -15,6 +15,7 @@
 // name; createMeasurement refuses a taken one).
 
 #include "paintlab/database/database.h"
+#include "paintlab/engine/colour/cie_tables.h"
 
 #include <cstdint>
 #include <map>
@@ -93,6 +94,11 @@ void validateMeasurement(const Measurement& measurement, const std::string& sour
 std::int64_t createMeasurement(Database& db, const Measurement& measurement);
 std::optional<Measurement> findMeasurement(Database& db, std::string_view name);
 std::vector<MeasurementSummary> listMeasurements(Database& db);  // by name
+
+// The measurement's illuminant and observer as the colour code names them
+// (validateMeasurement has checked the names).
+Illuminant measurementIlluminant(const Measurement& measurement);
+Observer measurementObserver(const Measurement& measurement);
 
 // CIELAB of every spectral reading from its reflectance factor, under the
 // measurement's illuminant and observer (for files that give only spectra).

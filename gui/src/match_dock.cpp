@@ -1,0 +1,521 @@
+// The Match dock (match_dock.h).
+
+#include "match_dock.h"
+
+#include "cost_curve.h"
+#include "fit_runner.h"
+#include "recipe_document.h"
+
+#include "paintlab/database/exchange.h"
+#include "paintlab/database/fit_observations.h"
+#include "paintlab/engine/error.h"
+#include "paintlab/engine/fit/parameter_paths.h"
+#include "paintlab/engine/io/number_format.h"
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QLocale>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QScrollArea>
+#include <QSpinBox>
+#include <QTableWidget>
+#include <QVBoxLayout>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace paintlab::gui {
+
+namespace {
+
+constexpr int kColumnParameter = 0;  // checkable: freed or not
+constexpr int kColumnNow = 1;
+constexpr int kColumnLower = 2;
+constexpr int kColumnUpper = 3;
+constexpr int kPathRole = Qt::UserRole + 1;
+
+QString number(double value) { return QString::fromStdString(io::formatNumber(value)); }
+
+// A bound as typed: empty = the allowed range's end; C or the user's locale.
+std::optional<double> parseBound(const QString& text, const std::string& field) {
+    const QString trimmed = text.trimmed();
+    if (trimmed.isEmpty()) return std::nullopt;
+    bool ok = false;
+    double value = trimmed.toDouble(&ok);
+    if (!ok) value = QLocale().toDouble(trimmed, &ok);
+    if (!ok || !std::isfinite(value))
+        throw InputError("Match", field, "'" + trimmed.toStdString() + "' is not a number");
+    return value;
+}
+
+QTableWidget* makeTable(const QStringList& headers, const char* name) {
+    auto* table = new QTableWidget(0, static_cast<int>(headers.size()));
+    table->setObjectName(name);
+    table->setHorizontalHeaderLabels(headers);
+    table->verticalHeader()->hide();
+    table->horizontalHeader()->setStretchLastSection(true);
+    table->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+    table->setMinimumHeight(80);
+    return table;
+}
+
+QString geometryName(const fit::GeometryMatch& g) {
+    return QStringLiteral("%1as%2%3")
+        .arg(g.illumination_deg, 0, 'g', 3)
+        .arg(g.aspecular_deg, 0, 'g', 3)
+        .arg(g.side == fit::Side::Bottom ? QObject::tr(" (below)") : QString());
+}
+
+QString labText(const Lab& lab) {
+    return QStringLiteral("%1, %2, %3").arg(lab.L, 0, 'f', 1).arg(lab.a, 0, 'f', 1).arg(lab.b, 0, 'f', 1);
+}
+
+}  // namespace
+
+MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
+    : QDockWidget(tr("Match"), parent), m_document(document), m_runner(new FitRunner(this)) {
+    setObjectName("match_dock");
+    auto* body = new QWidget;
+    auto* layout = new QVBoxLayout(body);
+
+    auto* form = new QFormLayout;
+    auto* measurement_row = new QHBoxLayout;
+    m_measurement = new QComboBox;
+    m_measurement->setObjectName("match_measurement");
+    m_measurement->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+    m_measurement->setMinimumContentsLength(12);
+    m_measurement->setToolTip(tr("The measured panel to match: multi-angle readings or BRDF samples"));
+    auto* import = new QPushButton(tr("File..."));
+    import->setObjectName("match_import");
+    import->setToolTip(tr("Read a measurement file (JSON, or CSV as db import reads it) without storing it"));
+    measurement_row->addWidget(m_measurement, 1);
+    measurement_row->addWidget(import);
+    form->addRow(tr("Measured"), measurement_row);
+    m_bottom = new QComboBox;
+    m_bottom->setObjectName("match_bottom_measurement");
+    m_bottom->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+    m_bottom->setMinimumContentsLength(12);
+    m_bottom->setToolTip(tr("The same coating measured from below through its transparent substrate "
+                            "(fitted jointly: separates a concentration gradient)"));
+    form->addRow(tr("From below"), m_bottom);
+    layout->addLayout(form);
+
+    m_parameters =
+        makeTable({tr("Field (tick to fit)"), tr("Now"), tr("Lower"), tr("Upper")}, "match_parameters");
+    m_parameters->setToolTip(
+        tr("Tick the recipe fields the fit may change; bounds default to the allowed range"));
+    layout->addWidget(m_parameters, 2);
+
+    auto* run_row = new QHBoxLayout;
+    run_row->addWidget(new QLabel(tr("Starts")));
+    m_starts = new QSpinBox;
+    m_starts->setObjectName("match_starts");
+    m_starts->setRange(1, 200);
+    m_starts->setValue(8);
+    m_starts->setToolTip(
+        tr("Multi-start points spread over the bounds: more finds other minima, costs time"));
+    run_row->addWidget(m_starts);
+    m_run = new QPushButton(tr("Fit"));
+    m_run->setObjectName("match_run");
+    m_cancel = new QPushButton(tr("Cancel"));
+    m_cancel->setObjectName("match_cancel");
+    m_cancel->setEnabled(false);
+    run_row->addStretch(1);
+    run_row->addWidget(m_run);
+    run_row->addWidget(m_cancel);
+    layout->addLayout(run_row);
+
+    m_progress = new QProgressBar;
+    m_progress->setObjectName("match_progress");
+    m_progress->setRange(0, 1000);
+    m_progress->setTextVisible(false);
+    m_progress->setMaximumHeight(8);
+    layout->addWidget(m_progress);
+    m_curve = new CostCurve;
+    layout->addWidget(m_curve);
+
+    m_status = new QLabel(tr("Choose a measurement, tick the fields to fit, then Fit."));
+    m_status->setObjectName("match_status");
+    m_status->setWordWrap(true);
+    layout->addWidget(m_status);
+    m_warnings = new QLabel;
+    m_warnings->setObjectName("match_warnings");
+    m_warnings->setWordWrap(true);
+    m_warnings->setStyleSheet("color: #a04000;");
+    m_warnings->hide();
+    layout->addWidget(m_warnings);
+
+    m_fitted = makeTable({tr("Parameter"), tr("Fitted"), tr("± 1σ"), tr("Note")}, "match_fitted");
+    layout->addWidget(m_fitted, 2);
+    m_geometries = makeTable({tr("Geometry"), tr("ΔE00"), tr("Measured L*a*b*"), tr("Fitted L*a*b*")},
+                             "match_geometries");
+    layout->addWidget(m_geometries, 2);
+    m_alternatives = new QLabel;
+    m_alternatives->setObjectName("match_alternatives");
+    m_alternatives->setWordWrap(true);
+    m_alternatives->hide();
+    layout->addWidget(m_alternatives);
+
+    m_accept = new QPushButton(tr("Accept as new version"));
+    m_accept->setObjectName("match_accept");
+    m_accept->setEnabled(false);
+    m_accept->setToolTip(
+        tr("Edit the recipe to the fitted values and save it as a new version (Undo reverts the edit)"));
+    layout->addWidget(m_accept);
+
+    auto* scroll = new QScrollArea;
+    scroll->setWidgetResizable(true);
+    scroll->setFrameShape(QFrame::NoFrame);
+    scroll->setWidget(body);
+    setWidget(scroll);
+
+    connect(import, &QPushButton::clicked, this, &MatchDock::importFile);
+    connect(m_run, &QPushButton::clicked, this, &MatchDock::run);
+    connect(m_cancel, &QPushButton::clicked, this, &MatchDock::cancel);
+    connect(m_measurement, &QComboBox::currentIndexChanged, this, [this]() { emit measuredChanged(); });
+    connect(m_accept, &QPushButton::clicked, this, [this]() {
+        if (!m_result) return;
+        QStringList names;
+        for (const auto& m : m_fitted_measurements) names << QString::fromStdString(m.name);
+        double worst = 0.0;
+        for (const auto& g : m_result->geometries) worst = std::max(worst, g.delta_e00);
+        const QString note =
+            m_result->geometries.empty()
+                ? tr("fitted to %1").arg(names.join(", "))
+                : tr("fitted to %1 (worst ΔE00 %2)").arg(names.join(", ")).arg(worst, 0, 'f', 2);
+        emit acceptRequested(m_result->recipe, note);
+    });
+    connect(m_runner, &FitRunner::progressed, this, &MatchDock::showProgress);
+    connect(m_runner, &FitRunner::finished, this, &MatchDock::showResult);
+    connect(m_runner, &FitRunner::failed, this, [this](const QString& message) {
+        setRunning(false);
+        showMessage(message, true);
+    });
+    connect(m_runner, &FitRunner::cancelled, this, [this]() {
+        setRunning(false);
+        showMessage(tr("Fit cancelled: nothing changed."), false);
+    });
+    connect(m_document, &RecipeDocument::recipeLoaded, this, &MatchDock::fillParameters);
+    connect(m_document, &RecipeDocument::recipeChanged, this, [this](bool interactive) {
+        if (!interactive) fillParameters();
+    });
+    setMeasurements({});
+    fillParameters();
+}
+
+MatchDock::~MatchDock() = default;
+
+void MatchDock::setMeasurements(std::vector<db::Measurement> measurements) {
+    // Files read in the dock stay listed after the database's.
+    std::vector<db::Measurement> files;
+    for (std::size_t i = 0; i < m_measurements.size(); ++i)
+        if (m_from_file[i]) files.push_back(m_measurements[i]);
+    m_measurements = std::move(measurements);
+    m_from_file.assign(m_measurements.size(), false);
+    for (auto& f : files) {
+        m_measurements.push_back(std::move(f));
+        m_from_file.push_back(true);
+    }
+    rebuildMeasurementBoxes();
+}
+
+void MatchDock::addFileMeasurement(db::Measurement measurement) {
+    // Reading a file of the same name again replaces it.
+    for (std::size_t i = m_measurements.size(); i-- > 0;)
+        if (m_from_file[i] && m_measurements[i].name == measurement.name) {
+            m_measurements.erase(m_measurements.begin() + static_cast<std::ptrdiff_t>(i));
+            m_from_file.erase(m_from_file.begin() + static_cast<std::ptrdiff_t>(i));
+        }
+    m_measurements.push_back(std::move(measurement));
+    m_from_file.push_back(true);
+    rebuildMeasurementBoxes();
+    m_measurement->setCurrentIndex(m_measurement->count() - 1);
+}
+
+void MatchDock::rebuildMeasurementBoxes() {
+    // The choice is kept by its label where it still exists.
+    const QString top = m_measurement->currentText();
+    const QString bottom = m_bottom->currentText();
+    for (QComboBox* box : {m_measurement, m_bottom}) {
+        const QSignalBlocker block(box);
+        box->clear();
+        box->addItem(box == m_measurement ? tr("(choose a measurement)") : tr("(none)"), -1);
+        for (std::size_t i = 0; i < m_measurements.size(); ++i) {
+            const auto& m = m_measurements[i];
+            QString label =
+                QString::fromStdString(m.name) + (m.kind == db::MeasurementKind::MultiAngle
+                                                      ? tr(" (multi-angle, %1)").arg(m.readings.size())
+                                                      : tr(" (BRDF, %1 samples)").arg(m.samples.size()));
+            if (m_from_file[i]) label += tr(", file");
+            box->addItem(label, static_cast<int>(i));
+        }
+    }
+    m_measurement->setCurrentIndex(std::max(0, m_measurement->findText(top)));
+    m_bottom->setCurrentIndex(std::max(0, m_bottom->findText(bottom)));
+    emit measuredChanged();
+}
+
+const db::Measurement* MatchDock::chosen(const QComboBox* box) const {
+    const int index = box->currentData().toInt();
+    if (index < 0 || static_cast<std::size_t>(index) >= m_measurements.size()) return nullptr;
+    return &m_measurements[static_cast<std::size_t>(index)];
+}
+
+void MatchDock::importFile() {
+    const QString file = QFileDialog::getOpenFileName(this, tr("Measurement file"), QString(),
+                                                      tr("Measurements (*.json *.csv)"));
+    if (file.isEmpty()) return;
+    try {
+        db::ImportOptions options;
+        options.measurement.name = QFileInfo(file).completeBaseName().toStdString();
+        addFileMeasurement(db::readMeasurementFile(file.toStdString(), options));
+        showMessage(tr("Read %1.").arg(QFileInfo(file).fileName()), false);
+    } catch (const std::exception& e) {
+        showMessage(QString::fromStdString(e.what()), true);
+    }
+}
+
+void MatchDock::fillParameters() {
+    // Ticks and typed bounds survive a refresh (by path), as long as the path exists.
+    struct Choice {
+        bool free;
+        QString lower, upper;
+    };
+    std::map<QString, Choice> kept;
+    for (int row = 0; row < m_parameters->rowCount(); ++row) {
+        const auto* item = m_parameters->item(row, kColumnParameter);
+        kept[item->data(kPathRole).toString()] = {item->checkState() == Qt::Checked,
+                                                  m_parameters->item(row, kColumnLower)->text(),
+                                                  m_parameters->item(row, kColumnUpper)->text()};
+    }
+    m_parameters->setRowCount(0);
+    if (!m_document->hasRecipe()) return;
+    const auto paths = fit::listParameterPaths(m_document->recipe());
+    m_parameters->setRowCount(static_cast<int>(paths.size()));
+    for (std::size_t i = 0; i < paths.size(); ++i) {
+        const auto& p = paths[i];
+        const int row = static_cast<int>(i);
+        const QString path = QString::fromStdString(p.path);
+        auto* name = new QTableWidgetItem(QString::fromStdString(p.label));
+        name->setData(kPathRole, path);
+        name->setFlags(Qt::ItemIsEnabled | Qt::ItemIsUserCheckable | Qt::ItemIsSelectable);
+        name->setToolTip(
+            tr("%1\nunit %2, allowed %3 to %4")
+                .arg(path, QString::fromUtf8(p.decl->unit.data(), static_cast<int>(p.decl->unit.size())),
+                     number(p.min), number(p.max)));
+        const auto old = kept.find(path);
+        name->setCheckState(old != kept.end() && old->second.free ? Qt::Checked : Qt::Unchecked);
+        m_parameters->setItem(row, kColumnParameter, name);
+        auto* now = new QTableWidgetItem(number(p.value));
+        now->setFlags(Qt::ItemIsEnabled);
+        m_parameters->setItem(row, kColumnNow, now);
+        auto* lower = new QTableWidgetItem(old != kept.end() ? old->second.lower : QString());
+        lower->setToolTip(tr("Lower bound (empty: %1)").arg(number(p.min)));
+        m_parameters->setItem(row, kColumnLower, lower);
+        auto* upper = new QTableWidgetItem(old != kept.end() ? old->second.upper : QString());
+        upper->setToolTip(tr("Upper bound (empty: %1)").arg(number(p.max)));
+        m_parameters->setItem(row, kColumnUpper, upper);
+    }
+}
+
+bool MatchDock::freeParameter(const QString& path, std::optional<double> lower, std::optional<double> upper) {
+    for (int row = 0; row < m_parameters->rowCount(); ++row) {
+        auto* item = m_parameters->item(row, kColumnParameter);
+        if (item->data(kPathRole).toString() != path) continue;
+        item->setCheckState(Qt::Checked);
+        if (lower) m_parameters->item(row, kColumnLower)->setText(number(*lower));
+        if (upper) m_parameters->item(row, kColumnUpper)->setText(number(*upper));
+        return true;
+    }
+    return false;
+}
+
+fit::FitProblem MatchDock::problem() const {
+    if (!m_document->hasRecipe()) throw InputError("Match", "recipe", "open a recipe to use as the template");
+    const db::Measurement* top = chosen(m_measurement);
+    if (top == nullptr) throw InputError("Match", "measurement", "choose the measurement to match");
+    fit::FitProblem problem;
+    problem.recipe = m_document->recipe();
+    db::addFitObservation(problem.observations, *top, fit::Side::Top);
+    if (const db::Measurement* bottom = chosen(m_bottom))
+        db::addFitObservation(problem.observations, *bottom, fit::Side::Bottom);
+    for (int row = 0; row < m_parameters->rowCount(); ++row) {
+        const auto* item = m_parameters->item(row, kColumnParameter);
+        if (item->checkState() != Qt::Checked) continue;
+        fit::FreeParameter p;
+        p.path = item->data(kPathRole).toString().toStdString();
+        p.lower = parseBound(m_parameters->item(row, kColumnLower)->text(), p.path + " (lower bound)");
+        p.upper = parseBound(m_parameters->item(row, kColumnUpper)->text(), p.path + " (upper bound)");
+        problem.free.push_back(std::move(p));
+    }
+    if (problem.free.empty()) throw InputError("Match", "parameters", "tick at least one field to fit");
+    problem.settings.starts = m_starts->value();
+    return problem;
+}
+
+void MatchDock::run() {
+    if (running()) return;
+    fit::FitProblem p;
+    try {
+        p = problem();
+    } catch (const std::exception& e) {
+        showMessage(QString::fromStdString(e.what()), true);
+        return;
+    }
+    m_fitted_measurements.clear();
+    if (const auto* top = chosen(m_measurement)) m_fitted_measurements.push_back(*top);
+    if (const auto* bottom = chosen(m_bottom)) m_fitted_measurements.push_back(*bottom);
+    m_last_problem = p;
+    m_result.reset();
+    m_curve->clear();
+    m_progress->setValue(0);
+    setRunning(true);
+    showMessage(tr("Fitting..."), false);
+    m_runner->start(std::move(p));
+}
+
+void MatchDock::cancel() { m_runner->cancel(); }
+
+bool MatchDock::running() const { return m_runner->running(); }
+
+void MatchDock::setRunning(bool running) {
+    m_run->setEnabled(!running);
+    m_cancel->setEnabled(running);
+    m_parameters->setEnabled(!running);
+    m_measurement->setEnabled(!running);
+    m_bottom->setEnabled(!running);
+    if (running) m_accept->setEnabled(false);
+}
+
+void MatchDock::showMessage(const QString& text, bool error) {
+    m_status->setText(text);
+    m_status->setStyleSheet(error ? "color: #b00020;" : QString());
+}
+
+void MatchDock::showProgress(const fit::FitProgress& p) {
+    m_progress->setValue(static_cast<int>(std::lround(1000.0 * std::clamp(p.fraction, 0.0, 1.0))));
+    m_curve->add(p.evaluations, p.best_cost);
+    showMessage(tr("%1 %2 of %3: best cost %4, %5 evaluations")
+                    .arg(QString::fromStdString(p.stage))
+                    .arg(p.start)
+                    .arg(p.starts)
+                    .arg(p.best_cost, 0, 'g', 4)
+                    .arg(p.evaluations),
+                false);
+}
+
+void MatchDock::showResult(std::shared_ptr<const fit::FitResult> result) {
+    setRunning(false);
+    m_result = std::move(result);
+    const fit::FitResult& r = *m_result;
+    m_progress->setValue(1000);
+    for (double c : r.cost_history) m_curve->add(r.evaluations, c);
+
+    m_fitted->setRowCount(static_cast<int>(r.parameters.size()));
+    for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+        const auto& p = r.parameters[i];
+        const int row = static_cast<int>(i);
+        auto* name = new QTableWidgetItem(QString::fromStdString(p.label));
+        name->setToolTip(QString::fromStdString(p.path));
+        m_fitted->setItem(row, 0, name);
+        m_fitted->setItem(row, 1,
+                          new QTableWidgetItem(number(p.value) + " " + QString::fromStdString(p.unit)));
+        m_fitted->setItem(
+            row, 2, new QTableWidgetItem(std::isfinite(p.sigma) ? number(p.sigma) : tr("not determined")));
+        QString note;
+        if (p.at_bound) note = tr("at its bound (%1 to %2)").arg(number(p.lower), number(p.upper));
+        if (!p.determined) note = note.isEmpty() ? tr("not determined") : note + tr("; not determined");
+        m_fitted->setItem(row, 3, new QTableWidgetItem(note));
+    }
+    m_geometries->setRowCount(static_cast<int>(r.geometries.size()));
+    double worst = 0.0;
+    QString worst_at;
+    for (std::size_t i = 0; i < r.geometries.size(); ++i) {
+        const auto& g = r.geometries[i];
+        const int row = static_cast<int>(i);
+        m_geometries->setItem(row, 0, new QTableWidgetItem(geometryName(g)));
+        m_geometries->setItem(row, 1, new QTableWidgetItem(QString::number(g.delta_e00, 'f', 2)));
+        m_geometries->setItem(row, 2, new QTableWidgetItem(labText(g.measured)));
+        m_geometries->setItem(row, 3, new QTableWidgetItem(labText(g.fitted)));
+        if (g.delta_e00 >= worst) {
+            worst = g.delta_e00;
+            worst_at = geometryName(g);
+        }
+    }
+    QString verdict =
+        r.geometries.empty()
+            ? tr("Fitted: cost %1 over %2 residuals").arg(r.cost, 0, 'g', 4).arg(r.residual_count)
+            : tr("Fitted: worst ΔE00 %1 at %2").arg(worst, 0, 'f', 2).arg(worst_at);
+    verdict += tr(" (reduced χ² %1; %2 evaluations in %3 s).")
+                   .arg(r.reduced_chi_square, 0, 'g', 3)
+                   .arg(r.evaluations)
+                   .arg(r.seconds, 0, 'f', 1);
+    // A reduced chi-square far above 1: the residuals are not noise, the
+    // structure of the template cannot reach the measurement.
+    if (r.reduced_chi_square > 4.0)
+        verdict +=
+            tr(" The template cannot reproduce this measurement within its noise: try another structure "
+               "(more layers, a depth profile) or free more fields.");
+    showMessage(verdict, false);
+
+    QStringList warnings;
+    for (const auto& issue : r.identifiability) warnings << QString::fromStdString(issue.message);
+    m_warnings->setText(warnings.join("\n"));
+    m_warnings->setVisible(!warnings.isEmpty());
+    if (r.alternatives.empty()) {
+        m_alternatives->hide();
+    } else {
+        QStringList lines{
+            tr("%n other recipe(s) look nearly the same:", nullptr, static_cast<int>(r.alternatives.size()))};
+        for (const auto& a : r.alternatives) {
+            QStringList values;
+            for (std::size_t i = 0; i < a.values.size() && i < r.parameters.size(); ++i)
+                values << QStringLiteral("%1 = %2").arg(QString::fromStdString(r.parameters[i].label),
+                                                        number(a.values[i]));
+            lines << tr("cost %1, worst ΔE00 %2: %3")
+                         .arg(a.cost, 0, 'g', 4)
+                         .arg(a.max_delta_e00, 0, 'f', 2)
+                         .arg(values.join(", "));
+        }
+        m_alternatives->setText(lines.join("\n"));
+        m_alternatives->show();
+    }
+    m_accept->setEnabled(true);
+}
+
+std::optional<MultiAngleReport> MatchDock::measuredReport() const {
+    const db::Measurement* m = chosen(m_measurement);
+    if (m == nullptr || m->kind != db::MeasurementKind::MultiAngle) return std::nullopt;
+    MultiAngleReport report;
+    report.illuminant = db::measurementIlluminant(*m);
+    report.observer = db::measurementObserver(*m);
+    for (const auto& r : m->readings) {
+        MultiAngleColour c;
+        c.aspecular_deg = r.aspecular_deg;
+        c.lab = Lab{r.L, r.a, r.b};
+        c.reflectance_factor = r.reflectance;
+        report.colours.push_back(std::move(c));
+    }
+    return report;
+}
+
+std::vector<double> MatchDock::measuredWavelengths() const {
+    const db::Measurement* m = chosen(m_measurement);
+    if (m == nullptr || m->kind != db::MeasurementKind::MultiAngle) return {};
+    return m->wavelengths_nm;
+}
+
+QString MatchDock::measuredName() const {
+    const db::Measurement* m = chosen(m_measurement);
+    return m == nullptr ? QString() : QString::fromStdString(m->name);
+}
+
+}  // namespace paintlab::gui
