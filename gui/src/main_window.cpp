@@ -5,6 +5,7 @@
 #include "file_output.h"
 #include "ingredient_dock.h"
 #include "inplane_plot.h"
+#include "match_dock.h"
 #include "plots_dock.h"
 #include "raymap_resolution.h"
 #include "recipe_editor_dock.h"
@@ -131,7 +132,8 @@ MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMa
 }
 
 LayoutDocks MainWindow::layoutDocks() const {
-    return {m_recipes_dock, m_editor, m_ingredients, m_accuracy, m_versions, m_match, m_plots, m_inplane_dock};
+    return {m_recipes_dock, m_editor, m_ingredients, m_accuracy,
+            m_versions,     m_match,  m_plots,       m_inplane_dock};
 }
 
 MainWindow::~MainWindow() {
