@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 namespace paintlab {
@@ -181,6 +182,8 @@ TEST(FitIdentifiability, OpaqueLayerThicknessIsUndetermined) {
     start.layers[1].thickness_um = 30.0;
     const std::vector<std::string> paths{"layers[1].thickness_um", "layers[1].components[0].hg_g"};
     const FitResult r = fitBack(demo, start, paths, multiAngle(), 7);
+    std::printf("opaque: thickness %.2f ± %.1f µm (truth 25), hg_g %.4f ± %.4f\n", r.parameters[0].value,
+                r.parameters[0].sigma, r.parameters[1].value, r.parameters[1].sigma);
     EXPECT_FALSE(r.parameters[0].determined);
     EXPECT_TRUE(r.parameters[1].determined);  // the pigment's anisotropy shows in every geometry
     const bool said = std::any_of(r.identifiability.begin(), r.identifiability.end(), [](const auto& issue) {
@@ -217,6 +220,10 @@ TEST(FitIdentifiability, TwoSidedMeasurementSeparatesADepthGradient) {
     Observations both = multiAngle();
     both.multi_angle.push_back(fit::standardMultiAngleMeasurement(fit::Side::Bottom));
     const FitResult two = fitBack(truth, start, paths, both, 8);
+    for (const FitResult* r : {&top, &two})
+        std::printf("%s: weight[1] %.4f ± %.4f (truth 1.6), volume fraction %.5f ± %.5f, correlation %.4f\n",
+                    r == &top ? "top" : "both sides", r->parameters[1].value, r->parameters[1].sigma,
+                    r->parameters[0].value, r->parameters[0].sigma, r->correlation[1]);
     expectRecovered(two, truth);
     // Sharper than from the top by more than a factor 5 (measured: ~20).
     EXPECT_LT(5.0 * two.parameters[1].sigma, top.parameters[1].sigma);

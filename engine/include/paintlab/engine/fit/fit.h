@@ -14,7 +14,8 @@
 //     channel, f the model's spectral BRDF (linear sRGB D65 of it for RGB
 //     samples, brdf_colour.h), robust across the specular peak and the flop.
 // Optimiser: Ceres (bounded trust region, central differences) from
-// `starts` low-discrepancy (Sobol) points inside the bounds, searched with
+// the template's values and `starts` - 1 low-discrepancy (Halton, shifted by the
+// seed) points inside the bounds, searched with
 // the search preset; the best few polished with the polish preset; the
 // report (residuals, ΔE00, covariance) at the polish preset.
 // Uncertainty: Ceres' covariance at the optimum with the rank-revealing
@@ -45,7 +46,7 @@ struct FreeParameter {
 };
 
 struct FitSettings {
-    int starts = 16;         // multi-start points (Sobol, scrambled by seed), >= 1
+    int starts = 16;         // the template, then Halton points shifted by the seed; >= 1
     std::uint64_t seed = 1;  // the same seed gives the same starts and result
     Preset search_preset = Preset::Preview;
     Preset polish_preset = Preset::Standard;  // also the report's preset
@@ -86,7 +87,7 @@ using FitProgressCallback = std::function<bool(const FitProgress&)>;
 
 class FitCancelled : public Error {
 public:
-    FitCancelled() : Error("fit cancelled") {}
+    FitCancelled() : Error("cancelled") {}
 };
 
 struct FittedParameter {
