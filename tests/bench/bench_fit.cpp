@@ -63,7 +63,13 @@ void BM_FitPearlMultiAngle(benchmark::State& state) {
     geometry.multi_angle.push_back(fit::standardMultiAngleMeasurement());
     run(state, problem(kSixPaths, geometry, static_cast<int>(state.range(0))));
 }
-BENCHMARK(BM_FitPearlMultiAngle)->Arg(1)->Arg(8)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_FitPearlMultiAngle)
+    ->Arg(1)
+    ->Arg(8)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->MeasureProcessCPUTime()
+    ->Iterations(1);
 
 // Args: samples per incidence (x 4 incidences), starts. 500 x 4 = 2,000:
 // azimuth and exitance on a regular grid, the specular peak included.
@@ -89,6 +95,7 @@ BENCHMARK(BM_FitBrdfSamples)
     ->Args({500, 8})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
+    ->MeasureProcessCPUTime()
     ->Iterations(1);
 
 // The smoke run's case: one parameter of the metallic demo, preview only.
@@ -107,6 +114,6 @@ void BM_FitSmoke(benchmark::State& state) {
     p.settings.polish_preset = Preset::Preview;
     run(state, p);
 }
-BENCHMARK(BM_FitSmoke)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_FitSmoke)->Unit(benchmark::kSecond)->UseRealTime()->MeasureProcessCPUTime()->Iterations(1);
 
 }  // namespace

@@ -89,57 +89,55 @@ void expectRecovered(const FitResult& r, const Recipe& truth) {
     EXPECT_GT(r.modelShare(), 0.5);  // the fast model dominates a fit's time
 }
 
-TEST(FitRoundTrip, SemiHidingSolid) {
-    // The demo's red, thinned to 3 µm so that the primer shows through: then
-    // the concentration, the primer and the pigment's anisotropy all matter.
+// Draws a truth around `demo` (seed), fits it back from the demo and checks the recovery.
+FitResult roundTrip(const Recipe& demo, const std::vector<std::string>& paths, const Observations& geometry,
+                    std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    const Recipe truth = drawAround(demo, paths, rng);
+    FitResult r = fitBack(truth, demo, paths, geometry, seed + 100);
+    expectRecovered(r, truth);
+    return r;
+}
+
+// The demo's red, thinned to 3 µm of 3 % so that the primer shows through:
+// then the concentration, the primer and the pigment's anisotropy all matter.
+Recipe semiHidingSolid() {
     Recipe demo = test::demoRecipe("solid-red");
     demo.layers[1].thickness_um = 3.0;
     fit::setParameterValue(demo, "layers[1].components[0].volume_fraction", 0.03);
-    const std::vector<std::string> paths{"layers[1].components[0].volume_fraction", "substrate.albedo",
-                                         "layers[1].components[0].hg_g"};
-    std::mt19937_64 rng(1);
-    const Recipe truth = drawAround(demo, paths, rng);
-    expectRecovered(fitBack(truth, demo, paths, multiAngle(), 2), truth);
+    return demo;
+}
+
+const std::vector<std::string> kMetallicPaths{"layers[1].components[0].volume_fraction",
+                                              "layers[1].components[0].orientation_spread_deg"};
+
+TEST(FitRoundTrip, SemiHidingSolid) {
+    roundTrip(semiHidingSolid(),
+              {"layers[1].components[0].volume_fraction", "substrate.albedo", "layers[1].components[0].hg_g"},
+              multiAngle(), 1);
 }
 
 TEST(FitRoundTrip, Metallic) {
-    const Recipe demo = test::demoRecipe("silver-metallic");
-    const std::vector<std::string> paths{"layers[1].components[0].volume_fraction",
-                                         "layers[1].components[0].orientation_spread_deg"};
-    std::mt19937_64 rng(2);
-    const Recipe truth = drawAround(demo, paths, rng);
-    expectRecovered(fitBack(truth, demo, paths, multiAngle(), 3), truth);
+    roundTrip(test::demoRecipe("silver-metallic"), kMetallicPaths, multiAngle(), 2);
 }
 
 TEST(FitRoundTrip, MetallicFromRgbBrdfSamples) {
-    const Recipe demo = test::demoRecipe("silver-metallic");
-    const std::vector<std::string> paths{"layers[1].components[0].volume_fraction",
-                                         "layers[1].components[0].orientation_spread_deg"};
-    std::mt19937_64 rng(3);
-    const Recipe truth = drawAround(demo, paths, rng);
-    const FitResult r = fitBack(truth, demo, paths, brdfGrid(), 4);
-    expectRecovered(r, truth);
+    const FitResult r = roundTrip(test::demoRecipe("silver-metallic"), kMetallicPaths, brdfGrid(), 3);
     ASSERT_EQ(r.residuals.size(), brdfGrid().brdf[0].samples.size());
     for (const auto& o : r.residuals) EXPECT_EQ(o.kind, fit::ObservationKind::BrdfSample);
 }
 
 TEST(FitRoundTrip, Pearlescent) {
-    const Recipe demo = test::demoRecipe("pearlescent-two-layer");
-    const std::vector<std::string> paths{"layers[1].components[0].volume_fraction",
-                                         "layers[1].components[0].tio2_thickness_nm",
-                                         "layers[1].components[0].orientation_spread_deg"};
-    std::mt19937_64 rng(4);
-    const Recipe truth = drawAround(demo, paths, rng);
-    expectRecovered(fitBack(truth, demo, paths, multiAngle(), 5), truth);
+    roundTrip(test::demoRecipe("pearlescent-two-layer"),
+              {"layers[1].components[0].volume_fraction", "layers[1].components[0].tio2_thickness_nm",
+               "layers[1].components[0].orientation_spread_deg"},
+              multiAngle(), 4);
 }
 
 TEST(FitRoundTrip, ThreeLayer) {
-    const Recipe demo = test::demoRecipe("three-layer");
-    const std::vector<std::string> paths{"layers[1].components[0].volume_fraction",
-                                         "layers[1].components[0].tio2_thickness_nm"};
-    std::mt19937_64 rng(5);
-    const Recipe truth = drawAround(demo, paths, rng);
-    expectRecovered(fitBack(truth, demo, paths, multiAngle(), 6), truth);
+    roundTrip(test::demoRecipe("three-layer"),
+              {"layers[1].components[0].volume_fraction", "layers[1].components[0].tio2_thickness_nm"},
+              multiAngle(), 5);
 }
 
 // Sigma calibration: over 50 synthetic fits of a semi-hiding solid (two free
@@ -148,9 +146,7 @@ TEST(FitRoundTrip, ThreeLayer) {
 // -2.6 and +1.2 binomial standard deviations of 100 checks around it, and the
 // seeds are fixed, so the test is deterministic). Measured: see VALIDATION.md.
 TEST(FitCalibration, TwoSigmaCoverageOfFiftyFits) {
-    Recipe demo = test::demoRecipe("solid-red");
-    demo.layers[1].thickness_um = 3.0;
-    fit::setParameterValue(demo, "layers[1].components[0].volume_fraction", 0.03);
+    const Recipe demo = semiHidingSolid();
     const std::vector<std::string> paths{"layers[1].components[0].volume_fraction", "substrate.albedo"};
     std::mt19937_64 rng(28);
     int inside = 0;
