@@ -27,7 +27,10 @@ constexpr double kAtBound = 1e-4;
 std::vector<bool> nullSpaceParameters(const TrialCost& cost, std::size_t rows, std::size_t n) {
     std::vector<bool> null(n, false);
     const std::vector<double>& j = cost.lastJacobian();
-    if (j.size() != rows * n) return std::vector<bool>(n, true);
+    if (j.size() != rows * n) {
+        null.assign(n, true);  // no Jacobian: nothing is known to be determined
+        return null;
+    }
     const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(
         j.data(), static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(n));
     const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullV);
