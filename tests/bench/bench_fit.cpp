@@ -84,7 +84,8 @@ void BM_FitBrdfSamples(benchmark::State& state) {
     for (double ti : {15.0, 30.0, 45.0, 60.0})
         for (int k = 0; k < per_incidence; ++k) {
             const double to = 2.0 + 83.0 * (k % 25) / 24.0;
-            const double po = 180.0 * static_cast<double>(k / 25) / std::max(1.0, (per_incidence - 1) / 25.0);
+            const int azimuth_step = k / 25;  // 25 exitance angles per azimuth
+            const double po = 180.0 * azimuth_step / std::max(1.0, (per_incidence - 1) / 25.0);
             m.samples.push_back({ti, 0.0, to, po, {0.0, 0.0, 0.0}, 0.0});
         }
     geometry.brdf.push_back(m);
