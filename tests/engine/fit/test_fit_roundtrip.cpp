@@ -127,6 +127,22 @@ TEST(FitRoundTrip, MetallicFromRgbBrdfSamples) {
     for (const auto& o : r.residuals) EXPECT_EQ(o.kind, fit::ObservationKind::BrdfSample);
 }
 
+// Per-wavelength BRDF samples (400-700 nm, 10 nm) at a coarser grid (36 samples).
+TEST(FitRoundTrip, MetallicFromSpectralBrdfSamples) {
+    Observations geometry = brdfGrid();
+    fit::BrdfMeasurement& m = geometry.brdf[0];
+    m.values = fit::BrdfValues::Spectral;
+    m.wavelengths_nm = uniformWavelengthGrid(400.0, 700.0, 10.0);
+    std::vector<fit::BrdfSample> every_second;
+    for (std::size_t k = 0; k < m.samples.size(); k += 2) {
+        every_second.push_back(m.samples[k]);
+        every_second.back().values.assign(m.wavelengths_nm.size(), 0.0);
+    }
+    m.samples = every_second;
+    const FitResult r = roundTrip(test::demoRecipe("silver-metallic"), kMetallicPaths, geometry, 6);
+    EXPECT_EQ(r.residual_count, 36U * 31U);
+}
+
 TEST(FitRoundTrip, Pearlescent) {
     roundTrip(test::demoRecipe("pearlescent-two-layer"),
               {"layers[1].components[0].volume_fraction", "layers[1].components[0].tio2_thickness_nm",
