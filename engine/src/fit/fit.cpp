@@ -7,11 +7,13 @@
 #include "uncertainty.h"
 
 #include <ceres/ceres.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 namespace paintlab::fit {
 
@@ -90,7 +92,7 @@ void solve(const Recipe& recipe, const PreparedProblem& prepared, const FastMode
     ceres::Problem::Options problem_options;
     problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     ceres::Problem problem(problem_options);
-    TrialCost cost(recipe, prepared, settings, counters);
+    TrialCost cost(recipe, prepared, settings, counters, /*central=*/polish);
     problem.AddResidualBlock(&cost, nullptr, c.u.data());
     for (int j = 0; j < static_cast<int>(c.u.size()); ++j) {
         problem.SetParameterLowerBound(c.u.data(), j, 0.0);
@@ -139,6 +141,29 @@ FitResult fitRecipe(const FitProblem& problem, const FitProgressCallback& progre
     if (s.starts > 1)
         for (auto& u : haltonStarts(static_cast<std::size_t>(s.starts - 1), n, s.seed))
             candidates.push_back({u});
+
+    // Scatter: one cost per start (the template's kept whatever its cost);
+    // the local searches go from the best.
+    if (static_cast<int>(candidates.size()) > s.searches) {
+        const TrialCost scatter(problem.recipe, prepared, search, counters);
+        std::vector<double> costs(candidates.size(), std::numeric_limits<double>::infinity());
+        tbb::parallel_for(std::size_t{1}, candidates.size(), [&](std::size_t i) {
+            std::vector<double> r(prepared.observations.residual_count);
+            if (!scatter.residualsAt(candidates[i].u, r)) return;
+            double sum = 0.0;
+            for (double v : r) sum += v * v;
+            costs[i] = 0.5 * sum;
+        });
+        if (counters.cancelled) throw FitCancelled();
+        std::vector<std::size_t> order(candidates.size() - 1);
+        std::iota(order.begin(), order.end(), std::size_t{1});
+        std::stable_sort(order.begin(), order.end(),
+                         [&](std::size_t a, std::size_t b) { return costs[a] < costs[b]; });
+        std::vector<Candidate> kept{candidates.front()};
+        for (std::size_t k = 0; k + 1 < static_cast<std::size_t>(s.searches) && k < order.size(); ++k)
+            kept.push_back(candidates[order[k]]);
+        candidates = std::move(kept);
+    }
 
     // Search: 0 .. 0.6 of the progress; polish 0.6 .. 0.95; report the rest.
     state.stage = "search";

@@ -25,6 +25,7 @@ void checkSettings(const FitSettings& s) {
     };
     if (s.starts < 1 || s.starts > 10000) fail("starts", std::to_string(s.starts) + " is outside 1 to 10000");
     if (s.polish_count < 1) fail("polish_count", "must be at least 1");
+    if (s.searches < 1) fail("searches", "must be at least 1");
     if (s.search_iterations < 1) fail("search_iterations", "must be at least 1");
     if (s.polish_iterations < 1) fail("polish_iterations", "must be at least 1");
     if (!(s.alternative_cost_abs >= 0.0) || !std::isfinite(s.alternative_cost_abs))

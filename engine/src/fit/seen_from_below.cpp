@@ -41,8 +41,8 @@ Recipe recipeSeenFromBelow(const Recipe& recipe) {
     carrier.binder.name = "carrier";
     carrier.binder.refractive_index = Spectrum(glass->refractive_index);
     below.layers.push_back(std::move(carrier));
-    for (auto it = recipe.layers.rbegin(); it != recipe.layers.rend(); ++it) {
-        Layer layer = *it;
+    for (std::size_t i = recipe.layers.size(); i-- > 0;) {
+        Layer layer = recipe.layers[i];
         for (Component& c : layer.components)
             std::visit(
                 [](auto& component) {

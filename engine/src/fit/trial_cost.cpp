@@ -17,10 +17,11 @@ constexpr double kStep = 1e-3;
 
 }  // namespace
 
-TrialCost::TrialCost(const Recipe& recipe, const PreparedProblem& problem, FastModelSettings settings,
-                     FitCounters& counters)
-    : m_recipe(recipe), m_problem(problem), m_settings(std::move(settings)), m_counters(counters),
-      m_residuals(problem.observations.residual_count), m_parameters(problem.dims.size()) {
+TrialCost::TrialCost(const Recipe& recipe, const PreparedProblem& problem, const FastModelSettings& settings,
+                     FitCounters& counters, bool central)
+    : m_recipe(recipe), m_problem(problem), m_settings(settings), m_counters(counters),
+      m_residuals(problem.observations.residual_count), m_parameters(problem.dims.size()),
+      m_central(central) {
     set_num_residuals(static_cast<int>(m_residuals));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(m_parameters));
 }
@@ -51,21 +52,24 @@ bool TrialCost::evaluate(double const* const* parameters, double* residuals, dou
     const std::span<double> r(residuals, m_residuals);
     if (jacobians == nullptr || jacobians[0] == nullptr) return residualsAt(u, r);
 
-    // The centre and the 2n displaced points, all in parallel.
+    // The centre and the displaced points (2n central, n forward), in parallel.
     const std::size_t n = m_parameters;
     std::vector<std::vector<double>> points(2 * n + 1, std::vector<double>(u.begin(), u.end()));
     std::vector<double> lo(n);
     std::vector<double> hi(n);
     for (std::size_t j = 0; j < n; ++j) {
-        hi[j] = std::min(u[j] + kStep, 1.0);
-        lo[j] = std::max(u[j] - kStep, 0.0);
+        // Forward: one side only, downwards at the upper bound.
+        hi[j] = m_central || u[j] + kStep <= 1.0 ? std::min(u[j] + kStep, 1.0) : u[j];
+        lo[j] = m_central || hi[j] == u[j] ? std::max(u[j] - kStep, 0.0) : u[j];
         points[1 + 2 * j][j] = hi[j];
         points[2 + 2 * j][j] = lo[j];
     }
     std::vector<std::vector<double>> values(points.size(), std::vector<double>(m_residuals));
     std::vector<char> ok(points.size(), 0);
-    tbb::parallel_for(std::size_t{0}, points.size(),
-                      [&](std::size_t k) { ok[k] = residualsAt(points[k], values[k]) ? 1 : 0; });
+    tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t k) {
+        const bool displaced = k == 0 || points[k] != points[0];  // forward: one side is the centre
+        ok[k] = displaced && residualsAt(points[k], values[k]) ? 1 : 0;
+    });
     if (ok[0] == 0) return false;
     std::copy(values[0].begin(), values[0].end(), r.begin());
     double* J = jacobians[0];

@@ -1,7 +1,7 @@
 #pragma once
 // The fit's Ceres cost function: the whitened residuals of the recipe at u
-// (fit_problem.h) and their Jacobian by central differences in u, the 2n
-// displaced recipes evaluated in parallel. Private to the fitter.
+// (fit_problem.h) and their Jacobian by central (or forward) differences in
+// u, the displaced recipes evaluated in parallel. Private to the fitter.
 
 #include "fit_problem.h"
 
@@ -21,8 +21,9 @@ struct FitCounters {
 
 class TrialCost final : public ceres::CostFunction {
 public:
-    TrialCost(const Recipe& recipe, const PreparedProblem& problem, FastModelSettings settings,
-              FitCounters& counters);
+    // central: central differences (2n displaced recipes), else forward (n).
+    TrialCost(const Recipe& recipe, const PreparedProblem& problem, const FastModelSettings& settings,
+              FitCounters& counters, bool central = true);
 
     bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
 
@@ -43,6 +44,7 @@ private:
     FitCounters& m_counters;
     std::size_t m_residuals = 0;
     std::size_t m_parameters = 0;
+    bool m_central = true;
     mutable std::vector<double> m_jacobian;
     mutable std::vector<double> m_jacobian_at;
 };

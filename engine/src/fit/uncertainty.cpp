@@ -27,7 +27,10 @@ constexpr double kAtBound = 1e-4;
 std::vector<bool> nullSpaceParameters(const TrialCost& cost, std::size_t rows, std::size_t n) {
     std::vector<bool> null(n, false);
     const std::vector<double>& j = cost.lastJacobian();
-    if (j.size() != rows * n) return std::vector<bool>(n, true);
+    if (j.size() != rows * n) {
+        null.assign(n, true);  // no Jacobian: nothing is known to be determined
+        return null;
+    }
     const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(
         j.data(), static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(n));
     const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullV);
@@ -71,20 +74,25 @@ void fillUncertainty(ceres::Problem& problem, double* u, const TrialCost& cost,
     for (std::size_t j = 0; j < n; ++j) {
         FittedParameter& p = result.parameters[j];
         const FreeDimension& d = prepared.dims[j];
-        const double range = d.upper - d.lower;
         p.at_bound = u[j] <= kAtBound || u[j] >= 1.0 - kAtBound;
         const double var = cov[j * n + j];
-        p.sigma = null[j] || !(var >= 0.0) ? kInf : sigma_scale * std::sqrt(var) * d.valuePerUnit(u[j]);
-        p.determined = std::isfinite(p.sigma) && p.sigma <= range;
+        // Compared with the bound range on the scale the fit searches (u,
+        // logarithmic for a log-scaled thickness): a sigma of 1500 µm on
+        // 27 µm within 1-5000 µm is a factor of 50, not a confident number.
+        const double sigma_u = null[j] || !(var >= 0.0) ? kInf : sigma_scale * std::sqrt(var);
+        p.sigma = std::isfinite(sigma_u) ? sigma_u * d.valuePerUnit(u[j]) : kInf;
+        p.determined = sigma_u <= 1.0;
+        const std::string range =
+            formatNumber(d.lower) + " to " + formatNumber(d.upper) + (d.log ? " (log scale)" : "");
         if (!p.determined) {
             result.identifiability.push_back(
                 {IdentifiabilityKind::Undetermined,
                  {p.path},
                  0.0,
                  p.path + " is not determined by these measurements: " +
-                     (std::isfinite(p.sigma) ? "1 sigma " + formatNumber(p.sigma) +
-                                                   " exceeds its bound range " + formatNumber(range)
-                                             : std::string("the measurements do not change with it")) +
+                     (std::isfinite(p.sigma)
+                          ? "1 sigma " + formatNumber(p.sigma) + " spans more than its bound range " + range
+                          : std::string("the measurements do not change with it")) +
                      " (best value " + shortValue(p) + ", do not trust it)"});
         }
         if (p.at_bound)

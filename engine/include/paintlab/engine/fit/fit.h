@@ -13,10 +13,12 @@
 //   - BRDF samples: [ln(1 + f cos θi) - ln(1 + f_meas cos θi)] / sigma_log per
 //     channel, f the model's spectral BRDF (linear sRGB D65 of it for RGB
 //     samples, brdf_colour.h), robust across the specular peak and the flop.
-// Optimiser: Ceres (bounded trust region, central differences) from
-// `starts` low-discrepancy (Sobol) points inside the bounds, searched with
-// the search preset; the best few polished with the polish preset; the
-// report (residuals, ΔE00, covariance) at the polish preset.
+// Optimiser: the cost at the template's values and at `starts` - 1
+// low-discrepancy (Halton, shifted by the seed) points inside the bounds; a
+// Ceres search (bounded Levenberg-Marquardt, forward differences) at the
+// search preset from the template and the best `searches` - 1 of them; the
+// best distinct minima polished at the polish preset with central
+// differences; the report (residuals, ΔE00, covariance) there.
 // Uncertainty: Ceres' covariance at the optimum with the rank-revealing
 // DENSE_SVD algorithm, scaled by the reduced chi-square when that exceeds 1
 // (the model cannot reach the data: the noise alone understates the error).
@@ -45,13 +47,16 @@ struct FreeParameter {
 };
 
 struct FitSettings {
-    int starts = 16;         // multi-start points (Sobol, scrambled by seed), >= 1
+    int starts = 16;         // the template, then Halton points shifted by the seed; >= 1
     std::uint64_t seed = 1;  // the same seed gives the same starts and result
+    // Local searches: from the template and the starts with the lowest cost
+    // (each start costs one evaluation; a search about ten Jacobians).
+    int searches = 3;
     Preset search_preset = Preset::Preview;
     Preset polish_preset = Preset::Standard;  // also the report's preset
-    int polish_count = 3;                     // best distinct search minima polished
-    int search_iterations = 15;               // Ceres iterations per start
-    int polish_iterations = 30;
+    int polish_count = 2;                     // best distinct search minima polished
+    int search_iterations = 8;                // Ceres iterations per start
+    int polish_iterations = 10;
     // Search on a log scale the parameters whose bounds are > 0 and span more
     // than a factor 10 (concentrations, thicknesses).
     bool log_scale = true;
@@ -86,7 +91,7 @@ using FitProgressCallback = std::function<bool(const FitProgress&)>;
 
 class FitCancelled : public Error {
 public:
-    FitCancelled() : Error("fit cancelled") {}
+    FitCancelled() : Error("cancelled") {}
 };
 
 struct FittedParameter {
