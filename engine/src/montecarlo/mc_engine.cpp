@@ -18,9 +18,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Paths per chunk of a budgeted job's first round, which measures the pace.
-constexpr std::int64_t kPilotChunkPaths = 16;
-
 // The estimates of a job from its batches' sums: over the batches' means
 // when the batches trace different tiles, else over paths.
 JobResult finish(const JobRunner& runner, const std::vector<Sums>& batches, bool over_batches,
@@ -70,6 +67,18 @@ bool converged(const JobResult& r, double target, int orders) {
 }
 
 }  // namespace
+
+RunDeadline::RunDeadline(double max_seconds, std::size_t jobs)
+    : m_start(Clock::now()), m_max_seconds(max_seconds), m_jobs_left(std::max<std::size_t>(1, jobs)) {}
+
+double RunDeadline::nextJobBudget() {
+    if (!(m_max_seconds > 0.0)) return 0.0;
+    const double left = m_max_seconds - std::chrono::duration<double>(Clock::now() - m_start).count();
+    const double share = left / static_cast<double>(m_jobs_left);
+    if (m_jobs_left > 1) --m_jobs_left;
+    // Past the deadline a job still runs its pilot round (a result needs paths): a tiny positive budget.
+    return std::max(share, 1e-6);
+}
 
 McEngine::McEngine(const Recipe& recipe, const McSettings& settings, const std::function<bool()>& keep_going)
     : m_recipe(recipe), m_settings(settings), m_batches(std::max(1, settings.batches)) {
@@ -177,6 +186,7 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
     JobResult current;
     Sums seen(runner.entries(), runner.coneStats());  // every path so far, for the adaptive rates
     bool pilot_dropped = false;
+    const auto paths_start = Clock::now();  // the pace leaves out the estimators' set-up above
     while (started < max_paths) {
         // One round of chunks in parallel; summed in chunk order (deterministic).
         const std::int64_t remaining = max_paths - started;
@@ -184,21 +194,29 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
         std::int64_t round_chunks =
             std::min<std::int64_t>(std::max(1, m_settings.chunks_per_round), (remaining + chunk - 1) / chunk);
         if (budget_seconds > 0.0) {
-            // A time budget: the stop is checked between rounds only, and one
-            // round of a slow paint (long walks in a scattering ground coat)
-            // can outlast a job's share many times over. So a short pilot round
-            // first, then rounds sized to the time left at the pace measured;
-            // runs with a path count alone keep their fixed chunks.
+            // A time budget: the stop is checked between rounds only, and a
+            // path's cost varies ~100x between paints and between the normal
+            // and the oblique incidence (whose reverse walks run a deep white
+            // coat's diffusion again). So a pilot round of one path per chunk,
+            // then rounds sized to the time left at the pace measured, each at
+            // most twice the paths so far (a pace read off few long-tailed
+            // paths cannot commit the whole budget); runs with a path count
+            // alone keep their fixed chunks.
             const double elapsed = std::chrono::duration<double>(Clock::now() - job_start).count();
-            if (started == 0) {
-                round_chunk = std::min<std::int64_t>(chunk, kPilotChunkPaths);
-            } else {
-                const double seconds_per_path = elapsed / static_cast<double>(started);
+            std::int64_t paths = round_chunks;
+            if (started > 0) {
+                const double seconds_per_path =
+                    std::chrono::duration<double>(Clock::now() - paths_start).count() /
+                    static_cast<double>(started);
                 const double affordable = std::max(0.0, budget_seconds - elapsed) / seconds_per_path;
-                const auto paths =
-                    static_cast<std::int64_t>(std::min(affordable, static_cast<double>(remaining)));
-                round_chunk = std::clamp<std::int64_t>((paths + round_chunks - 1) / round_chunks, 1, chunk);
+                // Not one more path within the budget (unless the pilot's paths were just dropped).
+                if (affordable < 1.0 && current.incidence.paths > 0) break;
+                paths = std::max<std::int64_t>(
+                    1, static_cast<std::int64_t>(std::min({affordable, static_cast<double>(remaining),
+                                                           2.0 * static_cast<double>(started)})));
             }
+            round_chunks = std::min(round_chunks, std::max<std::int64_t>(1, paths));
+            round_chunk = std::clamp<std::int64_t>((paths + round_chunks - 1) / round_chunks, 1, chunk);
             round_chunks = std::min<std::int64_t>(round_chunks, (remaining + round_chunk - 1) / round_chunk);
         }
         std::vector<Sums> sums(static_cast<std::size_t>(round_chunks));

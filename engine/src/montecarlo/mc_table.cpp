@@ -106,15 +106,14 @@ McTable tabulateMonteCarlo(const Recipe& recipe, const FastModelSettings& grid_s
     if (progress) grid_progress = [&progress](double fraction) { return progress(kGridShare * fraction); };
     const LayeredBrdf grid = computeLayeredBrdf(recipe, grid_settings, grid_progress);
     const auto start = Clock::now();
+    std::size_t jobs = 0;
+    for (const auto& g : grid.bands()) jobs += g.mu.size();
+    RunDeadline deadline(settings.max_seconds, jobs);
     std::function<bool()> keep_going;
     if (progress) keep_going = [&progress] { return progress(kGridShare); };
     const McEngine engine(recipe, settings, keep_going);
     const auto wavelengths = grid.wavelengthsNm();
     const auto& grid_bands = grid.bands();
-    std::size_t jobs = 0;
-    for (const auto& g : grid_bands) jobs += g.mu.size();
-    const double job_budget =
-        settings.max_seconds > 0.0 ? settings.max_seconds / static_cast<double>(jobs) : 0.0;
     const auto batches = static_cast<std::size_t>(engine.batches());
 
     McTable table;
@@ -144,7 +143,7 @@ McTable tabulateMonteCarlo(const Recipe& recipe, const FastModelSettings& grid_s
                                                      (static_cast<double>(jobs_done) + fraction) /
                                                      static_cast<double>(jobs));
                 };
-            const JobResult r = engine.run(band, b, j, job, job_budget, job_progress);
+            const JobResult r = engine.run(band, b, j, job, deadline.nextJobBudget(), job_progress);
             const auto jj = static_cast<Eigen::Index>(j);
             t.albedo(jj) = r.incidence.albedo.mean;
             albedo_se(jj) = r.incidence.albedo.std_error;
