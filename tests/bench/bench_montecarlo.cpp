@@ -264,6 +264,8 @@ BENCHMARK(BM_McDemoOnePercent)
 //   19-24 the default scoring one part alone (issue 30's account per walk kind):
 //     19 next-event into the cones, 20 glints, 21 reverse walks, 22 delta-chain
 //     walks, 23 forward flake images, 24 the histogram's remainder
+//   25 the default without the connections' roulette by transmittance
+//     (McSettings::connection_roulette, the estimator before issue 30)
 // The figures quoted in docs/PERFORMANCE.md: see there (each row names its
 // arguments). Prints f, its standard error and the relative error per band
 // and geometry (stdout) and reports the worst relative error, the time 1 %
@@ -311,6 +313,7 @@ void BM_McExplicitBudget(benchmark::State& state) {
         s.connection_parts.flake_images = config == 23;
         if (config != 24) s.histogram_classes = mc::HistogramClasses::none();
     }
+    if (config == 25) s.connection_roulette = false;
     s.seed = benchSeed();
     double worst = 0.0;
     double seconds = 0.0;
@@ -369,6 +372,7 @@ BENCHMARK(BM_McExplicitBudget)
     ->ArgsProduct({{10, 11, 12, 13, 14, 15}, {1000}, {1}})
     ->ArgsProduct({{5, 16}, {1500}, {8}})
     ->ArgsProduct({{5, 19, 20, 21, 22, 23, 24}, {20, 200}, {8}})
+    ->ArgsProduct({{5, 25}, {4, 20, 200}, {8}})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);

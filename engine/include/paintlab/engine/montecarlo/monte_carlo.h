@@ -178,6 +178,12 @@ struct McSettings {
     bool chain_promise = true;
     double chain_promise_threshold = 1.4e-4;  // of the walk's start weight (mc_walk.h)
     double chain_promise_floor = 0.2;         // the lowest survival probability
+    // Connections (next-event into the cones, the reverse walks' towards the
+    // beam): Russian roulette of those whose transmittance before the first
+    // flake tile is below 1e-3 (mc_connection.h, kConnectionRouletteT);
+    // unbiased, and the connections from deep in a scattering coat under a
+    // flake layer stop tracing that layer. false: the estimator before issue 30.
+    bool connection_roulette = true;
     // Diagnostics for error budgets: what each estimator scores.
     ConnectionParts connection_parts;
     HistogramClasses histogram_classes;
