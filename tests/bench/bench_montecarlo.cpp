@@ -192,7 +192,9 @@ BENCHMARK(BM_McPearlescentOnePercent)
 // Issue 30: each demo recipe (kDemoPaints[argument 0]) to 1 % relative
 // standard error of both albedos and f at the six multi-angle geometries,
 // 8 bands, explicit flakes (as `mc --explicit-flakes --rel-error 0.01`),
-// 2 threads, at most argument 1 seconds; reports the time and the process's
+// 2 threads, at most argument 1 seconds, the default estimator (argument 2 =
+// 0) or the one before issue 30 (1: no roulette of the connections by
+// transmittance, McSettings::connection_roulette); reports the time and the process's
 // CPU time (all threads; load-independent up to the machine's speed) and,
 // when the cap stopped the run, the time 1 % would take from the worst error
 // reached (error ~ 1 / sqrt(time)).
@@ -209,6 +211,7 @@ void BM_McDemoOnePercent(benchmark::State& state) {
     s.explicit_flakes = true;
     s.histogram_cone_deg = 5.0;
     s.max_seconds = static_cast<double>(state.range(1));
+    s.connection_roulette = state.range(2) == 0;
     s.seed = benchSeed();
     double worst = 0.0;
     double seconds = 0.0;
@@ -230,10 +233,10 @@ void BM_McDemoOnePercent(benchmark::State& state) {
     state.counters["seconds_to_1pct"] = seconds * to_1pct;
     state.counters["cpu_seconds"] = cpu;
     state.counters["cpu_seconds_to_1pct"] = cpu * to_1pct;
-    state.SetLabel(kDemoPaints[paint]);
+    state.SetLabel(std::string(kDemoPaints[paint]) + (state.range(2) == 0 ? "" : ", before issue 30"));
 }
 BENCHMARK(BM_McDemoOnePercent)
-    ->ArgsProduct({{0, 1, 2, 3, 4}, {60}})
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {30, 60}, {0, 1}})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);
