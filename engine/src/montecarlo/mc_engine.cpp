@@ -186,6 +186,7 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
     JobResult current;
     Sums seen(runner.entries(), runner.coneStats());  // every path so far, for the adaptive rates
     bool pilot_dropped = false;
+    const std::int64_t full_round = chunk * std::max(1, m_settings.chunks_per_round);
     const auto paths_start = Clock::now();  // the pace leaves out the estimators' set-up above
     while (started < max_paths) {
         // One round of chunks in parallel; summed in chunk order (deterministic).
@@ -257,11 +258,14 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
             if (!progress(fraction)) throw Error("Monte Carlo: cancelled");
         }
         // The stop rule reads the spread of the batches: only once every batch has paths
-        // (a spread over a few batches of one chunk each is itself too uncertain to stop on).
+        // (a spread over a few batches of one chunk each is itself too uncertain to stop on),
+        // and not before one full round's paths (a budget's first rounds are small: an
+        // error read off a few dozen paths could stop the job on a low draw).
         const bool every_batch = !over_batches || std::all_of(batches.begin(), batches.end(),
                                                               [](const Sums& b) { return b.paths > 0; });
-        if (out_of_time ||
-            (!dropped_now && every_batch && converged(current, m_settings.target_rel_error, job.orders)))
+        const bool enough = started >= std::min(max_paths, full_round);
+        if (out_of_time || (!dropped_now && every_batch && enough &&
+                            converged(current, m_settings.target_rel_error, job.orders)))
             break;
     }
     return current;
