@@ -18,6 +18,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// A budgeted round's share of the job's time left.
+constexpr double kRoundShare = 0.5;
+
 // The estimates of a job from its batches' sums: over the batches' means
 // when the batches trace different tiles, else over paths.
 JobResult finish(const JobRunner& runner, const std::vector<Sums>& batches, bool over_batches,
@@ -202,7 +205,9 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
             // then rounds sized to the time left at the pace measured, each at
             // most twice the paths so far (a pace read off few long-tailed
             // paths cannot commit the whole budget); runs with a path count
-            // alone keep their fixed chunks.
+            // alone keep their fixed chunks. A round takes at most half the
+            // time left (kRoundShare): the pace of a shared machine drifts
+            // within a job, and only the rounds after an overrun can absorb it.
             const double elapsed = std::chrono::duration<double>(Clock::now() - job_start).count();
             std::int64_t paths = round_chunks;
             if (started > 0) {
@@ -212,9 +217,10 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
                 const double affordable = std::max(0.0, budget_seconds - elapsed) / seconds_per_path;
                 // Not one more path within the budget (unless the pilot's paths were just dropped).
                 if (affordable < 1.0 && current.incidence.paths > 0) break;
-                paths = std::max<std::int64_t>(
-                    1, static_cast<std::int64_t>(std::min({affordable, static_cast<double>(remaining),
-                                                           2.0 * static_cast<double>(started)})));
+                paths =
+                    std::max<std::int64_t>(1, static_cast<std::int64_t>(std::min(
+                                                  {kRoundShare * affordable, static_cast<double>(remaining),
+                                                   2.0 * static_cast<double>(started)})));
             }
             round_chunks = std::min(round_chunks, std::max<std::int64_t>(1, paths));
             round_chunk = std::clamp<std::int64_t>((paths + round_chunks - 1) / round_chunks, 1, chunk);
