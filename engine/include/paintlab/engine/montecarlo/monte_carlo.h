@@ -88,7 +88,9 @@ struct McSettings {
     std::uint64_t seed = 1;
     // Each (band, incidence) stops at the first of: max_paths paths; every
     // estimate at or below target_rel_error (relative standard error, 0 = off,
-    // checked between rounds of chunks); its even share of max_seconds (0 = off).
+    // checked between rounds of chunks); its even share of what is left of
+    // max_seconds when it starts (0 = off), which covers the whole call, the
+    // tiles' set-up included.
     std::int64_t max_paths = 100000;
     double target_rel_error = 0.0;
     double max_seconds = 0.0;
