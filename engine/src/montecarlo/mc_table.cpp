@@ -106,12 +106,16 @@ McTable tabulateMonteCarlo(const Recipe& recipe, const FastModelSettings& grid_s
     if (progress) grid_progress = [&progress](double fraction) { return progress(kGridShare * fraction); };
     const LayeredBrdf grid = computeLayeredBrdf(recipe, grid_settings, grid_progress);
     const auto start = Clock::now();
-    std::size_t jobs = 0;
-    for (const auto& g : grid.bands()) jobs += g.mu.size();
-    RunDeadline deadline(settings.max_seconds, jobs);
     std::function<bool()> keep_going;
     if (progress) keep_going = [&progress] { return progress(kGridShare); };
     const McEngine engine(recipe, settings, keep_going);
+    std::size_t jobs = 0;
+    for (const auto& g : grid.bands()) jobs += g.mu.size();
+    // Unlike runMonteCarlo, the budget starts after the tiles' set-up: a
+    // table has ~250 jobs, and the GUI's 1 s budget (full_model_job.cpp) is
+    // shorter than the set-up, which would leave every job its pilot round
+    // alone. An overrun of one job still comes out of the later ones.
+    RunDeadline deadline(settings.max_seconds, jobs);
     const auto wavelengths = grid.wavelengthsNm();
     const auto& grid_bands = grid.bands();
     const auto batches = static_cast<std::size_t>(engine.batches());

@@ -90,7 +90,7 @@ struct McSettings {
     // estimate at or below target_rel_error (relative standard error, 0 = off,
     // checked between rounds of chunks); its even share of what is left of
     // max_seconds when it starts (0 = off), which covers the whole call, the
-    // tiles' set-up included.
+    // tiles' set-up included (tabulateMonteCarlo: the set-up comes on top).
     std::int64_t max_paths = 100000;
     double target_rel_error = 0.0;
     double max_seconds = 0.0;
