@@ -20,6 +20,8 @@ using Clock = std::chrono::steady_clock;
 
 // A budgeted round's share of the job's time left.
 constexpr double kRoundShare = 0.5;
+// Paths per chunk of the pilot round behind an error target (the budget a safety net).
+constexpr std::int64_t kPilotChunkPaths = 16;
 
 // The estimates of a job from its batches' sums: over the batches' means
 // when the batches trace different tiles, else over paths.
@@ -201,15 +203,19 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
             // A time budget: the stop is checked between rounds only, and a
             // path's cost varies ~100x between paints and between the normal
             // and the oblique incidence (whose reverse walks run a deep white
-            // coat's diffusion again). So a pilot round of one path per chunk,
-            // then rounds sized to the time left at the pace measured, each at
-            // most twice the paths so far (a pace read off few long-tailed
-            // paths cannot commit the whole budget); runs with a path count
-            // alone keep their fixed chunks. A round takes at most half the
-            // time left (kRoundShare): the pace of a shared machine drifts
-            // within a job, and only the rounds after an overrun can absorb it.
+            // coat's diffusion again). So a pilot round, then rounds sized to
+            // the time left at the pace measured; runs with a path count alone
+            // keep their fixed chunks. When the budget is the stop rule, the
+            // pilot is one path per chunk, each round at most twice the paths
+            // so far (a pace read off few long-tailed paths cannot commit the
+            // whole budget) and half the time left (kRoundShare: the pace of a
+            // shared machine drifts within a job, and only the rounds after an
+            // overrun can absorb it). Behind an error target the budget is a
+            // safety net, and the full rounds of before keep the adaptive
+            // rates' first fit on a full round of paths.
+            const bool budget_stops = !(m_settings.target_rel_error > 0.0);
             const double elapsed = std::chrono::duration<double>(Clock::now() - job_start).count();
-            std::int64_t paths = round_chunks;
+            std::int64_t paths = round_chunks * (budget_stops ? 1 : std::min(chunk, kPilotChunkPaths));
             if (started > 0) {
                 const double seconds_per_path =
                     std::chrono::duration<double>(Clock::now() - paths_start).count() /
@@ -217,10 +223,10 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
                 const double affordable = std::max(0.0, budget_seconds - elapsed) / seconds_per_path;
                 // Not one more path within the budget (unless the pilot's paths were just dropped).
                 if (affordable < 1.0 && current.incidence.paths > 0) break;
-                paths =
-                    std::max<std::int64_t>(1, static_cast<std::int64_t>(std::min(
-                                                  {kRoundShare * affordable, static_cast<double>(remaining),
-                                                   2.0 * static_cast<double>(started)})));
+                double cap = std::min(affordable, static_cast<double>(remaining));
+                if (budget_stops)
+                    cap = std::min({cap, kRoundShare * affordable, 2.0 * static_cast<double>(started)});
+                paths = std::max<std::int64_t>(1, static_cast<std::int64_t>(cap));
             }
             round_chunks = std::min(round_chunks, std::max<std::int64_t>(1, paths));
             round_chunk = std::clamp<std::int64_t>((paths + round_chunks - 1) / round_chunks, 1, chunk);
