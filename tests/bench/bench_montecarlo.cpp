@@ -26,6 +26,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <numbers>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,17 @@ using namespace paintlab;
 const std::filesystem::path kDemo = std::filesystem::path(PAINTLAB_DEMO_DIR) / "recipes";
 
 Recipe pearlescent() { return loadRecipeFile(kDemo / "pearlescent-two-layer.json"); }
+
+// The demo recipes of BM_McDemoOnePercent, by its argument.
+constexpr const char* kDemoPaints[] = {"pearlescent-two-layer", "silver-metallic", "three-layer", "solid-red",
+                                       "raw-medium-slab"};
+
+// The recipe of the error-budget runs: PAINTLAB_BENCH_RECIPE (a demo recipe's
+// name, e.g. silver-metallic) if set, else the pearlescent demo.
+Recipe budgetRecipe() {
+    const char* name = std::getenv("PAINTLAB_BENCH_RECIPE");
+    return name != nullptr ? loadRecipeFile(kDemo / (std::string(name) + ".json")) : pearlescent();
+}
 
 // Incidence 45 degrees with the six multi-angle detectors (the `mc` command's
 // oblique request), or the first `count` of them (4: 45as-15 to 45as45, near
@@ -76,6 +88,16 @@ void printBandTimes(const mc::McResult& r) {
     for (std::size_t b = 0; b < r.bands.size(); ++b)
         std::fprintf(stderr, "  band %3.0f nm: %9lld paths %6.2f s\n", r.wavelengths_nm[b],
                      static_cast<long long>(r.bands[b][0].paths), r.bands[b][0].seconds);
+}
+
+// One run with its process CPU time (added to `cpu`) and its band times printed.
+mc::McResult timedRun(const Recipe& recipe, std::span<const double> wavelengths,
+                      std::span<const mc::IncidenceRequest> requests, const mc::McSettings& s, double& cpu) {
+    const double cpu_start = processCpuSeconds();
+    mc::McResult r = mc::runMonteCarlo(recipe, wavelengths, requests, s);
+    cpu += processCpuSeconds() - cpu_start;
+    printBandTimes(r);
+    return r;
 }
 
 // Explicit-flake estimators of the benchmarks below: the default, or that of 2026-12-01.
@@ -125,12 +147,9 @@ void BM_McPearlescentOnePercent(benchmark::State& state) {
     double seconds = 0.0;
     double cpu = 0.0;
     for (auto _ : state) {
-        const double cpu_start = processCpuSeconds();
-        const mc::McResult r = mc::runMonteCarlo(recipe, wavelengths, request, s);
-        cpu += processCpuSeconds() - cpu_start;
+        const mc::McResult r = timedRun(recipe, wavelengths, request, s, cpu);
         paths += r.total_paths;
         seconds += r.seconds;
-        printBandTimes(r);
         for (const auto& band : r.bands)
             for (std::size_t k = 0; k < band[0].brdf_per_sr.size(); ++k) {
                 worst = std::max(worst, band[0].brdf_per_sr[k].relError());
@@ -170,6 +189,58 @@ BENCHMARK(BM_McPearlescentOnePercent)
     ->UseRealTime()
     ->Iterations(1);
 
+// Issue 30: each demo recipe (kDemoPaints[argument 0]) to 1 % relative
+// standard error of both albedos and f at the six multi-angle geometries,
+// 8 bands, explicit flakes (as `mc --explicit-flakes --rel-error 0.01`),
+// 2 threads, at most argument 1 seconds, the default estimator (argument 2 =
+// 0) or the one before issue 30 (1: no roulette of the connections by
+// transmittance, McSettings::connection_roulette); reports the time and the process's
+// CPU time (all threads; load-independent up to the machine's speed) and,
+// when the cap stopped the run, the time 1 % would take from the worst error
+// reached (error ~ 1 / sqrt(time)).
+void BM_McDemoOnePercent(benchmark::State& state) {
+    const auto paint = static_cast<std::size_t>(state.range(0));
+    const Recipe recipe = loadRecipeFile(kDemo / (std::string(kDemoPaints[paint]) + ".json"));
+    const auto wavelengths = visibleBands(8);
+    mc::IncidenceRequest normal{directionFromAnglesDeg(0.0, 0.0), {}};
+    const std::vector<mc::IncidenceRequest> requests{normal, multiAngleRequest()[0]};
+    mc::McSettings s;
+    s.threads = 2;
+    s.max_paths = 1000000000;
+    s.target_rel_error = 0.01;
+    s.explicit_flakes = true;
+    s.histogram_cone_deg = 5.0;
+    s.max_seconds = static_cast<double>(state.range(1));
+    s.connection_roulette = state.range(2) == 0;
+    s.seed = benchSeed();
+    double worst = 0.0;
+    double seconds = 0.0;
+    double cpu = 0.0;
+    std::int64_t paths = 0;
+    for (auto _ : state) {
+        const mc::McResult r = timedRun(recipe, wavelengths, requests, s, cpu);
+        seconds += r.seconds;
+        paths += r.total_paths;
+        for (const auto& band : r.bands)
+            for (const auto& inc : band) {
+                worst = std::max(worst, inc.albedo.relError());
+                for (const auto& e : inc.brdf_per_sr) worst = std::max(worst, e.relError());
+            }
+    }
+    reportPaths(state, paths);
+    const double to_1pct = std::pow(std::max(worst, 0.01) / 0.01, 2.0);
+    state.counters["worst_rel_error"] = worst;
+    state.counters["seconds_to_1pct"] = seconds * to_1pct;
+    state.counters["cpu_seconds"] = cpu;
+    state.counters["cpu_seconds_to_1pct"] = cpu * to_1pct;
+    state.SetLabel(std::string(kDemoPaints[paint]) + (state.range(2) == 0 ? "" : ", before issue 30"));
+}
+BENCHMARK(BM_McDemoOnePercent)
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {30, 60}, {0, 1}})
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->Iterations(1);
+
 // Error budget of the explicit-flake estimate (docs/PERFORMANCE.md, "Full
 // model"): the pearlescent demo, 8 bands, 45 degree incidence, the six
 // multi-angle geometries, 5 degree cone, a fixed number of paths per band
@@ -193,12 +264,17 @@ BENCHMARK(BM_McPearlescentOnePercent)
 //   16 the default without reverse walks (the estimator before 2026-12-02, third session)
 //   17 the default with the first-flake walks (McSettings::first_flake_walks)
 //   18 the default without the delta walks' roulette by promise (McSettings::chain_promise)
+//   19-24 the default scoring one part alone (issue 30's account per walk kind):
+//     19 next-event into the cones, 20 glints, 21 reverse walks, 22 delta-chain
+//     walks, 23 forward flake images, 24 the histogram's remainder
+//   25 the default without the connections' roulette by transmittance
+//     (McSettings::connection_roulette, the estimator before issue 30)
 // The figures quoted in docs/PERFORMANCE.md: see there (each row names its
 // arguments). Prints f, its standard error and the relative error per band
 // and geometry (stdout) and reports the worst relative error, the time 1 %
 // would take (wall and process CPU) and the mean square relative error.
 void BM_McExplicitBudget(benchmark::State& state) {
-    const Recipe recipe = pearlescent();
+    const Recipe recipe = budgetRecipe();
     const auto wavelengths = visibleBands(8);
     const int config = static_cast<int>(state.range(0));
     mc::McSettings s;
@@ -231,6 +307,16 @@ void BM_McExplicitBudget(benchmark::State& state) {
     if (state.range(2) > 0) s.connection_fraction = 1.0 / static_cast<double>(state.range(2));
     if (config == 17) s.first_flake_walks = true;
     if (config == 18) s.chain_promise = false;
+    if (config >= 19 && config <= 24) {
+        s.connection_parts = mc::ConnectionParts::none();
+        s.connection_parts.cone_direct = config == 19;
+        s.connection_parts.glints = config == 20;
+        s.connection_parts.reverse_walks = config == 21;
+        s.connection_parts.delta_walks = config == 22;
+        s.connection_parts.flake_images = config == 23;
+        if (config != 24) s.histogram_classes = mc::HistogramClasses::none();
+    }
+    if (config == 25) s.connection_roulette = false;
     s.seed = benchSeed();
     double worst = 0.0;
     double seconds = 0.0;
@@ -288,6 +374,8 @@ BENCHMARK(BM_McExplicitBudget)
     ->ArgsProduct({{5, 7, 17, 18}, {1500}, {8}})
     ->ArgsProduct({{10, 11, 12, 13, 14, 15}, {1000}, {1}})
     ->ArgsProduct({{5, 16}, {1500}, {8}})
+    ->ArgsProduct({{5, 19, 20, 21, 22, 23, 24}, {20, 200}, {8}})
+    ->ArgsProduct({{5, 25}, {4, 20, 200}, {8}})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -27,6 +28,16 @@ inline void expectClose(double x, double se, double y, double se_y, const std::s
                     score);
     EXPECT_NEAR(x, y, z * sigma) << what << ": MC " << x << " +- " << se << ", reference " << y << " (+- "
                                  << se_y << "), z = " << score;
+}
+
+// Two Monte Carlo results of one incidence (mc::IncidenceResult): the albedo
+// and f at every exit, each by expectClose; `what` prefixes the labels.
+template <class Incidence>
+void expectSameIncidence(const Incidence& a, const Incidence& b, const std::string& what, double z = kZ) {
+    expectClose(a.albedo.mean, a.albedo.std_error, b.albedo.mean, b.albedo.std_error, what + "albedo", z);
+    for (std::size_t k = 0; k < a.brdf_per_sr.size() && k < b.brdf_per_sr.size(); ++k)
+        expectClose(a.brdf_per_sr[k].mean, a.brdf_per_sr[k].std_error, b.brdf_per_sr[k].mean,
+                    b.brdf_per_sr[k].std_error, what + "f exit " + std::to_string(k), z);
 }
 
 // As expectClose, for a reference that a known systematic effect moves by an

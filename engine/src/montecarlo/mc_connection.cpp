@@ -79,7 +79,7 @@ bool refractPlanar(const Vec3& v, double n_from, double n_to, Vec3& out) {
 }
 
 TopArrival straightToTop(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
-                         double depth, double x, double y, Vec3 u, std::int64_t* rays) {
+                         double depth, double x, double y, Vec3 u, std::int64_t* rays, PathRng* roulette) {
     double T = 1.0;
     for (;;) {
         const Slice& s = stack.slices[j];
@@ -90,6 +90,11 @@ TopArrival straightToTop(const PaintStack& stack, std::span<const LayerFlakes> t
         T *= std::exp(-(s.sigma_a_per_um + s.sigma_s_per_um) * length);
         const auto layer = static_cast<std::size_t>(s.layer);
         if (layer < tiles.size() && tiles[layer].tile != nullptr) {
+            if (roulette != nullptr && T < kConnectionRouletteT) {
+                if (!(T > 0.0) || roulette->uniform() * kConnectionRouletteT >= T) return {};
+                T = kConnectionRouletteT;
+                roulette = nullptr;  // once per connection
+            }
             T *= tileTransmittance(tiles[layer], x, y, depth, u, length, rays);
         } else {
             x += u.x * length;
@@ -110,8 +115,8 @@ TopArrival straightToTop(const PaintStack& stack, std::span<const LayerFlakes> t
 }
 
 double straightToAmbient(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
-                         double depth, double x, double y, Vec3 u, std::int64_t* rays) {
-    const TopArrival top = straightToTop(stack, tiles, j, depth, x, y, u, rays);
+                         double depth, double x, double y, Vec3 u, std::int64_t* rays, PathRng* roulette) {
+    const TopArrival top = straightToTop(stack, tiles, j, depth, x, y, u, rays, roulette);
     if (!(top.T > 0.0)) return 0.0;
     const double n_top = stack.slices.front().n;
     if (std::abs(stack.ambient_n - n_top) < 1e-12) return top.T;

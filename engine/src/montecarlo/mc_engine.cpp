@@ -18,7 +18,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Paths per chunk of a budgeted job's first round, which measures the pace.
+// A budgeted round's share of the job's time left.
+constexpr double kRoundShare = 0.5;
+// Paths per chunk of the pilot round behind an error target (the budget a safety net).
 constexpr std::int64_t kPilotChunkPaths = 16;
 
 // The estimates of a job from its batches' sums: over the batches' means
@@ -70,6 +72,18 @@ bool converged(const JobResult& r, double target, int orders) {
 }
 
 }  // namespace
+
+RunDeadline::RunDeadline(double max_seconds, std::size_t jobs)
+    : m_start(Clock::now()), m_max_seconds(max_seconds), m_jobs_left(std::max<std::size_t>(1, jobs)) {}
+
+double RunDeadline::nextJobBudget() {
+    if (!(m_max_seconds > 0.0)) return 0.0;
+    const double left = m_max_seconds - std::chrono::duration<double>(Clock::now() - m_start).count();
+    const double share = left / static_cast<double>(m_jobs_left);
+    if (m_jobs_left > 1) --m_jobs_left;
+    // Past the deadline a job still runs its pilot round (a result needs paths): a tiny positive budget.
+    return std::max(share, 1e-6);
+}
 
 McEngine::McEngine(const Recipe& recipe, const McSettings& settings, const std::function<bool()>& keep_going)
     : m_recipe(recipe), m_settings(settings), m_batches(std::max(1, settings.batches)) {
@@ -177,6 +191,8 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
     JobResult current;
     Sums seen(runner.entries(), runner.coneStats());  // every path so far, for the adaptive rates
     bool pilot_dropped = false;
+    const std::int64_t full_round = chunk * std::max(1, m_settings.chunks_per_round);
+    const auto paths_start = Clock::now();  // the pace leaves out the estimators' set-up above
     while (started < max_paths) {
         // One round of chunks in parallel; summed in chunk order (deterministic).
         const std::int64_t remaining = max_paths - started;
@@ -184,21 +200,36 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
         std::int64_t round_chunks =
             std::min<std::int64_t>(std::max(1, m_settings.chunks_per_round), (remaining + chunk - 1) / chunk);
         if (budget_seconds > 0.0) {
-            // A time budget: the stop is checked between rounds only, and one
-            // round of a slow paint (long walks in a scattering ground coat)
-            // can outlast a job's share many times over. So a short pilot round
-            // first, then rounds sized to the time left at the pace measured;
-            // runs with a path count alone keep their fixed chunks.
+            // A time budget: the stop is checked between rounds only, and a
+            // path's cost varies ~100x between paints and between the normal
+            // and the oblique incidence (whose reverse walks run a deep white
+            // coat's diffusion again). So a pilot round, then rounds sized to
+            // the time left at the pace measured; runs with a path count alone
+            // keep their fixed chunks. When the budget is the stop rule, the
+            // pilot is one path per chunk, each round at most twice the paths
+            // so far (a pace read off few long-tailed paths cannot commit the
+            // whole budget) and half the time left (kRoundShare: the pace of a
+            // shared machine drifts within a job, and only the rounds after an
+            // overrun can absorb it). Behind an error target the budget is a
+            // safety net, and the full rounds of before keep the adaptive
+            // rates' first fit on a full round of paths.
+            const bool budget_stops = !(m_settings.target_rel_error > 0.0);
             const double elapsed = std::chrono::duration<double>(Clock::now() - job_start).count();
-            if (started == 0) {
-                round_chunk = std::min<std::int64_t>(chunk, kPilotChunkPaths);
-            } else {
-                const double seconds_per_path = elapsed / static_cast<double>(started);
+            std::int64_t paths = round_chunks * (budget_stops ? 1 : std::min(chunk, kPilotChunkPaths));
+            if (started > 0) {
+                const double seconds_per_path =
+                    std::chrono::duration<double>(Clock::now() - paths_start).count() /
+                    static_cast<double>(started);
                 const double affordable = std::max(0.0, budget_seconds - elapsed) / seconds_per_path;
-                const auto paths =
-                    static_cast<std::int64_t>(std::min(affordable, static_cast<double>(remaining)));
-                round_chunk = std::clamp<std::int64_t>((paths + round_chunks - 1) / round_chunks, 1, chunk);
+                // Not one more path within the budget (unless the pilot's paths were just dropped).
+                if (affordable < 1.0 && current.incidence.paths > 0) break;
+                double cap = std::min(affordable, static_cast<double>(remaining));
+                if (budget_stops)
+                    cap = std::min({cap, kRoundShare * affordable, 2.0 * static_cast<double>(started)});
+                paths = std::max<std::int64_t>(1, static_cast<std::int64_t>(cap));
             }
+            round_chunks = std::min(round_chunks, std::max<std::int64_t>(1, paths));
+            round_chunk = std::clamp<std::int64_t>((paths + round_chunks - 1) / round_chunks, 1, chunk);
             round_chunks = std::min<std::int64_t>(round_chunks, (remaining + round_chunk - 1) / round_chunk);
         }
         std::vector<Sums> sums(static_cast<std::size_t>(round_chunks));
@@ -239,11 +270,14 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
             if (!progress(fraction)) throw Error("Monte Carlo: cancelled");
         }
         // The stop rule reads the spread of the batches: only once every batch has paths
-        // (a spread over a few batches of one chunk each is itself too uncertain to stop on).
+        // (a spread over a few batches of one chunk each is itself too uncertain to stop on),
+        // and not before one full round's paths (a budget's first rounds are small: an
+        // error read off a few dozen paths could stop the job on a low draw).
         const bool every_batch = !over_batches || std::all_of(batches.begin(), batches.end(),
                                                               [](const Sums& b) { return b.paths > 0; });
-        if (out_of_time ||
-            (!dropped_now && every_batch && converged(current, m_settings.target_rel_error, job.orders)))
+        const bool enough = started >= std::min(max_paths, full_round);
+        if (out_of_time || (!dropped_now && every_batch && enough &&
+                            converged(current, m_settings.target_rel_error, job.orders)))
             break;
     }
     return current;

@@ -23,6 +23,7 @@
 
 #include "paintlab/engine/montecarlo/monte_carlo.h"
 
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -45,6 +46,23 @@ struct JobResult {
     // Per batch that has paths: its path count and mean sample vector (albedo without the mirror term).
     std::vector<std::int64_t> batch_paths;
     std::vector<std::vector<double>> batch_means;
+};
+
+// A run's time budget (McSettings::max_seconds) shared by its jobs: each job
+// gets an even share of what is left when it starts, so the set-up before it
+// (flake tiles, the band's stack) and an earlier job's overrun come out of the
+// later jobs' shares and the run as a whole keeps its budget. Starts when
+// constructed (before the set-up).
+class RunDeadline {
+public:
+    RunDeadline(double max_seconds, std::size_t jobs);
+    // The next job's budget in seconds (0: none); call once per job, in order.
+    double nextJobBudget();
+
+private:
+    std::chrono::steady_clock::time_point m_start;
+    double m_max_seconds;
+    std::size_t m_jobs_left;
 };
 
 class McEngine {

@@ -114,6 +114,7 @@ JobRunner::JobRunner(const McEngine::Band& band, const JobSpec& job, const McSet
     m_walk.connections = m_connections;
     m_walk.connection_weight = 1.0 / m_connection_fraction;
     m_walk.split_branches = settings.explicit_flakes && settings.split_branches;
+    m_walk.connection_roulette = settings.connection_roulette;
     buildViews(settings);
     if (m_azimuths) {
         m_azimuth_glints.resize(band.explicit_flakes.size());

@@ -109,12 +109,15 @@ McTable tabulateMonteCarlo(const Recipe& recipe, const FastModelSettings& grid_s
     std::function<bool()> keep_going;
     if (progress) keep_going = [&progress] { return progress(kGridShare); };
     const McEngine engine(recipe, settings, keep_going);
+    std::size_t jobs = 0;
+    for (const auto& g : grid.bands()) jobs += g.mu.size();
+    // Unlike runMonteCarlo, the budget starts after the tiles' set-up: a
+    // table has ~250 jobs, and the GUI's 1 s budget (full_model_job.cpp) is
+    // shorter than the set-up, which would leave every job its pilot round
+    // alone. An overrun of one job still comes out of the later ones.
+    RunDeadline deadline(settings.max_seconds, jobs);
     const auto wavelengths = grid.wavelengthsNm();
     const auto& grid_bands = grid.bands();
-    std::size_t jobs = 0;
-    for (const auto& g : grid_bands) jobs += g.mu.size();
-    const double job_budget =
-        settings.max_seconds > 0.0 ? settings.max_seconds / static_cast<double>(jobs) : 0.0;
     const auto batches = static_cast<std::size_t>(engine.batches());
 
     McTable table;
@@ -144,7 +147,7 @@ McTable tabulateMonteCarlo(const Recipe& recipe, const FastModelSettings& grid_s
                                                      (static_cast<double>(jobs_done) + fraction) /
                                                      static_cast<double>(jobs));
                 };
-            const JobResult r = engine.run(band, b, j, job, job_budget, job_progress);
+            const JobResult r = engine.run(band, b, j, job, deadline.nextJobBudget(), job_progress);
             const auto jj = static_cast<Eigen::Index>(j);
             t.albedo(jj) = r.incidence.albedo.mean;
             albedo_se(jj) = r.incidence.albedo.std_error;

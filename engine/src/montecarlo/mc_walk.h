@@ -54,6 +54,8 @@ struct WalkSettings {
     // null: by weight alone). It survives with probability
     // clamp(w promise / (promise_threshold w_0), promise_floor, 1), w_0 the
     // walk's start weight, and then carries w / q.
+    // Connections: the roulette by transmittance (McSettings::connection_roulette).
+    bool connection_roulette = true;
     const ChainPromise* chain_promise = nullptr;
     double promise_threshold = 1.4e-4;
     double promise_floor = 0.2;

@@ -52,7 +52,8 @@ void Walker::coneNextEvent(const Slice& s, const Emitted& emitted, const ConeWei
             const double value = emitted(u);
             if (!(value > 0.0)) return 0.0;
             ++tally.nee_attempts;
-            return value * straightToAmbient(stack, explicit_flakes, j, depth, x, y, u, &tally.nee_rays);
+            return value * straightToAmbient(stack, explicit_flakes, j, depth, x, y, u, &tally.nee_rays,
+                                             settings.connection_roulette ? connection_rng : nullptr);
         },
         cone_weight);
 }
@@ -93,8 +94,10 @@ template <class Emitted> void Walker::reverseNextEvent(const Slice& s, const Emi
     if (!(value > 0.0)) return;
     ++tally.nee_attempts;
     const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
-    tally.reverse_score +=
-        value * straightToAmbient(stack, explicit_flakes, j, depth, x, y, u, &tally.nee_rays) * scale;
+    tally.reverse_score += value *
+                           straightToAmbient(stack, explicit_flakes, j, depth, x, y, u, &tally.nee_rays,
+                                             settings.connection_roulette ? connection_rng : nullptr) *
+                           scale;
 }
 
 // Reverse walk: the next-event estimates towards the beam's single mirror

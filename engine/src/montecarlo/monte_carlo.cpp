@@ -20,6 +20,7 @@ McResult runMonteCarlo(const Recipe& recipe, std::span<const double> wavelengths
                        std::span<const IncidenceRequest> requests, const McSettings& settings,
                        const ProgressCallback& progress) {
     const auto start = Clock::now();
+    RunDeadline deadline(settings.max_seconds, wavelengths_nm.size() * requests.size());
     std::unique_ptr<tbb::global_control> threads;
     if (settings.threads > 0)
         threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
@@ -31,8 +32,6 @@ McResult runMonteCarlo(const Recipe& recipe, std::span<const double> wavelengths
     result.wavelengths_nm.assign(wavelengths_nm.begin(), wavelengths_nm.end());
     result.bands.resize(wavelengths_nm.size());
     const std::size_t jobs = wavelengths_nm.size() * requests.size();
-    const double job_budget =
-        settings.max_seconds > 0.0 ? settings.max_seconds / static_cast<double>(jobs) : 0.0;
     std::size_t jobs_done = 0;
     for (std::size_t b = 0; b < wavelengths_nm.size(); ++b) {
         const McEngine::Band band = engine.band(wavelengths_nm[b]);
@@ -43,7 +42,7 @@ McResult runMonteCarlo(const Recipe& recipe, std::span<const double> wavelengths
                 job_progress = [&](double fraction) {
                     return progress((static_cast<double>(jobs_done) + fraction) / static_cast<double>(jobs));
                 };
-            JobResult r = engine.run(band, b, i, job, job_budget, job_progress);
+            JobResult r = engine.run(band, b, i, job, deadline.nextJobBudget(), job_progress);
             result.total_paths += r.incidence.paths;
             result.bands[b].push_back(std::move(r.incidence));
             ++jobs_done;

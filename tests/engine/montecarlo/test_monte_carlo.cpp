@@ -14,16 +14,19 @@
 #include "paintlab/engine/optics/fresnel.h"
 #include "paintlab/engine/optics/thin_film.h"
 
+#include "mc_engine.h"
 #include "test_recipes.h"
 #include "z_test.h"
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <complex>
 #include <cstdio>
 #include <cstdlib>
 #include <numbers>
+#include <thread>
 
 namespace paintlab {
 namespace {
@@ -317,6 +320,25 @@ TEST(MonteCarloStopping, RelativeErrorTimeBudgetAndCancel) {
     int calls = 0;
     EXPECT_THROW(mc::runMonteCarlo(r, wavelengths, req, s, [&calls](double) { return ++calls < 2; }), Error);
     EXPECT_EQ(calls, 2);
+}
+
+// Issue 30: a run's budget covers its set-up (flake tiles, stacks) and every
+// job's overrun: each job gets an even share of what is left. The checks are
+// one-sided in the elapsed time (a loaded machine only sleeps longer), so
+// they cannot fail by load; before the shares were fixed at max_seconds / jobs
+// (0.2 s here) whatever the set-up had taken.
+TEST(MonteCarloStopping, RunDeadlineSharesWhatIsLeft) {
+    mc::RunDeadline none(0.0, 4);
+    EXPECT_EQ(none.nextJobBudget(), 0.0);  // no budget: unlimited jobs
+    mc::RunDeadline deadline(0.4, 2);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the set-up
+    const double first = deadline.nextJobBudget();
+    EXPECT_GT(first, 0.0);
+    EXPECT_LE(first, (0.4 - 0.3) / 2.0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the first job overran
+    const double second = deadline.nextJobBudget();
+    EXPECT_GT(second, 0.0);  // a job still runs its pilot round
+    EXPECT_LT(second, 1e-3);
 }
 
 TEST(MonteCarloDeterminism, SameSeedSameNumbersAnyThreadCount) {

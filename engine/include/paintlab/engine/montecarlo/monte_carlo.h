@@ -88,7 +88,9 @@ struct McSettings {
     std::uint64_t seed = 1;
     // Each (band, incidence) stops at the first of: max_paths paths; every
     // estimate at or below target_rel_error (relative standard error, 0 = off,
-    // checked between rounds of chunks); its even share of max_seconds (0 = off).
+    // checked between rounds of chunks); its even share of what is left of
+    // max_seconds when it starts (0 = off), which covers the whole call, the
+    // tiles' set-up included (tabulateMonteCarlo: the set-up comes on top).
     std::int64_t max_paths = 100000;
     double target_rel_error = 0.0;
     double max_seconds = 0.0;
@@ -178,6 +180,12 @@ struct McSettings {
     bool chain_promise = true;
     double chain_promise_threshold = 1.4e-4;  // of the walk's start weight (mc_walk.h)
     double chain_promise_floor = 0.2;         // the lowest survival probability
+    // Connections (next-event into the cones, the reverse walks' towards the
+    // beam): Russian roulette of those whose transmittance before the first
+    // flake tile is below 1e-3 (mc_connection.h, kConnectionRouletteT);
+    // unbiased, and the connections from deep in a scattering coat under a
+    // flake layer stop tracing that layer. false: the estimator before issue 30.
+    bool connection_roulette = true;
     // Diagnostics for error budgets: what each estimator scores.
     ConnectionParts connection_parts;
     HistogramClasses histogram_classes;
