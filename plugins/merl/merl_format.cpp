@@ -16,6 +16,8 @@
 #include <sstream>
 #include <system_error>
 
+#include <tbb/parallel_for.h>
+
 namespace paintlab::plugins::merl {
 
 static_assert(std::endian::native == std::endian::little,
@@ -173,20 +175,26 @@ Table readFile(const std::filesystem::path& file) {
 
 Table tabulate(const std::function<Rgb(const Direction& wi, const Direction& wo)>& f) {
     Table table;
-    for (std::size_t i = 0; i < kEntries; ++i) {
-        const auto [wi, wo] = binDirections(binOf(i));
-        const Rgb rgb = f(raised(wi), raised(wo));
-        table.rgb[i] = rgb.r;
-        table.rgb[kEntries + i] = rgb.g;
-        table.rgb[2 * kEntries + i] = rgb.b;
-    }
+    // One task per theta_half bin (16,200 entries each); f is called from several threads.
+    constexpr std::size_t kPerThetaHalf = kEntries / kThetaHalfBins;
+    tbb::parallel_for(0, kThetaHalfBins, [&](int h) {
+        const std::size_t begin = static_cast<std::size_t>(h) * kPerThetaHalf;
+        for (std::size_t i = begin; i < begin + kPerThetaHalf; ++i) {
+            const auto [wi, wo] = binDirections(binOf(i));
+            const Rgb rgb = f(raised(wi), raised(wo));
+            table.rgb[i] = rgb.r;
+            table.rgb[kEntries + i] = rgb.g;
+            table.rgb[2 * kEntries + i] = rgb.b;
+        }
+    });
     return table;
 }
 
 Table tabulate(const LayeredBrdf& brdf) {
     const BandColourWeights weights = bandColourWeights(brdf.wavelengthsNm());
-    std::vector<double> spectrum(brdf.wavelengthsNm().size());
+    const std::size_t bands = brdf.wavelengthsNm().size();
     return tabulate([&](const Direction& wi, const Direction& wo) {
+        std::vector<double> spectrum(bands);  // per call: eval runs on several threads
         brdf.eval(wi, wo, spectrum);
         return weightedLinearSrgb(weights, spectrum);
     });

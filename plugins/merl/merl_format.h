@@ -67,7 +67,7 @@ std::string encode(const Table& table);
 Table readFile(const std::filesystem::path& file);
 Table decode(std::string_view bytes, const std::string& source);
 
-// Every bin's f, evaluated at binDirections(); directions below kMinCosine
+// Every bin's f (called from several threads), evaluated at binDirections(); directions below kMinCosine
 // are raised to it (renderers interpolate up to the horizon).
 Table tabulate(const std::function<Rgb(const Direction& wi, const Direction& wo)>& f);
 // Linear sRGB (D65) of the spectral BRDF, mirror term excluded.
