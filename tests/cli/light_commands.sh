@@ -29,7 +29,10 @@ for args in "--version" "--help" "validate $recipe" "show $recipe" \
 done
 
 # `plugins` loads the plugin libraries (dlopen), so the loop above saw theirs too.
-if ! loaded plugins | grep -q 'libpaintlab-plugin-merl'; then
+LD_DEBUG=libs LD_DEBUG_OUTPUT=$log "$cli" plugins >/dev/null 2>&1
+merl_init=$(cat "$log".* 2>/dev/null | grep -c 'calling init: .*libpaintlab-plugin-merl')
+rm -f "$log".*
+if [[ $merl_init == 0 ]]; then
   echo "FAIL: paintlab-cli plugins does not load libpaintlab-plugin-merl.so: its libraries were not checked"
   status=1
 fi
