@@ -113,11 +113,12 @@ const Registry& Registry::global() {
 
 std::vector<std::filesystem::path> Registry::defaultSearchPath() {
     std::vector<std::filesystem::path> folders;
-#ifdef PAINTLAB_PLUGIN_BUILD_DIR
-    folders.emplace_back(PAINTLAB_PLUGIN_BUILD_DIR);
-#endif
     std::error_code error;
     const auto exe = std::filesystem::read_symlink("/proc/self/exe", error);
+    // The build tree's folder only for a program inside that build tree, so
+    // an installed copy never picks up (or clashes with) a build's plugins.
+    const std::string build_root = PAINTLAB_BUILD_ROOT;
+    if (!error && exe.string().starts_with(build_root + "/")) folders.emplace_back(PAINTLAB_PLUGIN_BUILD_DIR);
     if (!error) folders.push_back(exe.parent_path().parent_path() / "lib" / "paintlab" / "plugins");
     // NOLINTNEXTLINE(concurrency-mt-unsafe): read once, before any plugin thread
     if (const char* path = std::getenv("PAINTLAB_PLUGIN_PATH")) {

@@ -2,7 +2,7 @@
 // The plugins PaintLab knows: the built-in formats (measurement JSON/CSV,
 // spectra JSON/CSV/CGATS, the BRDF table JSON/CSV) and the shared libraries
 // libpaintlab-plugin-*.so found in
-//   1. the build tree's plugin folder (a program run from its build folder),
+//   1. the build tree's plugin folder (only for a program inside that build tree),
 //   2. ../lib/paintlab/plugins beside the running program (installed),
 //   3. the folders of PAINTLAB_PLUGIN_PATH (colon-separated),
 // in that order. A file is refused, with its path and the reason, when it
