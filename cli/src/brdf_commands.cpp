@@ -8,6 +8,7 @@
 #include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/multiangle.h"
 #include "paintlab/engine/recipe_json.h"
+#include "paintlab/plugins/registry.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -78,7 +79,30 @@ ordered_json settingsJson(const LayeredBrdf& brdf, const std::string& preset) {
             {"compute_seconds", brdf.computeSeconds()}};
 }
 
+// A plugin's exporter (not the built-in BRDF table, written below as before)
+// that claims the --out file's extension, or nullptr.
+const plugins::AppearanceExporter* pluginExporter(const std::string& out) {
+    if (out.empty()) return nullptr;
+    const plugins::Registry& registry = plugins::Registry::global();
+    const plugins::AppearanceExporter* exporter = registry.exporterFor(out);
+    const plugins::LoadedPlugin* owner = exporter != nullptr ? registry.ownerOf(exporter) : nullptr;
+    return owner != nullptr && !owner->builtIn() ? exporter : nullptr;
+}
+
 int runBrdf(const BrdfOptions& o) {
+    if (const plugins::AppearanceExporter* exporter = pluginExporter(o.out)) {
+        const Recipe recipe = loadRecipeFile(o.recipe);
+        const LayeredBrdf brdf =
+            computeLayeredBrdf(recipe, presetSettings(presetFromName(o.preset)), terminalProgress());
+        plugins::ExportOptions options;
+        options.recipe_path = o.recipe;
+        options.settings_json = settingsJson(brdf, o.preset).dump();
+        options.step_deg = o.step_deg;
+        exporter->write(recipe, brdf, o.out, options);
+        std::cerr << "wrote " << o.out << " (" << exporter->format().id << ", " << brdf.wavelengthsNm().size()
+                  << " bands, " << brdf.computeSeconds() << " s)\n";
+        return 0;
+    }
     const LayeredBrdf brdf = runFastModel(o);
     const bool csv = isCsvPath(o.out);
     // The same writer as `mc --table`, so the two files have one format.
@@ -166,7 +190,9 @@ void addBrdfCommands(CLI::App& app, CommandAction& action) {
 
     CLI::App* brdf = app.add_subcommand("brdf", "Tabulate the paint's spectral BRDF (fast model)");
     addCommon(brdf, *o);
-    brdf->add_option("--out", o->out, "Output file, .json or .csv (default: JSON on stdout)");
+    brdf->add_option("--out", o->out,
+                     "Output file, .json or .csv, or a plugin's format such as .binary (MERL; "
+                     "paintlab-cli plugins lists them) (default: JSON on stdout)");
     brdf->add_option("--step", o->step_deg, "Angular step of the table in degrees")->capture_default_str();
     brdf->callback([o, &action] { action = [o] { return runBrdf(*o); }; });
 

@@ -34,6 +34,7 @@ int run(int argc, char** argv, const HeavyCommands& heavy) {
     addAccuracyCommand(app, action);
     heavy.add_full_model(app, action);
     addDbCommands(app, action);
+    addPluginsCommand(app, action);
     heavy.add_scene(app, action);
 
     try {

@@ -36,6 +36,9 @@ void addFitCommand(CLI::App& app, CommandAction& action);
 // Registers `db` and its subcommands: init, list, show, recipe-save, recipe-history, backup.
 void addDbCommands(CLI::App& app, CommandAction& action);
 
+// Registers `plugins`: the format plugins loaded and refused (plugins/registry.h).
+void addPluginsCommand(CLI::App& app, CommandAction& action);
+
 // Registers `raymap build`, `relight`, `render` and `reference` (ray maps, docs/RAYMAPS.md).
 void addRaymapCommands(CLI::App& app, CommandAction& action);
 

@@ -12,12 +12,15 @@
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/io/atomic_file.h"
 #include "paintlab/engine/recipe_json.h"
+#include "paintlab/plugins/registry.h"
 
 #include <nlohmann/json.hpp>
 
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 namespace paintlab::cli {
 
@@ -46,6 +49,7 @@ struct ExchangeOptions {
     std::string measured_at;
     std::string illuminant = "D65";
     std::string observer = "10deg";
+    std::optional<std::size_t> samples;  // tabulated BRDF formats: at most this many
     // import: recipes
     std::string author;
     std::string note;
@@ -65,9 +69,62 @@ db::FileFormat outputFormat(const ExchangeOptions& options) {
     return options.format.empty() ? db::formatOfFile(options.file) : db::parseFileFormat(options.format);
 }
 
+bool isDatabaseFormatName(const std::string& name) {
+    try {
+        (void)db::parseFileFormat(name);
+        return true;
+    } catch (const InputError&) {
+        return false;
+    }
+}
+
+// The measurement importer of a plugin (not the built-in formats, which
+// db::importFile reads as before) that the registry picks for the file, or
+// nullptr: by --format when it names no database format, else by extension
+// and content. A file that cannot be read is left to db::importFile's message.
+const plugins::MeasurementImporter* pluginImporter(const ExchangeOptions& options) {
+    if (!options.kind.empty() && options.kind != "measurement") return nullptr;
+    if (!options.format.empty() && isDatabaseFormatName(options.format)) return nullptr;
+    std::error_code error;
+    if (options.format.empty() && !std::filesystem::is_regular_file(options.file, error)) return nullptr;
+    const plugins::Registry& registry = plugins::Registry::global();
+    const std::optional<std::string> id =
+        options.format.empty() ? std::nullopt : std::optional<std::string>(options.format);
+    const plugins::MeasurementImporter* importer = registry.measurementImporterFor(options.file, id);
+    if (id && importer == nullptr)
+        throw InputError("<argument>", "--format",
+                         "unknown format '" + options.format +
+                             "' (csv, json, cgats, html, or a plugin's format: paintlab-cli plugins)");
+    const plugins::LoadedPlugin* owner = importer != nullptr ? registry.ownerOf(importer) : nullptr;
+    return owner != nullptr && !owner->builtIn() ? importer : nullptr;
+}
+
+// Reads the whole file through the plugin, then stores it in one transaction.
+db::ImportResult importThroughPlugin(db::Database& database, const plugins::MeasurementImporter& importer,
+                                     const ExchangeOptions& options, const db::ImportOptions& import) {
+    if (options.samples && *options.samples == 0)
+        throw InputError("<argument>", "--samples", "must be at least 1");
+    plugins::ReadOptions read;
+    read.description = import.measurement;
+    read.max_samples = options.samples.value_or(0);
+    read.cgats = import.cgats;
+    const db::Measurement m = importer.read(options.file, read);
+    try {
+        db::createMeasurement(database, m);
+    } catch (const InputError& e) {
+        throw InputError(options.file, "measurement '" + m.name + "'",
+                         e.detail() + " (database " + e.source() + ")");
+    }
+    db::ImportResult result;
+    result.kind = db::ContentKind::Measurement;
+    result.names.push_back(m.name);
+    return result;
+}
+
 int runImport(const ExchangeOptions& options) {
     db::ImportOptions import;
-    if (!options.format.empty()) import.format = db::parseFileFormat(options.format);
+    const plugins::MeasurementImporter* plugin = pluginImporter(options);
+    if (!options.format.empty() && plugin == nullptr) import.format = db::parseFileFormat(options.format);
     if (!options.kind.empty()) import.kind = db::parseContentKind(options.kind);
     import.cgats.quantity = options.quantity;
     import.cgats.unit = options.unit;
@@ -83,7 +140,8 @@ int runImport(const ExchangeOptions& options) {
     import.author = defaultAuthor(options.author);
     import.note = options.note;
     db::Database database = openCliDatabase(options.db_file, false);
-    const auto result = db::importFile(database, options.file, import);
+    const auto result = plugin != nullptr ? importThroughPlugin(database, *plugin, options, import)
+                                          : db::importFile(database, options.file, import);
     for (const auto& missing : result.unlinked)
         std::cerr << "warning: " << options.file << ": " << missing
                   << ": not in the database; saved with the recipe's own data, unlinked\n";
@@ -267,7 +325,9 @@ CLI::App* addSubcommand(CLI::App& group, const std::string& name, const std::str
 
 void addImportOptions(CLI::App& command, ExchangeOptions& o) {
     command.add_option("file", o.file, "File to import")->required();
-    command.add_option("--format", o.format, "csv, json or cgats (default: from the extension)");
+    command.add_option("--format", o.format,
+                       "csv, json, cgats or a plugin's format id such as merl-binary (default: from the "
+                       "extension and content; paintlab-cli plugins lists them)");
     command.add_option("--quantity", o.quantity, "CGATS spectra: what the values are (default reflectance)");
     command.add_option("--unit", o.unit, "CGATS spectra: unit of the values (1 or %)");
     command.add_option("--source", o.source, "Source of the data (instrument, reference)");
@@ -278,6 +338,8 @@ void addImportOptions(CLI::App& command, ExchangeOptions& o) {
     command.add_option("--measured-at", o.measured_at, "Measurement CSV: date (ISO 8601)");
     command.add_option("--illuminant", o.illuminant, "Measurement CSV: D65, D50 or A (default D65)");
     command.add_option("--observer", o.observer, "Measurement CSV: 2deg or 10deg (default 10deg)");
+    command.add_option("--samples", o.samples,
+                       "Tabulated BRDF formats (MERL): keep at most this many samples (default 4096)");
     command.add_flag("--json", o.json, "Print the result as JSON");
 }
 

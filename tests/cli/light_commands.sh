@@ -19,7 +19,7 @@ loaded() {  # the libraries the loader opened for the command "$@"
 
 for args in "--version" "--help" "validate $recipe" "show $recipe" \
   "eval $recipe --preset preview --wi 45,0 --wo 30,180" "multiangle $recipe --preset preview" \
-  "db --help"; do
+  "db --help" "plugins" "plugins --json"; do
   # shellcheck disable=SC2086 # the arguments are split on purpose
   found=$(loaded $args | grep -E "$heavy")
   if [[ -n $found ]]; then
@@ -27,6 +27,15 @@ for args in "--version" "--help" "validate $recipe" "show $recipe" \
     status=1
   fi
 done
+
+# `plugins` loads the plugin libraries (dlopen), so the loop above saw theirs too.
+LD_DEBUG=libs LD_DEBUG_OUTPUT=$log "$cli" plugins >/dev/null 2>&1
+merl_init=$(cat "$log".* 2>/dev/null | grep -c 'calling init: .*libpaintlab-plugin-merl')
+rm -f "$log".*
+if [[ $merl_init == 0 ]]; then
+  echo "FAIL: paintlab-cli plugins does not load libpaintlab-plugin-merl.so: its libraries were not checked"
+  status=1
+fi
 
 # The positive control: the helper's commands run with Embree and OpenImageIO.
 control=$(loaded mc --help)

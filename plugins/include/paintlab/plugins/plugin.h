@@ -1,0 +1,110 @@
+#pragma once
+// The plugin interface (issue 29; how to write a plugin: plugins/README.md).
+//
+// A plugin is a shared library libpaintlab-plugin-NAME.so exporting two plain
+// C functions (after OpenImageIO's version integer and plain entry points):
+//
+//   extern "C" int paintlab_plugin_api_version();       // kApiVersion it was built with
+//   extern "C" paintlab::plugins::Plugin* paintlab_plugin_create();  // new; the host owns it
+//
+// The host calls the first before anything else and refuses the file unless
+// it returns kApiVersion: the classes below are C++ and only the same
+// interface version may cross the boundary. kApiVersion changes whenever a
+// class, a struct or a database/engine type below changes layout.
+//
+// A plugin offers measurement importers, spectra importers and exporters of
+// a recipe's appearance. Each names its format with an id unique among the
+// loaded plugins ("merl-binary"); a second plugin claiming an id is refused.
+// Errors in a user's file throw InputError naming the file and the field.
+// No Qt type: the CLI and the GUI use the same plugins.
+
+#include "paintlab/database/measurements.h"
+#include "paintlab/database/spectra_files.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
+#include "paintlab/engine/recipe.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace paintlab::plugins {
+
+inline constexpr int kApiVersion = 1;
+
+// How many leading bytes of a file a probe sees.
+inline constexpr std::size_t kProbeBytes = 4096;
+
+struct FormatInfo {
+    std::string id;                       // unique among loaded plugins: "merl-binary", "measurement-csv"
+    std::string description;              // one line for listings and file dialogs
+    std::vector<std::string> extensions;  // lower case with the dot: ".binary"
+};
+
+struct ReadOptions {
+    // The measurement's description where the file has none (name, instrument,
+    // sample, ...); an empty name means the file's stem.
+    db::Measurement description;
+    // BRDF formats with more points than a fit needs: at most this many
+    // samples (0: the format's default, stated in its description).
+    std::size_t max_samples = 0;
+    db::CgatsOptions cgats;  // CGATS spectra: quantity, unit, source
+};
+
+// Reads one kind of measurement file into the database's Measurement (not stored).
+class MeasurementImporter {
+public:
+    virtual ~MeasurementImporter() = default;
+    virtual FormatInfo format() const = 0;
+    // How sure the importer is that a file is its format, from its first bytes
+    // (at most kProbeBytes) and its size: 0 no, 1 certain. Never throws.
+    virtual double probe(std::string_view head, std::uintmax_t size) const = 0;
+    // Throws InputError naming the file (and the field or record) for any problem.
+    virtual db::Measurement read(const std::filesystem::path& file, const ReadOptions& options) const = 0;
+};
+
+// Reads named spectra (ingredient data) from a file.
+class SpectraImporter {
+public:
+    virtual ~SpectraImporter() = default;
+    virtual FormatInfo format() const = 0;
+    virtual double probe(std::string_view head, std::uintmax_t size) const = 0;
+    virtual std::vector<db::NamedSpectrum> read(const std::filesystem::path& file,
+                                                const ReadOptions& options) const = 0;
+};
+
+struct ExportOptions {
+    std::string recipe_path;    // where the recipe came from, for the file's provenance
+    std::string settings_json;  // the fast model's settings as a JSON object ("{}" if none)
+    double step_deg = 5.0;      // tabulated formats with a free grid: the angular step
+};
+
+// Writes a recipe's appearance, from its fast-model BRDF, to a file.
+class AppearanceExporter {
+public:
+    virtual ~AppearanceExporter() = default;
+    virtual FormatInfo format() const = 0;
+    // Writes atomically (io/atomic_file.h). Throws InputError naming the file
+    // if it cannot be written, Error for anything else.
+    virtual void write(const Recipe& recipe, const LayeredBrdf& brdf, const std::filesystem::path& file,
+                       const ExportOptions& options) const = 0;
+};
+
+// What a plugin's library hands over; the pointers it returns live as long as it.
+class Plugin {
+public:
+    virtual ~Plugin() = default;
+    virtual std::string name() const = 0;     // "merl"
+    virtual std::string version() const = 0;  // the plugin's own version, "1.0.0"
+    virtual std::vector<const MeasurementImporter*> measurementImporters() const { return {}; }
+    virtual std::vector<const SpectraImporter*> spectraImporters() const { return {}; }
+    virtual std::vector<const AppearanceExporter*> exporters() const { return {}; }
+};
+
+}  // namespace paintlab::plugins
+
+// For a plugin's two entry points: C linkage, visible although the rest of
+// the library is hidden (see plugins/CMakeLists.txt, paintlab_add_plugin).
+#define PAINTLAB_PLUGIN_EXPORT extern "C" __attribute__((visibility("default")))

@@ -1,0 +1,138 @@
+// The built-in plugin: the formats PaintLab has always read and written,
+// behind the plugin interface so that listings and file choosers see one
+// registry. Each offer calls the one implementation of its format (database
+// measurement_files.h, spectra_files.h; engine fast_model/brdf_table_io.h).
+
+#include "paintlab/database/exchange.h"
+#include "paintlab/engine/fast_model/brdf_table_io.h"
+#include "paintlab/engine/io/atomic_file.h"
+#include "paintlab/plugins/registry.h"
+
+#include "json_reader.h"
+
+#include <memory>
+
+namespace paintlab::plugins {
+
+namespace {
+
+// As the database's import (exchange.cpp): far above any real file, refused before reading.
+constexpr std::size_t kMaxTextBytes = std::size_t{64} << 20;
+
+std::string_view firstLine(std::string_view head) { return head.substr(0, head.find('\n')); }
+
+class MeasurementFileImporter final : public MeasurementImporter {
+public:
+    explicit MeasurementFileImporter(db::FileFormat format) : m_format(format) {}
+    FormatInfo format() const override {
+        if (m_format == db::FileFormat::Json)
+            return {"measurement-json", "PaintLab measurement JSON (multi-angle or BRDF)", {".json"}};
+        return {
+            "measurement-csv", "instrument CSV table (multi-angle CIELAB/spectra or BRDF samples)", {".csv"}};
+    }
+    double probe(std::string_view head, std::uintmax_t /*size*/) const override {
+        if (m_format == db::FileFormat::Json)
+            return head.find("\"paintlab-measurement\"") != std::string_view::npos ? 0.9 : 0.0;
+        const std::string_view line = firstLine(head);
+        for (const std::string_view column : {"theta_i_deg", "aspecular_deg", "geometry"})
+            if (line.find(column) != std::string_view::npos) return 0.8;
+        return 0.0;
+    }
+    db::Measurement read(const std::filesystem::path& file, const ReadOptions& options) const override {
+        db::ImportOptions import;
+        import.format = m_format;
+        import.measurement = options.description;
+        return db::readMeasurementFile(file, import);
+    }
+
+private:
+    db::FileFormat m_format;
+};
+
+class SpectraFileImporter final : public SpectraImporter {
+public:
+    explicit SpectraFileImporter(db::FileFormat format) : m_format(format) {}
+    FormatInfo format() const override {
+        switch (m_format) {
+        case db::FileFormat::Json:
+            return {"spectra-json", "PaintLab spectra JSON", {".json"}};
+        case db::FileFormat::Csv:
+            return {"spectra-csv", "spectra CSV (one row per sample)", {".csv"}};
+        default:
+            return {"spectra-cgats", "CGATS/IT8 spectral data (lcms2)", {".cgats", ".it8", ".txt", ".ti3"}};
+        }
+    }
+    double probe(std::string_view head, std::uintmax_t /*size*/) const override {
+        switch (m_format) {
+        case db::FileFormat::Json:
+            return head.find("\"paintlab-spectra\"") != std::string_view::npos ? 0.9 : 0.0;
+        case db::FileFormat::Csv: {
+            const std::string_view line = firstLine(head);
+            return line.find("quantity") != std::string_view::npos &&
+                           line.find("wavelength_nm") != std::string_view::npos
+                       ? 0.8
+                       : 0.0;
+        }
+        default:
+            return head.find("BEGIN_DATA_FORMAT") != std::string_view::npos ? 0.8 : 0.0;
+        }
+    }
+    std::vector<db::NamedSpectrum> read(const std::filesystem::path& file,
+                                        const ReadOptions& options) const override {
+        const std::string source = file.string();
+        const std::string text = jsonio::readBoundedTextFile(file, kMaxTextBytes);
+        if (m_format == db::FileFormat::Json) return db::parseSpectraJson(text, source);
+        if (m_format == db::FileFormat::Csv) return db::parseSpectraCsv(text, source);
+        return db::parseSpectraCgats(text, source, options.cgats);
+    }
+
+private:
+    db::FileFormat m_format;
+};
+
+class BrdfTableExporter final : public AppearanceExporter {
+public:
+    explicit BrdfTableExporter(bool csv) : m_csv(csv) {}
+    FormatInfo format() const override {
+        if (m_csv) return {"brdf-table-csv", "tabulated spectral BRDF, one row per direction pair", {".csv"}};
+        return {"brdf-table-json", "tabulated spectral BRDF with settings and mirror reflectance", {".json"}};
+    }
+    void write(const Recipe& /*recipe*/, const LayeredBrdf& brdf, const std::filesystem::path& file,
+               const ExportOptions& options) const override {
+        io::writeFileAtomically(
+            file, brdfTableText(brdf, options.recipe_path, options.settings_json, options.step_deg, m_csv));
+    }
+
+private:
+    bool m_csv;
+};
+
+class BuiltInPlugin final : public Plugin {
+public:
+    std::string name() const override { return "builtin"; }
+    std::string version() const override { return PAINTLAB_PLUGINS_VERSION; }
+    std::vector<const MeasurementImporter*> measurementImporters() const override {
+        return {&m_measurement_json, &m_measurement_csv};
+    }
+    std::vector<const SpectraImporter*> spectraImporters() const override {
+        return {&m_spectra_json, &m_spectra_csv, &m_spectra_cgats};
+    }
+    std::vector<const AppearanceExporter*> exporters() const override {
+        return {&m_table_json, &m_table_csv};
+    }
+
+private:
+    MeasurementFileImporter m_measurement_json{db::FileFormat::Json};
+    MeasurementFileImporter m_measurement_csv{db::FileFormat::Csv};
+    SpectraFileImporter m_spectra_json{db::FileFormat::Json};
+    SpectraFileImporter m_spectra_csv{db::FileFormat::Csv};
+    SpectraFileImporter m_spectra_cgats{db::FileFormat::Cgats};
+    BrdfTableExporter m_table_json{false};
+    BrdfTableExporter m_table_csv{true};
+};
+
+}  // namespace
+
+std::unique_ptr<Plugin> makeBuiltInPlugin() { return std::make_unique<BuiltInPlugin>(); }
+
+}  // namespace paintlab::plugins

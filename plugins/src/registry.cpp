@@ -1,0 +1,272 @@
+// The plugin registry (registry.h): dlopen, the API-version check, refusals.
+
+#include "paintlab/plugins/registry.h"
+
+#include "paintlab/engine/error.h"
+
+#include <dlfcn.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <system_error>
+
+namespace paintlab::plugins {
+
+namespace {
+
+using ApiVersionFn = int (*)();
+using CreateFn = Plugin* (*)();
+
+std::string lowerAscii(std::string text) {
+    for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return text;
+}
+
+bool claimsExtension(const FormatInfo& info, const std::filesystem::path& file) {
+    const std::string extension = lowerAscii(file.extension().string());
+    return std::find(info.extensions.begin(), info.extensions.end(), extension) != info.extensions.end();
+}
+
+// Every format id a plugin offers, with the kind of offer in front (a
+// measurement and a spectra importer may share an id such as "json").
+std::vector<std::string> claimedIds(const Plugin& plugin) {
+    std::vector<std::string> ids;
+    for (const auto* offer : plugin.measurementImporters())
+        ids.push_back("measurement " + offer->format().id);
+    for (const auto* offer : plugin.spectraImporters()) ids.push_back("spectra " + offer->format().id);
+    for (const auto* offer : plugin.exporters()) ids.push_back("export " + offer->format().id);
+    return ids;
+}
+
+struct Head {
+    std::string bytes;
+    std::uintmax_t size = 0;
+};
+
+Head readHead(const std::filesystem::path& file) {
+    std::error_code error;
+    Head head;
+    head.size = std::filesystem::file_size(file, error);
+    std::ifstream in(file, std::ios::binary);
+    if (error || !in)
+        throw InputError(file.string(), "", "cannot read the file (missing or not a regular file)");
+    head.bytes.resize(kProbeBytes);
+    in.read(head.bytes.data(), static_cast<std::streamsize>(kProbeBytes));
+    head.bytes.resize(static_cast<std::size_t>(in.gcount()));
+    return head;
+}
+
+// The importer chosen by id, extension and probe (registry.h).
+template <typename Importer, typename Offers>
+const Importer* chooseImporter(const std::vector<LoadedPlugin>& plugins, Offers offers,
+                               const std::filesystem::path& file,
+                               const std::optional<std::string>& format_id) {
+    std::vector<const Importer*> all;
+    for (const auto& loaded : plugins)
+        for (const Importer* offer : offers(*loaded.plugin)) all.push_back(offer);
+    if (format_id) {
+        for (const Importer* offer : all)
+            if (offer->format().id == *format_id) return offer;
+        return nullptr;
+    }
+    const Head head = readHead(file);
+    const Importer* best = nullptr;
+    double best_confidence = -1.0;  // a claimed extension wins even when no probe recognises the content:
+                                    // the importer then says what is wrong with the file
+    for (const Importer* offer : all) {
+        if (!claimsExtension(offer->format(), file)) continue;
+        const double confidence = offer->probe(head.bytes, head.size);
+        if (confidence > best_confidence) {
+            best = offer;
+            best_confidence = confidence;
+        }
+    }
+    if (best != nullptr) return best;
+    best_confidence = 0.5;  // without the extension, only a confident probe
+    for (const Importer* offer : all) {
+        const double confidence = offer->probe(head.bytes, head.size);
+        if (confidence > best_confidence) {
+            best = offer;
+            best_confidence = confidence;
+        }
+    }
+    return best;
+}
+
+}  // namespace
+
+Registry::Registry() { add(makeBuiltInPlugin(), {}, kApiVersion); }
+
+Registry::~Registry() = default;  // handles stay open: see registry.h
+
+const Registry& Registry::global() {
+    static const Registry* registry = [] {
+        auto* r = new Registry();  // never destroyed: plugin code must outlive every user
+        for (const auto& folder : defaultSearchPath()) r->loadFolder(folder);
+        return r;
+    }();
+    return *registry;
+}
+
+std::vector<std::filesystem::path> Registry::defaultSearchPath() {
+    std::vector<std::filesystem::path> folders;
+    std::error_code error;
+    const auto exe = std::filesystem::read_symlink("/proc/self/exe", error);
+    // The build tree's folder only for a program inside that build tree, so
+    // an installed copy never picks up (or clashes with) a build's plugins.
+    const std::string build_root = PAINTLAB_BUILD_ROOT;
+    if (!error && exe.string().starts_with(build_root + "/")) folders.emplace_back(PAINTLAB_PLUGIN_BUILD_DIR);
+    if (!error) folders.push_back(exe.parent_path().parent_path() / "lib" / "paintlab" / "plugins");
+    // NOLINTNEXTLINE(concurrency-mt-unsafe): read once, before any plugin thread
+    if (const char* path = std::getenv("PAINTLAB_PLUGIN_PATH")) {
+        std::string list = path;
+        std::size_t start = 0;
+        while (start <= list.size()) {
+            const std::size_t end = std::min(list.find(':', start), list.size());
+            if (end > start) folders.emplace_back(list.substr(start, end - start));
+            start = end + 1;
+        }
+    }
+    // The same folder twice (the build tree is also beside the program) is loaded once.
+    std::vector<std::filesystem::path> unique;
+    std::set<std::filesystem::path> seen;
+    for (const auto& folder : folders) {
+        const auto canonical = std::filesystem::weakly_canonical(folder, error);
+        if (seen.insert(error ? folder : canonical).second) unique.push_back(folder);
+    }
+    return unique;
+}
+
+void Registry::loadFolder(const std::filesystem::path& folder) {
+    std::error_code error;
+    if (!std::filesystem::is_directory(folder, error)) return;
+    std::vector<std::filesystem::path> files;
+    for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+        const std::string name = entry.path().filename().string();
+        if (name.starts_with("libpaintlab-plugin-") && name.ends_with(".so")) files.push_back(entry.path());
+    }
+    std::sort(files.begin(), files.end());
+    for (const auto& file : files) loadFile(file);
+}
+
+bool Registry::loadFile(const std::filesystem::path& file) {
+    const auto refuse = [&](const std::string& reason) {
+        m_refusals.push_back({file, reason});
+        return false;
+    };
+    for (const auto& loaded : m_plugins)
+        if (loaded.file == file) return true;
+    // RTLD_LOCAL: each plugin keeps its own copy of the engine and database code to itself.
+    void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (handle == nullptr) {
+        const char* message = dlerror();
+        return refuse(std::string("cannot be loaded: ") + (message != nullptr ? message : "dlopen failed"));
+    }
+    m_handles.push_back(handle);
+    // POSIX: a dlsym result converts to a function pointer.
+    const auto api = reinterpret_cast<ApiVersionFn>(dlsym(handle, "paintlab_plugin_api_version"));
+    const auto create = reinterpret_cast<CreateFn>(dlsym(handle, "paintlab_plugin_create"));
+    if (api == nullptr) return refuse("no entry point paintlab_plugin_api_version (not a PaintLab plugin?)");
+    if (create == nullptr) return refuse("no entry point paintlab_plugin_create");
+    const int version = api();
+    if (version != kApiVersion)
+        return refuse("built for plugin API version " + std::to_string(version) + ", this PaintLab has " +
+                      std::to_string(kApiVersion));
+    std::unique_ptr<Plugin> plugin;
+    try {
+        plugin.reset(create());
+    } catch (const std::exception& e) {
+        return refuse(std::string("paintlab_plugin_create failed: ") + e.what());
+    }
+    if (!plugin) return refuse("paintlab_plugin_create returned no plugin");
+    return add(std::move(plugin), file, version);
+}
+
+bool Registry::add(std::unique_ptr<Plugin> plugin, const std::filesystem::path& file, int api_version) {
+    const auto ids = claimedIds(*plugin);
+    for (std::size_t i = 0; i < ids.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+            if (ids[i] == ids[j]) {
+                m_refusals.push_back({file, "offers the format " + ids[i] + " twice"});
+                return false;
+            }
+    for (const auto& loaded : m_plugins) {
+        if (loaded.name == plugin->name()) {
+            m_refusals.push_back({file, "a plugin named '" + loaded.name + "' is already loaded from " +
+                                            (loaded.builtIn() ? "PaintLab itself" : loaded.file.string())});
+            return false;
+        }
+        for (const auto& id : claimedIds(*loaded.plugin))
+            if (std::find(ids.begin(), ids.end(), id) != ids.end()) {
+                m_refusals.push_back(
+                    {file, "claims the format " + id + ", which plugin '" + loaded.name + "' (" +
+                               (loaded.builtIn() ? "built in" : loaded.file.string()) + ") already offers"});
+                return false;
+            }
+    }
+    LoadedPlugin loaded;
+    loaded.name = plugin->name();
+    loaded.version = plugin->version();
+    loaded.api_version = api_version;
+    loaded.file = file;
+    loaded.plugin = std::move(plugin);
+    m_plugins.push_back(std::move(loaded));
+    return true;
+}
+
+const MeasurementImporter*
+Registry::measurementImporterFor(const std::filesystem::path& file,
+                                 const std::optional<std::string>& format_id) const {
+    return chooseImporter<MeasurementImporter>(
+        m_plugins, [](const Plugin& p) { return p.measurementImporters(); }, file, format_id);
+}
+
+const SpectraImporter* Registry::spectraImporterFor(const std::filesystem::path& file,
+                                                    const std::optional<std::string>& format_id) const {
+    return chooseImporter<SpectraImporter>(
+        m_plugins, [](const Plugin& p) { return p.spectraImporters(); }, file, format_id);
+}
+
+const AppearanceExporter* Registry::exporterFor(const std::filesystem::path& file,
+                                                const std::optional<std::string>& format_id) const {
+    for (const auto& loaded : m_plugins)
+        for (const auto* offer : loaded.plugin->exporters())
+            if (format_id ? offer->format().id == *format_id : claimsExtension(offer->format(), file))
+                return offer;
+    return nullptr;
+}
+
+const LoadedPlugin* Registry::ownerOf(const void* offer) const {
+    for (const auto& loaded : m_plugins) {
+        const Plugin& p = *loaded.plugin;
+        for (const auto* o : p.measurementImporters())
+            if (o == offer) return &loaded;
+        for (const auto* o : p.spectraImporters())
+            if (o == offer) return &loaded;
+        for (const auto* o : p.exporters())
+            if (o == offer) return &loaded;
+    }
+    return nullptr;
+}
+
+db::Measurement readMeasurementFile(const std::filesystem::path& file, const db::ImportOptions& options,
+                                    std::size_t max_samples, const std::optional<std::string>& format_id) {
+    const Registry& registry = Registry::global();
+    const MeasurementImporter* importer =
+        options.format ? nullptr : registry.measurementImporterFor(file, format_id);
+    if (format_id && importer == nullptr)
+        throw InputError("<argument>", "--format",
+                         "no plugin reads measurements in format '" + *format_id + "'");
+    const LoadedPlugin* owner = importer != nullptr ? registry.ownerOf(importer) : nullptr;
+    if (owner == nullptr || owner->builtIn()) return db::readMeasurementFile(file, options);
+    ReadOptions read;
+    read.description = options.measurement;
+    read.max_samples = max_samples;
+    read.cgats = options.cgats;
+    return importer->read(file, read);
+}
+
+}  // namespace paintlab::plugins
