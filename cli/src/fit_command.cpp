@@ -19,6 +19,7 @@
 #include "paintlab/engine/io/atomic_file.h"
 #include "paintlab/engine/io/number_format.h"
 #include "paintlab/engine/recipe_json.h"
+#include "paintlab/plugins/registry.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -114,8 +115,9 @@ struct NamedMeasurement {
     bool from_file = false;
 };
 
+// Every format `db import` reads: the plugins' (MERL, ...) and the database's JSON/CSV.
 NamedMeasurement readMeasurementFile(const std::string& file) {
-    return {db::readMeasurementFile(file), true};
+    return {plugins::readMeasurementFile(file, {}, 0), true};
 }
 
 NamedMeasurement readDbMeasurement(db::Database& database, const std::string& name) {
@@ -127,7 +129,7 @@ NamedMeasurement readDbMeasurement(db::Database& database, const std::string& na
 }
 
 bool looksLikeFile(const std::string& text) {
-    return fs::exists(text) || text.ends_with(".csv") || text.ends_with(".json");
+    return fs::exists(text) || text.ends_with(".csv") || text.ends_with(".json") || text.ends_with(".binary");
 }
 
 std::string defaultAuthor() {
@@ -359,7 +361,8 @@ void addFitCommand(CLI::App& app, CommandAction& action) {
                     "Template recipe JSON file (its values are the first guess)")
         ->required();
     cmd->add_option("--measurement", o->measurement_files,
-                    "Measurement file (JSON, or CSV as db import reads it), seen from the top; repeatable");
+                    "Measurement file (any format db import reads: JSON, CSV, MERL .binary, ...), seen from "
+                    "the top; repeatable");
     cmd->add_option("--db-measurement", o->db_measurements,
                     "A measurement stored in the database, by name, seen from the top; repeatable");
     cmd->add_option("--bottom-measurement", o->bottom_measurement,

@@ -11,6 +11,7 @@
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/fit/parameter_paths.h"
 #include "paintlab/engine/io/number_format.h"
+#include "paintlab/plugins/registry.h"
 
 #include <QCheckBox>
 #include <QComboBox>
@@ -95,7 +96,8 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     m_measurement->setToolTip(tr("The measured panel to match: multi-angle readings or BRDF samples"));
     auto* import = new QPushButton(tr("File..."));
     import->setObjectName("match_import");
-    import->setToolTip(tr("Read a measurement file (JSON, or CSV as db import reads it) without storing it"));
+    import->setToolTip(
+        tr("Read a measurement file (JSON, CSV, MERL .binary: what db import reads) without storing it"));
     measurement_row->addWidget(m_measurement, 1);
     measurement_row->addWidget(import);
     form->addRow(tr("Measured"), measurement_row);
@@ -270,13 +272,13 @@ const db::Measurement* MatchDock::chosen(const QComboBox* box) const {
 }
 
 void MatchDock::importFile() {
-    const QString file = QFileDialog::getOpenFileName(this, tr("Measurement file"), QString(),
-                                                      tr("Measurements (*.json *.csv)"));
+    const QString file = QFileDialog::getOpenFileName(
+        this, tr("Measurement file"), QString(), tr("Measurements (*.json *.csv *.binary);;All files (*)"));
     if (file.isEmpty()) return;
     try {
         db::ImportOptions options;
         options.measurement.name = QFileInfo(file).completeBaseName().toStdString();
-        addFileMeasurement(db::readMeasurementFile(file.toStdString(), options));
+        addFileMeasurement(plugins::readMeasurementFile(file.toStdString(), options));
         showMessage(tr("Read %1.").arg(QFileInfo(file).fileName()), false);
     } catch (const std::exception& e) {
         showMessage(QString::fromStdString(e.what()), true);
