@@ -35,9 +35,7 @@ std::string comparisonRow(const MeasuredPaint& paint, const char* model, const R
     return io::csvJoin(fields);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
     CLI::App app{"Sample the measured paints' BRDFs on the BRDF-sample contract"};
     std::filesystem::path data = PAINTLAB_MEASURED_BRDF_DIR;
     std::filesystem::path out;
@@ -48,28 +46,36 @@ int main(int argc, char** argv) {
     app.add_option("--count", count, "samples per paint (>= 100)");
     app.add_option("--seed", seed, "seed of the directions");
     CLI11_PARSE(app, argc, argv);
+    const std::vector<MeasuredPaint> paints = loadMeasuredPaints(data);
+    const std::vector<SampleDirection> directions = sampleDirections(count, seed);
+    std::filesystem::create_directories(out);
+    std::string header = "paint,model,log_error";
+    for (double a : kAspecularAnglesDeg) header += ",de00_45as" + io::formatNumber(a);
+    for (double a : kAspecularAnglesDeg) header += ",L_45as" + io::formatNumber(a);
+    std::string comparison = header + "\n";
+    for (const MeasuredPaint& paint : paints) {
+        io::writeFileAtomically(out / (paint.stem + ".csv"), samplesCsv(paint.neural, directions));
+        comparison += comparisonRow(paint, "neural", paint.neural, directions);
+        if (paint.abc) comparison += comparisonRow(paint, "abc", *paint.abc, directions);
+        if (paint.sgd) comparison += comparisonRow(paint, "sgd", *paint.sgd, directions);
+    }
+    io::writeFileAtomically(out / "analytic_vs_neural.csv", comparison);
+    std::cout << comparison;
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
     try {
-        const std::vector<MeasuredPaint> paints = loadMeasuredPaints(data);
-        const std::vector<SampleDirection> directions = sampleDirections(count, seed);
-        std::filesystem::create_directories(out);
-        std::string header = "paint,model,log_error";
-        for (double a : kAspecularAnglesDeg) header += ",de00_45as" + io::formatNumber(a);
-        for (double a : kAspecularAnglesDeg) header += ",L_45as" + io::formatNumber(a);
-        std::string comparison = header + "\n";
-        for (const MeasuredPaint& paint : paints) {
-            io::writeFileAtomically(out / (paint.stem + ".csv"), samplesCsv(paint.neural, directions));
-            comparison += comparisonRow(paint, "neural", paint.neural, directions);
-            if (paint.abc) comparison += comparisonRow(paint, "abc", *paint.abc, directions);
-            if (paint.sgd) comparison += comparisonRow(paint, "sgd", *paint.sgd, directions);
-        }
-        io::writeFileAtomically(out / "analytic_vs_neural.csv", comparison);
-        std::cout << comparison;
-        return 0;
-    } catch (const InputError& e) {
+        return run(argc, argv);
+    } catch (const paintlab::InputError& e) {
         std::cerr << "error: " << e.what() << "\n";
         return 2;
     } catch (const std::exception& e) {
         std::cerr << "error: " << e.what() << "\n";
+        return 1;
+    } catch (...) {
         return 1;
     }
 }

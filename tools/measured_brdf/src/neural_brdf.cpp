@@ -93,9 +93,9 @@ std::vector<NeuralBrdf> loadNeuralBrdfs(const std::filesystem::path& file) {
     const nlohmann::json root =
         jsonio::parseUntrustedJson(jsonio::readBoundedTextFile(file, kMaxBytes), source);
     if (!root.is_object()) throw InputError(source, "", "expected an object of materials");
-    constexpr auto kIn = static_cast<std::size_t>(NeuralBrdf::kInputs);
-    constexpr auto kHid = static_cast<std::size_t>(NeuralBrdf::kHidden);
-    constexpr auto kOut = static_cast<std::size_t>(NeuralBrdf::kOutputs);
+    constexpr std::size_t kIn = NeuralBrdf::kInputs;
+    constexpr std::size_t kHid = NeuralBrdf::kHidden;
+    constexpr std::size_t kOut = NeuralBrdf::kOutputs;
     std::vector<NeuralBrdf> out;
     for (const auto& [key, material] : root.items()) {
         if (key.starts_with("_")) continue;

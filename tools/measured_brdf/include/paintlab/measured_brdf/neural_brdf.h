@@ -19,6 +19,7 @@
 
 #include "paintlab/measured_brdf/rgb_brdf.h"
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -27,9 +28,9 @@ namespace paintlab::measured {
 
 class NeuralBrdf final : public RgbBrdf {
 public:
-    static constexpr int kInputs = 6;
-    static constexpr int kHidden = 21;
-    static constexpr int kOutputs = 3;
+    static constexpr std::size_t kInputs = 6;
+    static constexpr std::size_t kHidden = 21;
+    static constexpr std::size_t kOutputs = 3;
 
     // Row-major weights as stored (x W: W1 is kInputs x kHidden).
     NeuralBrdf(std::string name, std::vector<double> w1, std::vector<double> b1, std::vector<double> w2,
