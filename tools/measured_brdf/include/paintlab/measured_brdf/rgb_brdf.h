@@ -24,6 +24,20 @@ public:
     virtual RgbValue eval(const Direction& wi, const Direction& wo) const = 0;
 };
 
+// A spectral BRDF (a fitted recipe's LayeredBrdf) seen as linear sRGB, as the
+// fitter compares it with RGB samples (fit.h: spectrumColour's linear sRGB of
+// f, brdf_colour.h). Keeps a reference to brdf.
+class SpectralAsRgb final : public RgbBrdf {
+public:
+    SpectralAsRgb(std::string name, const SpectralBrdf& brdf) : m_name(std::move(name)), m_brdf(brdf) {}
+    const std::string& name() const override { return m_name; }
+    RgbValue eval(const Direction& wi, const Direction& wo) const override;
+
+private:
+    std::string m_name;
+    const SpectralBrdf& m_brdf;
+};
+
 // CIELAB (D65 white, the 2° observer of sRGB's definition) of the reflectance
 // factor pi f given as linear sRGB: Lab of RGB (1, 1, 1) is (100, 0, 0).
 Lab reflectanceFactorLab(const RgbValue& f_per_sr);
