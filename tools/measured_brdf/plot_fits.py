@@ -9,15 +9,12 @@ log axis, with the six multi-angle geometries marked and the log errors in
 the title. Needs Debian's matplotlib (run with /usr/bin/python3).
 
     /usr/bin/python3 tools/measured_brdf/plot_fits.py REPORT_DIR docs/measured_brdf_fits.png
+    python3 tools/measured_brdf/plot_fits.py --table REPORT_DIR   # the markdown table of VALIDATION.md
 """
 import csv
 import sys
 from collections import defaultdict
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
 
 STYLE = {
     "neural": dict(color="black", lw=2.0, label="measured (neural fit)"),
@@ -30,7 +27,30 @@ STYLE = {
 GEOMETRIES = [-15, 15, 25, 45, 75, 110]
 
 
+def table(report_dir):
+    """Per paint: log error (all samples / off the specular lobe) and ΔE00 at
+    the six geometries of the fit, ABC and SGD against the neural fit."""
+    print("| paint | template | model | log error | off specular | ΔE00 " + " / ".join(f"45as{g}" for g in GEOMETRIES) + " |")
+    print("|---|---|---|---|---|---|")
+    with open(f"{report_dir}/measured_fits.csv", newline="") as f:
+        for row in csv.DictReader(f):
+            for model in ("fit", "abc", "sgd"):
+                if not row[f"{model}_log_error"]:
+                    continue
+                de = " / ".join(f"{float(row[f'{model}_de00_45as{g}']):.1f}" for g in GEOMETRIES)
+                name = row["paint"] if model == "fit" else ""
+                tmpl = row["template"] if model == "fit" else ""
+                label = {"fit": "**fit**", "abc": "ABC", "sgd": "SGD"}[model]
+                print(f"| {name} | {tmpl} | {label} | {float(row[f'{model}_log_error']):.3f} | "
+                      f"{float(row[f'{model}_log_error_off_specular']):.3f} | {de} |")
+
+
 def main(report_dir, out_png):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
     curves = defaultdict(lambda: defaultdict(list))
     with open(f"{report_dir}/measured_inplane.csv", newline="") as f:
         for row in csv.DictReader(f):
@@ -70,4 +90,7 @@ def main(report_dir, out_png):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1], sys.argv[2])
+    if sys.argv[1] == "--table":
+        table(sys.argv[2])
+    else:
+        main(sys.argv[1], sys.argv[2])
