@@ -118,6 +118,14 @@ FastModelSettings fitSettings(Preset preset) {
 
 std::string_view sideName(Side side) { return side == Side::Top ? "top" : "bottom"; }
 
+double defaultBrdfLogNoise(const std::vector<double>& values, double cos_i) {
+    double mean = 0.0;
+    for (const double v : values) mean += v;
+    if (!values.empty()) mean /= static_cast<double>(values.size());
+    const double x = std::max(0.0, mean * cos_i);
+    return std::max(kDefaultBrdfLogNoise * x / (1.0 + x), kDefaultBrdfLogNoiseFloor);
+}
+
 void validateFitProblem(const FitProblem& problem) { (void)prepareProblem(problem); }
 
 FitResult fitRecipe(const FitProblem& problem, const FitProgressCallback& progress) {

@@ -158,9 +158,10 @@ void prepareBrdf(const BrdfMeasurement& m, std::size_t mi, const Recipe& recipe,
         p.wi = directionFromAnglesDeg(s.theta_i_deg, s.phi_i_deg);
         p.wo = directionFromAnglesDeg(s.theta_o_deg, s.phi_o_deg);
         p.cos_i = p.wi.z;
-        p.sigma = check.noise(fieldPath(at, "log_noise"), s.log_noise, kDefaultBrdfLogNoise);
         for (std::size_t i = 0; i < s.values.size(); ++i)
             check.nonNegative(elementPath(at, "values", i), s.values[i]);
+        p.sigma =
+            check.noise(fieldPath(at, "log_noise"), s.log_noise, defaultBrdfLogNoise(s.values, p.cos_i));
         for (std::size_t i : inside) {
             p.measured_log.push_back(std::log1p(s.values[i] * p.cos_i));
             if (!rgb) p.wavelengths_nm.push_back(m.wavelengths_nm[i]);

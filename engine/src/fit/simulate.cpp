@@ -79,8 +79,8 @@ void addMeasurementNoise(Observations& observations, std::uint64_t seed) {
         }
     for (auto& m : observations.brdf)
         for (auto& s : m.samples) {
-            const double sigma = s.log_noise > 0.0 ? s.log_noise : kDefaultBrdfLogNoise;
             const double cos_i = std::cos(s.theta_i_deg * std::numbers::pi / 180.0);
+            const double sigma = s.log_noise > 0.0 ? s.log_noise : defaultBrdfLogNoise(s.values, cos_i);
             for (double& v : s.values) {
                 const double l = std::log1p(std::max(v * cos_i, -0.99)) + sigma * normal(rng);
                 v = std::max(0.0, std::expm1(l) / cos_i);

@@ -12,10 +12,14 @@
 //     beyond any instrument's stray-light floor.
 //   - CIELAB (when only L*a*b* is given): 0.3 per coordinate, the same
 //     inter-instrument agreement.
-//   - BRDF samples: 0.05 on the log residual ln(1 + f cos θi), i.e. about 5 %
-//     relative where f cos θi is large, the accuracy goniophotometers report
-//     (MERL and RGL quote a few per cent), and absolute (5 % of 1/sr) in the
-//     dark flop, where a relative error means nothing.
+//   - BRDF samples: a 5 % relative error of the sample's mean channel, the
+//     accuracy goniophotometers report (MERL and RGL quote a few per cent),
+//     carried to the log residual ln(1 + f cos θi): 0.05 x / (1 + x) with
+//     x = f cos θi, at least 0.002 (the floor keeps black samples from
+//     being weighted beyond any instrument's dynamic range). A constant
+//     0.05 on the log residual, the first default, was 5 % of 1/sr absolute
+//     over the diffuse part of every paint and left fits colour-blind on dark
+//     paints (docs/VALIDATION.md, "Real measurements").
 
 #include "paintlab/engine/colour/cie_tables.h"
 #include "paintlab/engine/colour/colour.h"
@@ -30,7 +34,12 @@ namespace paintlab::fit {
 inline constexpr double kDefaultReflectanceRelativeNoise = 0.01;
 inline constexpr double kDefaultReflectanceAbsoluteNoise = 0.001;
 inline constexpr double kDefaultLabNoise = 0.3;
-inline constexpr double kDefaultBrdfLogNoise = 0.05;
+inline constexpr double kDefaultBrdfLogNoise = 0.05;  // the relative error above
+inline constexpr double kDefaultBrdfLogNoiseFloor = 0.002;
+
+// The default noise on ln(1 + f cos θi) of a BRDF sample (above), from its
+// values (1/sr) and the cosine of its incidence.
+double defaultBrdfLogNoise(const std::vector<double>& values, double cos_i);
 
 // Top: the coating seen from its air side. Bottom: seen from below through a
 // transparent substrate (the recipe's substrate must be `transparent`); the
