@@ -5,6 +5,7 @@
 // never dropped without asking (main_window_unsaved.cpp) and are kept in a
 // recovery draft (recovery_draft.h) until saved or discarded.
 
+#include "raymap_refinement.h"
 #include "recipe_document.h"
 #include "recovery_draft.h"
 #include "render_scheduler.h"
@@ -35,6 +36,7 @@ struct WorkstationOptions {
     std::filesystem::path scene;     // empty: the demo scene
     std::filesystem::path raymap;    // empty: traced from the scene into the cache when missing
     bool open_scene = true;
+    bool refine_ray_map = true;  // refine the traced map in the background (raymap_refinement.h)
 };
 
 // The database docks and dialog (main_window_docks.cpp).
@@ -141,6 +143,8 @@ private:
     RecoveryDraft m_draft{&m_document};
     RenderScheduler m_scheduler;
     RenderScheduler m_compare_scheduler;
+    RayMapRefinement m_refinement;
+    bool m_refine = true;
     std::optional<Recipe> m_comparison;
     // The label of the comparison the render dock put into the Plots dock
     // (empty: the plots' comparison, if any, is the user's own pin or the full model).
