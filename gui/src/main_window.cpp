@@ -102,6 +102,16 @@ MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMa
             [this](quint64 /*generation*/, const QString& message) {
                 showError(tr("Recompute failed"), message);
             });
+    // The traced map refined in the background: each pass relights the recipe of the moment.
+    connect(&m_refinement, &RayMapRefinement::passLanded, this,
+            [this](int, std::shared_ptr<const raymaps::RayMap> map) {
+                m_scheduler.setRayMap(std::move(map));
+                m_compare_scheduler.shareRayMap(m_scheduler);
+                requestRender(false);
+            });
+    connect(&m_refinement, &RayMapRefinement::statusChanged, this,
+            [this](const QString& text) { statusBar()->showMessage(text); });
+    m_refine = options.refine_ray_map;
     connect(m_render, &RenderDock::exposureChanged, this, [this](double ev) {
         m_scheduler.setExposure(ev);
         m_compare_scheduler.setExposure(ev);
@@ -262,6 +272,7 @@ bool MainWindow::openRecipeFile(const QString& path) {
 }
 
 void MainWindow::openScene(const std::filesystem::path& scene, const std::filesystem::path& raymap) {
+    m_refinement.cancel();  // the scene open before: none of its passes lands any more
     // A map traced now fills the view (raymap_resolution.h); the cache keeps one per view box.
     std::optional<PixelSize> box;
     if (m_raymap_follows_view && isVisible()) {
@@ -274,12 +285,20 @@ void MainWindow::openScene(const std::filesystem::path& scene, const std::filesy
             ? cachedRayMapPath(scene, box ? QStringLiteral("-view%1x%2").arg(box->width).arg(box->height)
                                           : QString())
             : raymap;
-    const auto openMap = [this, map_file]() {
+    const auto openMap = [this, map_file, scene, refine = m_refine && raymap.empty()]() {
         try {
-            m_scheduler.setRayMap(std::shared_ptr<const raymaps::RayMap>(raymaps::RayMap::open(map_file)));
+            std::shared_ptr<const raymaps::RayMap> map(raymaps::RayMap::open(map_file));
+            m_scheduler.setRayMap(map);
             m_compare_scheduler.shareRayMap(m_scheduler);
             m_render->showMessage(tr("Ray map %1").arg(QString::fromStdString(map_file.string())));
             requestRender(false);
+            if (refine) {
+                // Passes at the opened map's own resolution (it may follow the view).
+                RayMapRefinement::Limits limits;
+                limits.camera_width = map->header().width;
+                limits.camera_height = map->header().height;
+                m_refinement.start(scene, std::filesystem::path(map_file).replace_extension(".refined.prm"), limits);
+            }
         } catch (const std::exception& e) {
             showError(tr("Cannot open the ray map"), QString::fromUtf8(e.what()));
         }
@@ -352,6 +371,7 @@ void MainWindow::requestRender(bool interactive) {
     m_scheduler.setFollowPlan(m_accuracy->followPlan());
     m_last_preset = m_accuracy->presetFor(interactive);
     m_scheduler.request(m_document.recipe(), m_last_preset);
+    m_refinement.setRecipe(m_document.recipe());
     requestComparison(false);
 }
 

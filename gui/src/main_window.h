@@ -6,6 +6,7 @@
 // never dropped without asking (main_window_unsaved.cpp) and are kept in a
 // recovery draft (recovery_draft.h) until saved or discarded.
 
+#include "raymap_refinement.h"
 #include "recipe_document.h"
 #include "recovery_draft.h"
 #include "render_scheduler.h"
@@ -42,6 +43,7 @@ struct WorkstationOptions {
     // A map traced at start takes the view's resolution (raymap_resolution.h);
     // false: the scene camera's own (tests' tiny scenes).
     bool raymap_follows_view = true;
+    bool refine_ray_map = true;  // refine the traced map in the background (raymap_refinement.h)
 };
 
 // The database docks and dialog (main_window_docks.cpp).
@@ -152,6 +154,8 @@ private:
     RecoveryDraft m_draft{&m_document};
     RenderScheduler m_scheduler;
     RenderScheduler m_compare_scheduler;
+    RayMapRefinement m_refinement;
+    bool m_refine = true;
     std::optional<Recipe> m_comparison;
     // The label of the comparison the render dock put into the Plots dock
     // (empty: the plots' comparison, if any, is the user's own pin or the full model).

@@ -34,6 +34,7 @@ struct PaintAccumulator {
     std::uint32_t env_scramble = 0;
     Rgb3 weight = Rgb3::Zero();
     Rgb3 mirror = Rgb3::Zero();
+    bool mirror_fixed = false;  // mirror is the pixel's fixed grid's (mirrorTerm), else the samples' sum
     std::vector<Rgb3> moments;  // [j * orders + m]
     std::vector<double> visibility;
 };
@@ -57,6 +58,11 @@ public:
         // this count, so it is at least M_L.
         m_azimuths = std::max(s.orders, (s.light_rays + s.cells * samples - 1) / (s.cells * samples));
         m_env_rays = (s.environment_rays + samples - 1) / samples;
+        // The mirror grid: twice the camera samples' side; where a mirror ray
+        // meets a surface, bake_paths / 2 paths (16 points x 2 paths at the
+        // defaults: twice the paths of one mirror ray per camera sample).
+        m_mirror_side = 2 * m_side;
+        m_mirror_paths = std::max(1, s.bake_paths / 2);
     }
 
     // Returns the baked radiance; fills `paint` if a sample met the paint.
@@ -72,7 +78,7 @@ public:
         paint.moments.assign(static_cast<std::size_t>(m_s.cells) * static_cast<std::size_t>(m_s.orders),
                              Rgb3::Zero());
         paint.visibility.assign(static_cast<std::size_t>(m_lights), 0.0);
-        centreFrame(x, y, rng, paint);
+        centreFrame(x, y, paint);
         paint.cell_rotation.resize(static_cast<std::size_t>(m_s.cells));
         paint.mu_scramble.resize(static_cast<std::size_t>(m_s.cells));
         for (std::size_t j = 0; j < paint.cell_rotation.size(); ++j) {
@@ -80,6 +86,7 @@ public:
             paint.mu_scramble[j] = rng.next();
         }
         paint.env_scramble = rng.next();
+        paint.mirror_fixed = mirrorTerm(x, y, rng, paint.mirror);
         for (int sy = 0; sy < m_side; ++sy)
             for (int sx = 0; sx < m_side; ++sx) {
                 const double px = x + (sx + rng.uniform()) / m_side;
@@ -95,7 +102,7 @@ public:
                 m_environment_moments->add(Frame::fromNormalAndTangent(paint.normal, paint.view), m_s.cells,
                                            m_s.orders, paint.moments);
             for (double& v : paint.visibility) v *= inv;
-            paint.mirror *= inv;
+            if (!paint.mirror_fixed) paint.mirror *= inv;
             paint.weight /= samples;
         }
         return baked / samples;
@@ -167,39 +174,90 @@ private:
         paint.footprint = distance * m_camera.pixelAngle();
     }
 
-    // The record's one frame (normal, view, position, footprint) is the
-    // paint's at the pixel centre, through mirrors and the stronger branch
-    // of glass as the camera samples go: the same for every seed. The
-    // sample nearest the centre, used before, moved with the jitter, and the
-    // explicit lights, the coat and the moments with it (~2 % per-pixel noise
-    // on the sun-lit demo scene whatever the number of rays).
-    void centreFrame(int x, int y, Rng& rng, PaintAccumulator& paint) const {
-        paint.centred = false;
-        Vec3 dir = m_camera.direction(x + 0.5, y + 0.5);
-        Vec3 origin = m_camera.origin();
+    // Where the camera ray through image point (px, py) meets the paint,
+    // through mirrors and the stronger branch of glass as the camera samples
+    // go; no random number is drawn (a mirror draws none), so the answer is
+    // the same for every seed. found is false if it meets anything else.
+    struct PaintHit {
+        Hit hit;
+        Vec3 dir;
         double distance = 0.0;
+    };
+    PaintHit paintAt(double px, double py) const {
+        PaintHit out;
+        Vec3 dir = m_camera.direction(px, py);
+        Vec3 origin = m_camera.origin();
+        Rng unused(0, 0, 0);
         for (int bounce = 0;; ++bounce) {
             const Hit hit = m_pt.tracer().intersect(origin, dir);
-            if (!hit.found) return;
-            distance += hit.t;
+            if (!hit.found) return out;
+            out.distance += hit.t;
             const Material& m = m_pt.material(hit);
             if (m.kind == MaterialKind::Paint) {
-                setFrame(hit, dir, distance, -1.0, paint);
-                paint.centred = true;
-                return;
+                out.hit = hit;
+                out.dir = dir;
+                return out;
             }
-            if (bounce >= m_s.max_delta_bounces) return;
+            if (bounce >= m_s.max_delta_bounces) return out;
             if (m.kind == MaterialKind::Mirror) {
                 Rgb3 beta = Rgb3::Ones();
-                dir = m_pt.deltaBounce(m, hit, dir, rng, beta);  // a mirror draws no random number
+                dir = m_pt.deltaBounce(m, hit, dir, unused, beta);
             } else if (m.kind == MaterialKind::Glass) {
                 const PathTracer::GlassSplit split = m_pt.glassSplit(m, hit, dir);
                 dir = split.reflectance >= 0.5 ? split.reflected : split.refracted;
             } else {
-                return;
+                return out;
             }
             origin = m_pt.offset(hit.position, hit.geometric_normal, dir);
         }
+    }
+
+    // The record's one frame (normal, view, position, footprint) is the
+    // paint's at the pixel centre (paintAt): the same for every seed. The
+    // sample nearest the centre, used before, moved with the jitter, and the
+    // explicit lights, the coat and the moments with it (~2 % per-pixel noise
+    // on the sun-lit demo scene whatever the number of rays).
+    void centreFrame(int x, int y, PaintAccumulator& paint) const {
+        const PaintHit p = paintAt(x + 0.5, y + 0.5);
+        paint.centred = p.hit.found;
+        if (p.hit.found) setFrame(p.hit, p.dir, p.distance, -1.0, paint);
+    }
+
+    // What the clear coat mirrors, averaged over a fixed grid of
+    // m_mirror_side^2 points of the pixel (the same points for every seed):
+    // where the mirror ray escapes, the environment in that direction, a
+    // deterministic lookup; where it meets a surface, the path-traced
+    // radiance there (the one random part). One jittered ray per camera
+    // sample, used before, aliased the reflections' sharp edges differently
+    // for every seed: 2-22 % per-pixel noise of this term under the
+    // courtyard HDR (docs/PERFORMANCE.md). Returns false if no point of
+    // the grid meets the paint (a pixel at the paint's edge).
+    bool mirrorTerm(int x, int y, Rng& rng, Rgb3& mirror) const {
+        mirror.setZero();
+        int found = 0;
+        for (int sy = 0; sy < m_mirror_side; ++sy)
+            for (int sx = 0; sx < m_mirror_side; ++sx) {
+                const PaintHit p = paintAt(x + (sx + 0.5) / m_mirror_side, y + (sy + 0.5) / m_mirror_side);
+                if (!p.hit.found) continue;
+                ++found;
+                mirror += mirrorRadiance(p.hit, -p.dir, m_mirror_paths, rng);
+            }
+        if (found > 0) mirror /= found;
+        return found > 0;
+    }
+
+    // The coat's mirror radiance at a paint hit seen from wo: one ray, and
+    // `paths` paths from what it meets (the floor's path-traced radiance).
+    Rgb3 mirrorRadiance(const Hit& hit, const Vec3& wo, int paths, Rng& rng) const {
+        const auto [ng, ns] = paintNormals(hit, wo);
+        const Vec3 origin = m_pt.offset(hit.position, ng, ng);
+        Vec3 r = reflect(wo, ns);
+        if (r.dot(ng) <= 0.0) r = reflect(wo, ng);
+        const Hit mirrored = m_indirect.tracer().intersect(origin, r);
+        if (!mirrored.found) return m_indirect.escaped(r, true);
+        Rgb3 l = Rgb3::Zero();
+        for (int p = 0; p < paths; ++p) l += m_indirect.radianceAt(mirrored, r, rng, true);
+        return l / paths;
     }
 
     void addPaint(const Hit& hit, const Vec3& dir, const Rgb3& beta, double distance, double offset2,
@@ -224,15 +282,8 @@ private:
             paint.visibility[k++] += m_pt.pointVisible(hit.position, ng, point) ? 1.0 : 0.0;
         for (const auto& spot : m_hotspots)
             paint.visibility[k++] += m_pt.sunVisibility(hit.position, ng, spot, m_s.sun_shadow_rays, rng);
-        Vec3 r = reflect(wo, ns);
-        if (r.dot(ng) <= 0.0) r = reflect(wo, ng);
-        // What the coat mirrors: one ray, and bake_paths paths from what it
-        // meets (the floor's path-traced radiance was most of this term's noise).
-        const Hit mirrored = m_indirect.tracer().intersect(origin, r);
-        const int paths = mirrored.found ? m_s.bake_paths : 1;
-        Rgb3 mirror = Rgb3::Zero();
-        for (int p = 0; p < paths; ++p) mirror += m_indirect.radianceAt(mirrored, r, rng, true);
-        paint.mirror += mirror / paths;
+        // The coat's mirror term of an edge pixel (mirrorTerm found no paint).
+        if (!paint.mirror_fixed) paint.mirror += mirrorRadiance(hit, wo, m_s.bake_paths, rng);
     }
 
     // Light moments l^m_j = integral over cell j of L cos(m phi) mu dw
@@ -318,6 +369,8 @@ private:
     int m_side = 1;
     int m_azimuths = 4;
     int m_env_rays = 0;  // importance-sampled moment rays per camera sample
+    int m_mirror_side = 2;
+    int m_mirror_paths = 1;
 };
 
 }  // namespace paintlab::raymaps

@@ -154,6 +154,50 @@ void foldPaint(PaintAccumulator& mean, const PaintAccumulator& pass, int passes)
     }
 }
 
+// The average of some passes: per pixel the baked radiance, per paint pixel its record's sums.
+struct PassMean {
+    int passes = 0;
+    std::vector<Rgb3> baked;                   // row-major
+    std::vector<std::vector<PaintMean>> rows;  // paint pixels per row, ascending x
+
+    void reset(std::size_t pixels, std::size_t height) {
+        baked.assign(pixels, Rgb3::Zero());
+        rows.assign(height, {});
+    }
+
+    // Folds one pass (its baked radiance and paint rows) into the mean.
+    void fold(const std::vector<Rgb3>& pass_baked, std::vector<std::vector<PaintMean>> pass_rows) {
+        for (std::size_t i = 0; i < baked.size(); ++i) blend(baked[i], pass_baked[i], 1.0 / (passes + 1));
+        tbb::parallel_for(std::size_t{0}, rows.size(), [&](std::size_t y) {
+            std::vector<PaintMean>& mean = rows[y];
+            std::vector<PaintMean> merged;
+            merged.reserve(std::max(mean.size(), pass_rows[y].size()));
+            auto a = mean.begin();
+            for (PaintMean& p : pass_rows[y]) {
+                for (; a != mean.end() && a->x < p.x; ++a) {
+                    // No paint here in this pass: its weight is 0.
+                    a->paint.weight *= static_cast<double>(passes) / (passes + 1);
+                    merged.push_back(std::move(*a));
+                }
+                if (a != mean.end() && a->x == p.x) {
+                    foldPaint(a->paint, p.paint, passes);
+                    merged.push_back(std::move(*a++));
+                } else {
+                    // First paint here: the passes before it had none.
+                    p.paint.weight *= 1.0 / (passes + 1);
+                    merged.push_back(std::move(p));
+                }
+            }
+            for (; a != mean.end(); ++a) {
+                a->paint.weight *= static_cast<double>(passes) / (passes + 1);
+                merged.push_back(std::move(*a));
+            }
+            mean = std::move(merged);
+        });
+        ++passes;
+    }
+};
+
 }  // namespace
 
 struct ProgressiveRayMap::Impl {
@@ -177,10 +221,9 @@ struct ProgressiveRayMap::Impl {
     std::optional<EnvironmentMap> residual;
     std::optional<EnvironmentMoments> environment_moments;
     RayMapHeader header;
-    int passes = 0;
-    double seconds = 0.0;                      // set-up and passes
-    std::vector<Rgb3> baked;                   // mean per pixel, row-major
-    std::vector<std::vector<PaintMean>> rows;  // paint pixels per row, ascending x
+    double seconds = 0.0;  // set-up and passes
+    PassMean all;          // every pass
+    PassMean odd;          // the 1st, 3rd, ... pass: the noise estimate's other half (writeOddPasses)
 };
 
 ProgressiveRayMap::ProgressiveRayMap(const Scene& scene, const RayMapSettings& settings) {
@@ -220,22 +263,23 @@ ProgressiveRayMap::ProgressiveRayMap(const Scene& scene, const RayMapSettings& s
         throw InputError(scene.file.string(), "lights", "more than 255 explicit lights");
     if (settings.environment_points > 0)
         m_impl->environment_moments.emplace(*m_impl->residual, settings.environment_points);
-    m_impl->baked.assign(static_cast<std::size_t>(header.width) * static_cast<std::size_t>(header.height),
-                         Rgb3::Zero());
-    m_impl->rows.resize(static_cast<std::size_t>(header.height));
+    const std::size_t pixels =
+        static_cast<std::size_t>(header.width) * static_cast<std::size_t>(header.height);
+    m_impl->all.reset(pixels, static_cast<std::size_t>(header.height));
+    m_impl->odd.reset(pixels, static_cast<std::size_t>(header.height));
     m_impl->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 ProgressiveRayMap::~ProgressiveRayMap() = default;
 
-int ProgressiveRayMap::passes() const { return m_impl->passes; }
+int ProgressiveRayMap::passes() const { return m_impl->all.passes; }
 
 const RayMapHeader& ProgressiveRayMap::header() const { return m_impl->header; }
 
 void ProgressiveRayMap::addPass(const RayMapProgress& progress) {
     const auto start = std::chrono::steady_clock::now();
     RayMapSettings settings = m_impl->settings;
-    settings.seed = m_impl->settings.seed + static_cast<std::uint64_t>(m_impl->passes);
+    settings.seed = m_impl->settings.seed + static_cast<std::uint64_t>(m_impl->all.passes);
     const int width = m_impl->header.width;
     const int height = m_impl->header.height;
     const int band_rows = settings.band_rows;
@@ -245,8 +289,8 @@ void ProgressiveRayMap::addPass(const RayMapProgress& progress) {
                              m_impl->environment_moments ? &*m_impl->environment_moments : nullptr);
     // The pass is traced aside and folded in at the end: a cancelled pass
     // leaves the map as it was.
-    std::vector<Rgb3> baked(m_impl->baked.size());
-    std::vector<std::vector<PaintMean>> rows(m_impl->rows.size());
+    std::vector<Rgb3> baked(m_impl->all.baked.size());
+    std::vector<std::vector<PaintMean>> rows(m_impl->all.rows.size());
     for (int b = 0; b < bands; ++b) {
         const int first = b * band_rows;
         const int count = std::min(band_rows, height - first);
@@ -264,44 +308,19 @@ void ProgressiveRayMap::addPass(const RayMapProgress& progress) {
                           });
         if (progress && !progress(static_cast<double>(b + 1) / bands)) throw Error("cancelled");
     }
-    const int passes = m_impl->passes;
-    for (std::size_t i = 0; i < baked.size(); ++i) blend(m_impl->baked[i], baked[i], 1.0 / (passes + 1));
-    tbb::parallel_for(std::size_t{0}, rows.size(), [&](std::size_t y) {
-        std::vector<PaintMean>& mean = m_impl->rows[y];
-        std::vector<PaintMean> merged;
-        merged.reserve(std::max(mean.size(), rows[y].size()));
-        auto a = mean.begin();
-        for (PaintMean& p : rows[y]) {
-            for (; a != mean.end() && a->x < p.x; ++a) {
-                // No paint here in this pass: its weight is 0.
-                a->paint.weight *= static_cast<double>(passes) / (passes + 1);
-                merged.push_back(std::move(*a));
-            }
-            if (a != mean.end() && a->x == p.x) {
-                foldPaint(a->paint, p.paint, passes);
-                merged.push_back(std::move(*a++));
-            } else {
-                // First paint here: the passes before it had none.
-                p.paint.weight *= 1.0 / (passes + 1);
-                merged.push_back(std::move(p));
-            }
-        }
-        for (; a != mean.end(); ++a) {
-            a->paint.weight *= static_cast<double>(passes) / (passes + 1);
-            merged.push_back(std::move(*a));
-        }
-        mean = std::move(merged);
-    });
-    ++m_impl->passes;
+    if (m_impl->all.passes % 2 == 0) m_impl->odd.fold(baked, rows);  // a copy of the rows
+    m_impl->all.fold(baked, std::move(rows));
     m_impl->seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-RayMapHeader ProgressiveRayMap::write(const std::filesystem::path& out) const {
-    if (m_impl->passes == 0) throw Error("ray map " + out.string() + ": no pass traced");
-    RayMapHeader header = m_impl->header;
+namespace {
+
+// Writes `mean` (atomically) with `header`'s layout and statistics; sets its paint_pixels.
+RayMapHeader writeMean(const PassMean& mean, RayMapHeader header, int band_rows,
+                       const std::filesystem::path& out) {
+    if (mean.passes == 0) throw Error("ray map " + out.string() + ": no pass traced");
     const RecordLayout layout{header.cells, header.orders, static_cast<int>(header.lights.size())};
     const int width = header.width;
-    const int band_rows = m_impl->settings.band_rows;
     const int bands = (header.height + band_rows - 1) / band_rows;
     std::vector<RayMapBand> done(static_cast<std::size_t>(bands));
     tbb::parallel_for(0, bands, [&](int b) {
@@ -312,9 +331,9 @@ RayMapHeader ProgressiveRayMap::write(const std::filesystem::path& out) const {
         band.baked.resize(static_cast<std::size_t>(band.rows) * static_cast<std::size_t>(width) * 3);
         for (std::size_t i = 0; i < band.baked.size() / 3; ++i)
             for (int c = 0; c < 3; ++c)
-                band.baked[3 * i + static_cast<std::size_t>(c)] = halfBits(m_impl->baked[first + i][c]);
+                band.baked[3 * i + static_cast<std::size_t>(c)] = halfBits(mean.baked[first + i][c]);
         for (int y = band.first_row; y < band.first_row + band.rows; ++y)
-            for (const PaintMean& p : m_impl->rows[static_cast<std::size_t>(y)]) {
+            for (const PaintMean& p : mean.rows[static_cast<std::size_t>(y)]) {
                 const std::size_t offset = band.records.size();
                 band.records.resize(offset + layout.bytes());
                 encodeRecord(p.paint,
@@ -326,8 +345,6 @@ RayMapHeader ProgressiveRayMap::write(const std::filesystem::path& out) const {
     });
     header.paint_pixels = 0;
     for (const RayMapBand& band : done) header.paint_pixels += band.record_count;
-    header.rays = m_impl->tracer.raysTraced();
-    header.seconds = m_impl->seconds;
 
     ChunkFileWriter writer(out, kRayMapMagic, kRayMapVersion);
     const std::string json = headerToJson(header);
@@ -338,6 +355,22 @@ RayMapHeader ProgressiveRayMap::write(const std::filesystem::path& out) const {
     }
     writer.finish();
     return header;
+}
+
+}  // namespace
+
+RayMapHeader ProgressiveRayMap::write(const std::filesystem::path& out) const {
+    RayMapHeader header = m_impl->header;
+    header.rays = m_impl->tracer.raysTraced();
+    header.seconds = m_impl->seconds;
+    return writeMean(m_impl->all, header, m_impl->settings.band_rows, out);
+}
+
+RayMapHeader ProgressiveRayMap::writeOddPasses(const std::filesystem::path& out) const {
+    RayMapHeader header = m_impl->header;
+    header.rays = m_impl->tracer.raysTraced();
+    header.seconds = m_impl->seconds;
+    return writeMean(m_impl->odd, header, m_impl->settings.band_rows, out);
 }
 
 RayMapHeader buildRayMap(const Scene& scene, const RayMapSettings& settings, const std::filesystem::path& out,

@@ -196,6 +196,13 @@ public:
     // Writes the average of the passes so far (atomically); Error if none.
     // Statistics: rays and seconds (set-up included) of all passes.
     RayMapHeader write(const std::filesystem::path& out) const;
+    // Writes the average of the 1st, 3rd, 5th, ... pass alone (Error if
+    // none): the other half of a noise estimate of write()'s map. With N
+    // passes, n_o = ceil(N/2) of them odd and n_e = N - n_o, the full
+    // average minus the odd one is (n_e / N)(even - odd), whose variance is
+    // var(full) n_e / n_o: RMS(full - odd) sqrt(n_o / n_e) estimates the
+    // full map's own noise (raymaps/noise_estimate.h; N >= 2).
+    RayMapHeader writeOddPasses(const std::filesystem::path& out) const;
 
 private:
     struct Impl;
