@@ -109,7 +109,8 @@ int runInit(const DbOptions& options) {
                                   {"schema_version", database.schemaVersion()},
                                   {"already_initialised", summary.already_initialised},
                                   {"ingredients_added", summary.ingredients_added},
-                                  {"recipes_added", summary.recipes_added}}
+                                  {"recipes_added", summary.recipes_added},
+                                  {"measurements_added", summary.measurements_added}}
                          .dump(2)
                   << '\n';
     } else if (summary.already_initialised) {

@@ -1,10 +1,13 @@
-// The demo database (demo.h): the embedded demo ingredients and recipes,
+// The demo database (demo.h): the embedded demo ingredients, recipes and
+// made-up measurement,
 // and the default location of the user's database.
 
 #include "paintlab/database/demo.h"
 
 #include "paintlab/database/ingredient_json.h"
 #include "paintlab/database/ingredients.h"
+#include "paintlab/database/measurement_files.h"
+#include "paintlab/database/measurements.h"
 #include "paintlab/database/recipes.h"
 #include "paintlab/engine/recipe_json.h"
 
@@ -45,7 +48,12 @@ DemoSummary initDemoDatabase(Database& db) {
         }
     }
     for (const auto& file : files) {
-        if (file.name.ends_with("ingredients.json")) continue;
+        if (!file.name.ends_with("-panel.json")) continue;
+        createMeasurement(db, parseMeasurementJson(file.text, "<demo>/measurements/" + file.name));
+        ++summary.measurements_added;
+    }
+    for (const auto& file : files) {
+        if (file.name.ends_with("ingredients.json") || file.name.ends_with("-panel.json")) continue;
         const std::string source = "<demo>/recipes/" + file.name;
         const Recipe recipe = parseRecipeJson(file.text, source);
         SaveOptions options;

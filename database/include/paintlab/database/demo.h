@@ -14,6 +14,7 @@ namespace paintlab::db {
 struct DemoSummary {
     int ingredients_added = 0;
     int recipes_added = 0;             // recipe versions created
+    int measurements_added = 0;        // made-up panels for the Match tab (packaging/demo/measurements/)
     bool already_initialised = false;  // the database held ingredients or recipes: nothing was added
 };
 
