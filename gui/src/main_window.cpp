@@ -27,6 +27,7 @@
 #include <QCloseEvent>
 #include <QDockWidget>
 #include <QFileDialog>
+#include <QLabel>
 #include <QListWidget>
 #include <QMenuBar>
 #include <QMessageBox>
@@ -109,8 +110,11 @@ MainWindow::MainWindow(const WorkstationOptions& options, QWidget* parent) : QMa
                 m_compare_scheduler.shareRayMap(m_scheduler);
                 requestRender(false);
             });
-    connect(&m_refinement, &RayMapRefinement::statusChanged, this,
-            [this](const QString& text) { statusBar()->showMessage(text); });
+    // In its own corner of the status bar: messages and hints are not overwritten by it.
+    auto* refinement_status = new QLabel(this);
+    refinement_status->setObjectName("refinement_status");
+    statusBar()->addPermanentWidget(refinement_status);
+    connect(&m_refinement, &RayMapRefinement::statusChanged, refinement_status, &QLabel::setText);
     m_refine = options.refine_ray_map;
     connect(m_render, &RenderDock::exposureChanged, this, [this](double ev) {
         m_scheduler.setExposure(ev);
@@ -297,7 +301,8 @@ void MainWindow::openScene(const std::filesystem::path& scene, const std::filesy
                 RayMapRefinement::Limits limits;
                 limits.camera_width = map->header().width;
                 limits.camera_height = map->header().height;
-                m_refinement.start(scene, std::filesystem::path(map_file).replace_extension(".refined.prm"), limits);
+                m_refinement.start(scene, std::filesystem::path(map_file).replace_extension(".refined.prm"),
+                                   limits);
             }
         } catch (const std::exception& e) {
             showError(tr("Cannot open the ray map"), QString::fromUtf8(e.what()));

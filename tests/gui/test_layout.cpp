@@ -120,6 +120,7 @@ std::unique_ptr<MainWindow> LayoutTest::openWindow(bool scene) {
     options.scene = m_scene.toStdString();
     options.open_scene = scene;
     options.raymap_follows_view = false;  // the tiny scene as it is: the test stays fast
+    options.refine_ray_map = false;       // screenshots of one fixed map, not of a map refining meanwhile
     auto window = std::make_unique<MainWindow>(options);
     window->show();
     if (!QTest::qWaitForWindowExposed(window.get())) return nullptr;

@@ -102,6 +102,7 @@ void WalkthroughTest::initTestCase() {
     options.database = (m_dir.path() + "/lab.db").toStdString();
     options.scene = paintlab::test::writeTinyDemoScene(m_dir.path()).toStdString();
     options.raymap_follows_view = false;  // the tiny scene as it is
+    options.refine_ray_map = false;       // screenshots of one fixed map, not of a map refining meanwhile
     m_window = std::make_unique<MainWindow>(options);
     m_window->resize(1366, 768);
     m_window->show();
