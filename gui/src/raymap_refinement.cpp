@@ -105,7 +105,7 @@ void RayMapRefinement::run(const std::filesystem::path& scene, const std::filesy
         loaded.camera.width = limits.camera_width;
         loaded.camera.height = limits.camera_height;
     }
-    raymaps::ProgressiveRayMap map(std::move(loaded), raymaps::RayMapSettings{});
+    raymaps::ProgressiveRayMap map(loaded, raymaps::RayMapSettings{});
     const auto keep_going = [&cancel](double /*fraction*/) { return !cancel.load(); };
     std::filesystem::path odd_file = out;
     odd_file += ".odd";
