@@ -151,7 +151,7 @@ void WorkstationTest::initTestCase() {
     options.database = (m_dir.path() + "/lab.db").toStdString();
     options.scene = scene_file.toStdString();
     options.raymap_follows_view = false;  // the tiny scene as it is
-    options.refine_ray_map = false;  // the cases compare renders of one fixed map
+    options.refine_ray_map = false;       // the cases compare renders of one fixed map
     m_window = std::make_unique<MainWindow>(options);
     m_window->resize(1400, 900);  // a fixed size for the screenshot baselines
     m_window->show();
