@@ -83,6 +83,11 @@ ceres::Solver::Options solverOptions(int iterations, bool polish) {
     o.minimizer_progress_to_stdout = false;
     o.num_threads = 1;  // the Jacobian's displaced recipes run in parallel (trial_cost.cpp)
     o.update_state_every_iteration = false;
+    // No projected line search after each step: it evaluates the gradient
+    // (a whole Jacobian of displaced recipes) at every trial length, and the
+    // projection onto the bounds alone keeps the steps feasible. It more than
+    // halved a fit's evaluations without changing its minimum.
+    o.max_num_line_search_step_size_iterations = 0;
     return o;
 }
 
