@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -239,6 +240,60 @@ TEST(FitIdentifiability, TwoSidedMeasurementSeparatesADepthGradient) {
     expectRecovered(two, truth);
     // Sharper than from the top by more than a factor 5 (measured: ~20).
     EXPECT_LT(5.0 * two.parameters[1].sigma, top.parameters[1].sigma);
+}
+
+// Different recipes can look alike: the pearl's interference colour repeats
+// as its TiO2 coating thickens by about λ / (2 n_TiO2) (~105 nm at 550 nm),
+// so an instrument that reads only 540-560 nm, to 5 % (a handheld sorting
+// instrument), sees the truth (120 nm) and a ~232 nm coating nearly alike
+// (costs 6.5 and 10.6 with this seed). Alternatives are asked for within 4.5
+// in cost (9 in chi-square: 3 sigma). The fit must show both minima; with the
+// whole spectrum the hue tells them apart (the other order costs > 1,000
+// more) and no alternative is left.
+TEST(FitAlternatives, NarrowBandReadingShowsTheOtherInterferenceOrder) {
+    const Recipe truth = test::demoRecipe("pearlescent-two-layer");  // TiO2 120 nm
+    const std::string path = "layers[1].components[0].tio2_thickness_nm";
+    Recipe start = truth;
+    fit::setParameterValue(start, path, 200.0);
+    const auto fitWith = [&](std::vector<double> wavelengths_nm) {
+        Observations o;
+        o.multi_angle.push_back(
+            fit::standardMultiAngleMeasurement(fit::Side::Top, std::move(wavelengths_nm)));
+        for (auto& reading : o.multi_angle[0].readings) reading.reflectance_relative_noise = 0.05;
+        fit::FitProblem p = test::syntheticProblem(truth, start, {path}, o, Preset::Preview, 41);
+        p.free[0].lower = 40.0;
+        p.free[0].upper = 340.0;
+        // Every start searched: the other order's basin is ~10 nm wide in a
+        // 300 nm range, narrower than the starts' spacing, and the scatter's
+        // one cost per start need not rank the start nearest it among the best.
+        p.settings = quickSettings(12);
+        p.settings.searches = 12;
+        p.settings.polish_count = 4;
+        p.settings.alternative_cost_abs = 4.5;
+        return fit::fitRecipe(p);
+    };
+
+    const FitResult narrow = fitWith({540.0, 550.0, 560.0});
+    std::vector<double> minima{narrow.parameters[0].value};
+    for (const auto& alt : narrow.alternatives) minima.push_back(alt.values[0]);
+    for (double v : minima) std::printf("narrow band: minimum at %.1f nm\n", v);
+    ASSERT_FALSE(narrow.alternatives.empty()) << "best " << narrow.parameters[0].value;
+    // One minimum is the truth (within 3 sigma of the best's uncertainty, or
+    // 5 nm where the alternative's is not computed); another is a different
+    // interference order, more than half a period away.
+    const double tolerance = std::max(5.0, 3.0 * narrow.parameters[0].sigma);
+    EXPECT_TRUE(
+        std::any_of(minima.begin(), minima.end(), [&](double v) { return std::abs(v - 120.0) < tolerance; }));
+    EXPECT_TRUE(
+        std::any_of(minima.begin(), minima.end(), [&](double v) { return std::abs(v - 120.0) > 50.0; }));
+    for (const auto& alt : narrow.alternatives)
+        EXPECT_LE(alt.cost, narrow.cost + std::max(4.5, 0.25 * narrow.cost));
+
+    const FitResult full = fitWith({});
+    std::printf("full spectrum: %.1f ± %.1f nm, %zu alternatives\n", full.parameters[0].value,
+                full.parameters[0].sigma, full.alternatives.size());
+    EXPECT_LE(std::abs(full.parameters[0].value - 120.0), 3.0 * full.parameters[0].sigma);
+    EXPECT_TRUE(full.alternatives.empty());
 }
 
 TEST(FitProgress, CancelThrowsAndReportsProgress) {
