@@ -3,12 +3,21 @@
 // stability), so every test states only the numbers that matter to it.
 
 #include "paintlab/engine/recipe.h"
+#include "paintlab/engine/recipe_json.h"
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <utility>
 
 namespace paintlab::test {
+
+#ifdef PAINTLAB_DEMO_DIR  // defined for the tests (tests/CMakeLists.txt), not the tools
+// A bundled demo recipe by file name without ".json" ("silver-metallic").
+inline Recipe demoRecipe(const std::string& name) {
+    return loadRecipeFile(std::string(PAINTLAB_DEMO_DIR) + "/recipes/" + name + ".json");
+}
+#endif
 
 // One layer of the given binder index and thickness over a substrate, in air.
 inline Recipe oneLayerRecipe(double n_binder, double thickness_um, Substrate substrate) {

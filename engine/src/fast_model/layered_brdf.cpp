@@ -18,6 +18,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <numbers>
 
@@ -61,7 +62,9 @@ FastModelSettings presetSettings(Preset preset) {
                 .flake_table = 17,
                 .flake_kernel_points_per_spread = 1.0,
                 .order_tolerance = 1e-3,
-                .output_bands = 41};
+                .output_bands = 41,
+                .flake_nodes_times_spread_deg = 80.0,
+                .flake_orders_times_spread_deg = 56.0};
     case Preset::Standard:
         // Sharp lobes (g above ~0.65): within 2 % of the converged BRDF
         // wherever it is at least 1 % of its largest value at that incidence
@@ -78,7 +81,11 @@ FastModelSettings presetSettings(Preset preset) {
                 .output_bands = 81,
                 .sharp_nodes = 32,
                 .sharp_orders = 24,
-                .sharp_max_start_tau = 1.0 / 1024.0};
+                .sharp_max_start_tau = 1.0 / 1024.0,
+                // Narrow flakes: within ~0.1 ΔE00 of a 96-node, 64-order grid
+                // down to a 2° spread (tests/engine/fast_model/test_narrow_flakes.cpp).
+                .flake_nodes_times_spread_deg = 112.0,
+                .flake_orders_times_spread_deg = 80.0};
     case Preset::Reference:
         // Converged: doubling nodes and orders (96, 64) changes the multi-angle
         // reflectance factors of the demo paints by < 3.2e-5, a 4x smaller start
@@ -96,7 +103,9 @@ FastModelSettings presetSettings(Preset preset) {
                 // Sharp lobes (g above ~0.87): within 0.5 % everywhere.
                 .sharp_nodes = 64,
                 .sharp_orders = 48,
-                .sharp_max_start_tau = 1.0 / 4096.0};
+                .sharp_max_start_tau = 1.0 / 4096.0,
+                .flake_nodes_times_spread_deg = 192.0,
+                .flake_orders_times_spread_deg = 128.0};
     }
     return {};
 }
@@ -335,10 +344,52 @@ LayeredBrdf::BandTable spectralInterpolation(const std::vector<double>& band_nm,
     return t;
 }
 
+// The narrowest orientation spread of the recipe's flakes, degrees (0:
+// aligned flakes, a mirror the grid need not resolve; infinity: no flakes).
+double narrowestFlakeSpreadDeg(const Recipe& recipe) {
+    double narrowest = std::numeric_limits<double>::infinity();
+    for (const Layer& layer : recipe.layers)
+        for (const Component& c : layer.components) {
+            if (const auto* m = std::get_if<MirrorFlake>(&c))
+                narrowest = std::min(narrowest, m->orientation_spread_deg);
+            if (const auto* i = std::get_if<InterferenceFlake>(&c))
+                narrowest = std::min(narrowest, i->orientation_spread_deg);
+        }
+    return narrowest;
+}
+
+// At least FastModelSettings::flake_*_times_spread_deg / spread nodes and
+// orders for the narrowest flakes (nodes a multiple of 4, at most kMaxNodes).
+FastModelSettings withNarrowFlakes(const Recipe& recipe, FastModelSettings settings) {
+    const double spread = narrowestFlakeSpreadDeg(recipe);
+    if (!(spread > 0.0) || !std::isfinite(spread)) return settings;
+    if (settings.flake_nodes_times_spread_deg > 0.0) {
+        const int nodes =
+            4 * static_cast<int>(std::ceil(settings.flake_nodes_times_spread_deg / spread / 4.0));
+        settings.nodes = std::max(settings.nodes, std::min(nodes, kMaxNodes));
+    }
+    if (settings.flake_orders_times_spread_deg > 0.0) {
+        const double orders = std::ceil(settings.flake_orders_times_spread_deg / spread);
+        settings.orders = std::max(settings.orders, static_cast<int>(std::min(orders, 2.0 * kMaxNodes)));
+    }
+    return settings;
+}
+
+}  // namespace
+
+double narrowestResolvedFlakeSpreadDeg(const FastModelSettings& settings) {
+    return std::max(settings.flake_nodes_times_spread_deg / kMaxNodes,
+                    settings.flake_orders_times_spread_deg / (2.0 * kMaxNodes));
+}
+
+namespace {
+
 // The settings a recipe runs with: the preset's, with the finer grid of
 // FastModelSettings::sharp_* if a pigment's phase function is sharp there
-// (its delta-M truncation, checked at five wavelengths across the range).
-FastModelSettings settingsFor(const Recipe& recipe, const FastModelSettings& settings) {
+// (its delta-M truncation, checked at five wavelengths across the range),
+// and of flake_*_times_spread_deg for narrow flakes.
+FastModelSettings settingsFor(const Recipe& recipe, const FastModelSettings& requested) {
+    const FastModelSettings settings = withNarrowFlakes(recipe, requested);
     if (settings.sharp_nodes <= settings.nodes && settings.sharp_orders <= settings.orders &&
         settings.sharp_max_start_tau >= settings.max_start_tau)
         return settings;

@@ -5,15 +5,12 @@
 #include "paintlab/engine/fit/parameter_paths.h"
 #include "paintlab/engine/fit/simulate.h"
 #include "paintlab/engine/recipe_json.h"
+#include "test_recipes.h"
 
 #include <string>
 #include <vector>
 
 namespace paintlab::test {
-
-inline Recipe demoRecipe(const std::string& name) {
-    return loadRecipeFile(std::string(PAINTLAB_DEMO_DIR) + "/recipes/" + name + ".json");
-}
 
 // A fit problem on synthetic measurements of `truth` (noisy with `seed`),
 // starting from `start`, freeing `paths` with the default bounds.

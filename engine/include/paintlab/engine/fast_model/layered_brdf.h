@@ -63,6 +63,12 @@ struct FastModelSettings {
     int sharp_nodes = 0;
     int sharp_orders = 0;
     double sharp_max_start_tau = 1.0;
+    // Flakes of a narrow orientation spread reflect into a lobe about twice
+    // as wide, which the angular grid must resolve: nodes and orders become
+    // at least these divided by the narrowest flake spread in degrees
+    // (capped at kMaxNodes; 0: never). settings() reports what ran.
+    double flake_nodes_times_spread_deg = 0.0;
+    double flake_orders_times_spread_deg = 0.0;
 };
 
 enum class Preset { Preview, Standard, Reference };
@@ -157,6 +163,12 @@ private:
     std::shared_ptr<const std::vector<fast::SingleScatteringCorrection>> m_single_scattering;
     double m_seconds = 0.0;
 };
+
+// The narrowest flake orientation spread (degrees, > 0) that these settings
+// resolve with at most kMaxNodes nodes (flake_*_times_spread_deg); 0 when
+// they do not follow the spread. Narrower flakes (but aligned ones, 0) run
+// on the capped grid and are not converged.
+double narrowestResolvedFlakeSpreadDeg(const FastModelSettings& settings);
 
 // Runs the fast model. The recipe must be valid (validateRecipe). Throws
 // Error("cancelled") if progress returns false. The slab kernels of the bands,

@@ -38,7 +38,9 @@
 namespace paintlab::fit {
 
 // A freed field and its bounds. Unset bounds: the declaration's allowed range
-// (ParameterPath::min/max). Bounds outside the allowed range, or lower >= upper,
+// (ParameterPath::min/max), except that a flake orientation spread starts at
+// the narrowest one the fit's presets resolve (narrowestResolvedFlakeSpreadDeg,
+// ~1.2° at standard). Bounds outside the allowed range, or lower >= upper,
 // are an InputError naming the path.
 struct FreeParameter {
     std::string path;
