@@ -48,8 +48,8 @@ function(paintlab_man_page target name summary)
   set(page ${CMAKE_BINARY_DIR}/man/${name}.1)
   add_custom_command(OUTPUT ${page}.gz
     COMMAND ${CMAKE_COMMAND} -DHELP2MAN=${PAINTLAB_HELP2MAN} -DGZIP=${PAINTLAB_GZIP}
-      -DPROGRAM=$<TARGET_FILE:${target}> -DSUMMARY=${summary} -DVERSION=${PROJECT_VERSION} -DINCLUDE=${packaging_dir}/man/${name}.h2m
-      -DOUTPUT=${page} ${ARGN} -P ${PROJECT_SOURCE_DIR}/cmake/PaintLabManPage.cmake
+      -DPROGRAM=$<TARGET_FILE:${target}> -DSUMMARY=${summary} -DVERSION=${PROJECT_VERSION}
+      -DINCLUDE=${packaging_dir}/man/${name}.h2m -DOUTPUT=${page} ${ARGN} -P ${PROJECT_SOURCE_DIR}/cmake/PaintLabManPage.cmake
     DEPENDS ${target} ${packaging_dir}/man/${name}.h2m ${PROJECT_SOURCE_DIR}/cmake/PaintLabManPage.cmake
     COMMENT "Man page ${name}.1 from ${name} --help" VERBATIM)
   set(man_pages ${man_pages} ${page}.gz PARENT_SCOPE)
