@@ -7,6 +7,8 @@
 #   packaging/setup.sh sanitize  install, build with ASan+UBSan, run the tests there (before merging)
 #   packaging/setup.sh deps    install the Debian packages only
 #   packaging/setup.sh build   install and build Release only
+#   packaging/setup.sh deb     install, build Release, make the Debian package
+#                              build/release/paintlab_VERSION_amd64.deb (docs/PACKAGING.md)
 #
 # Idempotent: only missing packages are installed, and `apt-get update` runs
 # only when a missing package has no install candidate (stale or empty lists).
@@ -24,6 +26,8 @@ packages=(
   # toolchain and test tools
   build-essential cmake pkg-config git python3 clang-format clang-tidy
   libgtest-dev libgmock-dev libbenchmark-dev
+  # the Debian package: man pages from --help, its check (dpkg-dev, for dpkg-shlibdeps, comes with build-essential)
+  help2man lintian
   # engine: linear algebra, parallelism, JSON, CLI, logging, colour tables
   libeigen3-dev libtbb-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
   colord-data liblcms2-dev libceres-dev libnlopt-cxx-dev
@@ -116,6 +120,18 @@ run_main_job() {
   say "workstation screenshot (headless, under xvfb-run): $out/workstation.png"
 }
 
+# The package from the Release build (CPack's DEB generator; cmake/PaintLabPackaging.cmake).
+make_package() {
+  local dir="$root/build/release"
+  say "package: cpack -G DEB in $dir"
+  (cd "$dir" && cpack -G DEB -B "$dir" >"$dir/cpack.log" 2>&1) || { cat "$dir/cpack.log"; die "cpack -G DEB (log: $dir/cpack.log)"; }
+  local deb
+  deb=$(sed -n 's/^CPack: - package: \(.*\) generated\.$/\1/p' "$dir/cpack.log")
+  [[ -f $deb ]] || { cat "$dir/cpack.log"; die "cpack named no package (log: $dir/cpack.log)"; }
+  say "built $deb"
+  say "  install it with:  apt install $deb"
+}
+
 run_tests() {
   say "tests: Release build (including clang-format and clang-tidy)"
   (cd "$root/build/release" && ctest --output-on-failure -j "$jobs") || die "tests (Release)"
@@ -141,5 +157,6 @@ case $mode in
   run) install_packages; build release; run_main_job ;;
   test) install_packages; build release; run_tests ;;
   sanitize) install_packages; run_sanitized_tests ;;
-  *) die "unknown mode '$mode' (use: run, test, sanitize, deps or build)" ;;
+  deb) install_packages; build release; make_package ;;
+  *) die "unknown mode '$mode' (use: run, test, sanitize, deps, build or deb)" ;;
 esac

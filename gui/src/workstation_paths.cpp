@@ -1,5 +1,6 @@
 #include "workstation_paths.h"
 
+#include <QCoreApplication>
 #include <QCryptographicHash>
 #include <QDir>
 #include <QFile>
@@ -7,9 +8,24 @@
 
 namespace paintlab::gui {
 
-std::filesystem::path demoScenePath() {
-    return std::filesystem::path(PAINTLAB_DEMO_DIR) / "scenes" / "car_body_sky.json";
+namespace {
+
+// The demo data folder (recipes/, scenes/, ...).
+std::filesystem::path demoDataDir() {
+    // Installed (bin/paintlab beside share/paintlab, cmake/PaintLabPackaging.cmake):
+    // the data next to the program, so that a package or a copied install
+    // tree needs no environment variable. Otherwise (the build tree) the sources'.
+    std::filesystem::path installed =
+        std::filesystem::path(QCoreApplication::applicationDirPath().toStdString()).parent_path() / "share" /
+        "paintlab";
+    std::error_code error;
+    if (std::filesystem::is_directory(installed / "scenes", error)) return installed;
+    return {PAINTLAB_DEMO_DIR};
 }
+
+}  // namespace
+
+std::filesystem::path demoScenePath() { return demoDataDir() / "scenes" / "car_body_sky.json"; }
 
 std::filesystem::path cachedRayMapPath(const std::filesystem::path& scene, const QString& variant) {
     QFile file(QString::fromStdString(scene.string()));
