@@ -71,7 +71,8 @@ PathOutcome traceDeltaChains(const PathContext& context, Vec3 v, double weight, 
     walker.promise_weight = settings.promise_threshold * weight;
     walker.markVertex();  // the entry point
     const double escaped = walker.run() + walker.tally.escaped_extra;
-    return {escaped, walker.tally.transmitted, walker.tally.events, walker.tally.rays, 0, 0};
+    return {escaped, walker.tally.transmitted, walker.tally.events, walker.tally.rays,
+            0,       walker.tally.nee_attempts};
 }
 
 PathOutcome traceFromFirstFlake(const PathContext& context, const Vec3& v_top, double weight,

@@ -6,6 +6,7 @@
 #include "paintlab/engine/optics/fresnel.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -220,7 +221,8 @@ void Walker::connectFromPigment(const Slice& s, double sigma) {
 // a flake of the tile's law drawn through the point, 0 if one of the path's
 // earlier legs crosses it), times the flight's transmittance e^(-sigma t) and
 // the straight one from the point to the ambient, with eachCone's factors.
-// Russian roulette below settings.roulette_weight (per sr) before the trace.
+// Russian roulette below settings.roulette_weight (per sr) on the value at
+// rho = 1, before the flake is drawn and traced (a layer's first 4 kinds).
 void Walker::lastFlakeConnections(const Slice& s, const LayerFlakes& lf, double length, double sigma) {
     const LastFlakeLaw& law = *lf.last_flake;
     if (!(length > 0.0) || bins.empty()) return;
@@ -240,24 +242,34 @@ void Walker::lastFlakeConnections(const Slice& s, const LayerFlakes& lf, double 
         const double cos_vh = std::abs(dot(v, h));
         const double point_depth = std::clamp(depth - v.z * t, s.top_um, s.bottom_um);
         const Vec3 point{ux + v.x * t, uy + v.y * t, -point_depth};
-        double kernel = 0.0;
-        for (std::size_t i = 0; i < kinds; ++i) {
+        // The kernel per kind before rho (A R D / 4), and the roulette on the
+        // value it gives at rho = 1, before the flakes are drawn and traced.
+        const double factor = length * weight * std::exp(-sigma * t) / u.z * scale * w.z * bin.solid_angle /
+                              bin.projected_solid_angle;
+        std::array<double, 4> per_kind{};
+        double bare = 0.0;
+        for (std::size_t i = 0; i < kinds && i < per_kind.size(); ++i) {
             const FlakeKind& kind = lf.kinds[i];
-            const double rd = kind.R(cos_vh) * kind.orientation.pdf(h.z);
-            if (!(rd > 0.0)) continue;
+            per_kind[i] =
+                0.25 * law.kinds[i].geometry.area_density_per_um * kind.R(cos_vh) * kind.orientation.pdf(h.z);
+            bare += per_kind[i];
+        }
+        ++tally.nee_attempts;
+        if (!(bare * factor > 0.0)) continue;
+        const double q = std::min(1.0, bare * factor / settings.roulette_weight);
+        if (q < 1.0 && rng.uniform() >= q) continue;
+        double kernel = 0.0;
+        for (std::size_t i = 0; i < kinds && i < per_kind.size(); ++i) {
+            if (!(per_kind[i] > 0.0)) continue;
             const VirtualFlake flake = drawVirtualFlake(law, i, h, point_depth, rng);
             if (!(flake.rho > 0.0)) continue;
             const Vec3 centre{point.x + flake.centre_offset.x, point.y + flake.centre_offset.y,
                               point.z + flake.centre_offset.z};
             if (legsCross(centre, h, flake.radius_um, law.top_um, law.bottom_um)) continue;
-            kernel += 0.25 * law.kinds[i].geometry.area_density_per_um * rd * flake.rho;
+            kernel += per_kind[i] * flake.rho;
         }
-        const double value = length * weight * std::exp(-sigma * t) * kernel / u.z * scale * w.z *
-                             bin.solid_angle / bin.projected_solid_angle;
-        if (!(value > 0.0)) continue;
-        const double q = std::min(1.0, value / settings.roulette_weight);
-        if (q < 1.0 && rng.uniform() >= q) continue;
-        brdf_out[k] += value / q *
+        if (!(kernel > 0.0)) continue;
+        brdf_out[k] += kernel * factor / q *
                        straightToAmbient(stack, explicit_flakes, j, point_depth, x + v.x * t, y + v.y * t, u,
                                          &tally.rays);
     }
