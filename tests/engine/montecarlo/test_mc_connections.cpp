@@ -441,6 +441,12 @@ TEST(MonteCarloConnections, DeltaWalksMatchTheHistogramOnChainsFromTheBeam) {
     s.delta_rate = 1.0;  // the first round's (adaptive_fractions sets the later ones)
     const mc::HistogramOtherParts chains = otherParts({&mc::HistogramOtherParts::delta_chains});
     expectPartMatchesHistogram(r, req, s, &mc::ConnectionParts::delta_walks, chains, 600000, "delta walks");
+    // With the last-flake connections (last_flake.h), which take the escapes
+    // after a flake met for the first time.
+    s.last_flake_connections = true;
+    expectPartMatchesHistogram(r, req, s, &mc::ConnectionParts::delta_walks, chains, 600000,
+                               "delta walks with last-flake connections");
+    s.last_flake_connections = false;
     // With the first-flake walks (first_flake.h), which then take the chains
     // that begin at a flake while the uniform walks keep those that begin with
     // an internal reflection at the index step. (The beam refracted into the
@@ -492,6 +498,7 @@ TEST(MonteCarloConnections, LastFlakeConnectionsAgreeWithTheDeltaWalksTheyReplac
     s.delta_rate = 1.0;
     s.histogram_classes = mc::HistogramClasses::none();
     s.connection_parts = onlyPart(&mc::ConnectionParts::delta_walks);
+    s.last_flake_connections = true;
     const auto connected = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
     s.seed += 1;
     s.last_flake_connections = false;
