@@ -8,9 +8,13 @@
 // for a real flake to mirror a flight into a 5 degree cone (silver
 // metallic's flop: docs/PERFORMANCE.md, "Full model on every demo paint
 // (issue 30)"). The walk still scores the escapes after a flake it met
-// before (beam -> flake -> top -> the same flake -> cone: a third of the
+// before (flake -> flake -> the same flake -> cone, the wedges of
+// intersecting flakes; flake -> top -> the same flake -> cone: a third of the
 // part at the back-scatter exit of flakes right under the top) and after
-// other changes; the first-flake walks keep all of theirs.
+// other changes; the first-flake walks keep all of theirs. Off by default:
+// on silver metallic those repeated flakes are most of the error that is
+// left, and the connections' cost made its time to 1 % longer
+// (docs/PERFORMANCE.md has the figures).
 //
 // What is estimated. The tiles are realisations of a random arrangement of
 // flakes (flake_tile.h), and the estimate is over them (the batches' errors
@@ -41,7 +45,9 @@
 // and with reject_overlaps a hard-core arrangement (the connections are then
 // off). A path that meets more than Walker::kLegVertices flakes forgets the
 // first ones (weights below R^32). The tests hold it against the walks it
-// replaces (test_mc_connections.cpp) and the law against a tile (test_last_flake.cpp).
+// replaces and the histogram (test_mc_connections.cpp), the fast model in
+// the continuum limit (test_explicit_flakes.cpp) and the law against a tile
+// (test_last_flake.cpp).
 
 #include "flake_tile.h"
 #include "mc_random.h"
