@@ -43,10 +43,14 @@ constexpr const char* kDemoPaints[] = {"pearlescent-two-layer", "silver-metallic
                                        "raw-medium-slab"};
 
 // The recipe of the error-budget runs: PAINTLAB_BENCH_RECIPE (a demo recipe's
-// name, e.g. silver-metallic) if set, else the pearlescent demo.
+// name, e.g. silver-metallic, or the path of a recipe file ending in .json,
+// e.g. a grid point of tools/compare_report) if set, else the pearlescent demo.
 Recipe budgetRecipe() {
     const char* name = std::getenv("PAINTLAB_BENCH_RECIPE");
-    return name != nullptr ? loadRecipeFile(kDemo / (std::string(name) + ".json")) : pearlescent();
+    if (name == nullptr) return pearlescent();
+    const std::string text(name);
+    if (text.size() > 5 && text.ends_with(".json")) return loadRecipeFile(text);
+    return loadRecipeFile(kDemo / (text + ".json"));
 }
 
 // Incidence 45 degrees with the six multi-angle detectors (the `mc` command's
@@ -269,6 +273,8 @@ BENCHMARK(BM_McDemoOnePercent)
 //     walks, 23 forward flake images, 24 the histogram's remainder
 //   25 the default without the connections' roulette by transmittance
 //     (McSettings::connection_roulette, the estimator before issue 30)
+//   26 / 27 the default / the delta-chain walks alone (22) with the
+//     last-flake connections (McSettings::last_flake_connections, issue 30)
 // The figures quoted in docs/PERFORMANCE.md: see there (each row names its
 // arguments). Prints f, its standard error and the relative error per band
 // and geometry (stdout) and reports the worst relative error, the time 1 %
@@ -317,6 +323,12 @@ void BM_McExplicitBudget(benchmark::State& state) {
         if (config != 24) s.histogram_classes = mc::HistogramClasses::none();
     }
     if (config == 25) s.connection_roulette = false;
+    if (config == 27) {
+        s.connection_parts = mc::ConnectionParts::none();
+        s.connection_parts.delta_walks = true;
+        s.histogram_classes = mc::HistogramClasses::none();
+    }
+    if (config == 26 || config == 27) s.last_flake_connections = true;
     s.seed = benchSeed();
     double worst = 0.0;
     double seconds = 0.0;
@@ -376,6 +388,7 @@ BENCHMARK(BM_McExplicitBudget)
     ->ArgsProduct({{5, 16}, {1500}, {8}})
     ->ArgsProduct({{5, 19, 20, 21, 22, 23, 24}, {20, 200}, {8}})
     ->ArgsProduct({{5, 25}, {4, 20, 200}, {8}})
+    ->ArgsProduct({{26, 27}, {20, 200}, {8}})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);

@@ -25,46 +25,6 @@ void onEmbreeError(void* user, RTCError /*code*/, const char* message) {
     if (text->empty()) *text = message != nullptr ? message : "unknown Embree error";
 }
 
-// A kind's flake diameters (FlakeGeometry::diameter_sd_um): a lognormal with
-// the mean diameter and that standard deviation, cut at 5 of its log-space
-// standard deviations above the log mean (3e-7 of the draws: a cut at mean +
-// 4 sd removed 0.3-0.5 % of them at coefficients of variation 1/3-1/2, the
-// largest, and with them 2-5 % of the flakes' area), or every flake the mean
-// size. Drawn from their own stream, so that a spread of 0 leaves every other
-// draw of the tile as it was.
-class DiameterLaw {
-public:
-    explicit DiameterLaw(const FlakeGeometry& kind) : m_mean(kind.diameter_um), m_cap(kind.diameter_um) {
-        const double sd = std::max(0.0, kind.diameter_sd_um);
-        if (sd > 0.0 && m_mean > 0.0) {
-            m_log_variance = std::log1p((sd / m_mean) * (sd / m_mean));
-            m_log_mean = std::log(m_mean) - 0.5 * m_log_variance;
-            m_cap = std::exp(m_log_mean + 5.0 * std::sqrt(m_log_variance));
-        }
-        // E[d^2] = mean^2 + sd^2 (the cut's share is below the flake count's rounding).
-        m_mean_area = 0.25 * std::numbers::pi * (m_mean * m_mean + sd * sd);
-    }
-    double meanAreaUm2() const { return m_mean_area; }
-    double largestUm() const { return m_cap; }
-    double sample(PathRng& rng) const {
-        if (!(m_log_variance > 0.0)) return m_mean;
-        for (;;) {
-            // Box-Muller; 1 - u keeps the logarithm finite.
-            const double z = std::sqrt(-2.0 * std::log(1.0 - rng.uniform())) *
-                             std::cos(2.0 * std::numbers::pi * rng.uniform());
-            const double d = std::exp(m_log_mean + std::sqrt(m_log_variance) * z);
-            if (d <= m_cap) return d;
-        }
-    }
-
-private:
-    double m_mean;
-    double m_cap;
-    double m_log_mean = 0.0;
-    double m_log_variance = 0.0;
-    double m_mean_area = 0.0;
-};
-
 // Relative depth in [0, 1] drawn from a piecewise-linear profile by rejection.
 double sampleDepth(const DepthProfile* profile, PathRng& rng) {
     if (profile == nullptr) return rng.uniform();

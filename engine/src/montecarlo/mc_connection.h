@@ -75,11 +75,14 @@ struct HistogramBin {
 // wavelength, in the tile's kind order.
 struct TiltIndex;
 struct FlakeGroups;
+struct LastFlakeLaw;
 struct LayerFlakes {
     const FlakeTile* tile = nullptr;
     std::vector<FlakeKind> kinds;
     const TiltIndex* tilts = nullptr;     // the tile's flakes by tilt (azimuthGlintSets; null: none)
     const FlakeGroups* groups = nullptr;  // by tilt, azimuth and depth (first_flake.h; null: none)
+    const LastFlakeLaw* last_flake =
+        nullptr;  // the tiles' law (last_flake.h; null: no last-flake connections)
 };
 
 // A path's class by its last direction change (the histogram's classes, McSettings::histogram_classes).

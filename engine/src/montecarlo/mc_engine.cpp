@@ -106,6 +106,10 @@ McEngine::McEngine(const Recipe& recipe, const McSettings& settings, const std::
     for (auto& tiles : m_tiles) tiles.resize(layers);
     m_tilts.assign(static_cast<std::size_t>(m_batches), std::vector<TiltIndex>(layers));
     m_groups.assign(static_cast<std::size_t>(m_batches), std::vector<FlakeGroups>(layers));
+    m_last_flake.clear();
+    for (std::size_t l = 0; l < layers; ++l)
+        m_last_flake.push_back(lastFlakeLaw(geometries[l], tops[l], tops[l] + recipe.layers[l].thickness_um,
+                                            settings.flake_polygon_sides));
     std::atomic<bool> stop{false};
     const auto build_tiles = [&] {
         tbb::parallel_for(std::size_t{0}, m_tiles.size() * layers, [&](std::size_t index) {
@@ -166,8 +170,12 @@ McEngine::Band McEngine::band(double wavelength_nm) const {
         for (std::size_t l = 0; l < m_tiles[b].size(); ++l) {
             const TiltIndex& tilts = m_tilts[b][l];
             const FlakeGroups& groups = m_groups[b][l];
+            // The last-flake connections assume independently placed flakes (last_flake.h).
+            const bool last_flake = m_settings.last_flake_connections && !m_settings.reject_overlaps &&
+                                    l < m_last_flake.size() && !m_last_flake[l].kinds.empty();
             layers.push_back({m_tiles[b][l].get(), kinds[l], tilts.order.empty() ? nullptr : &tilts,
-                              groups.flakes.empty() ? nullptr : &groups});
+                              groups.flakes.empty() ? nullptr : &groups,
+                              last_flake ? &m_last_flake[l] : nullptr});
         }
         band.explicit_flakes.push_back(std::move(layers));
     }

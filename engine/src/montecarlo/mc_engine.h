@@ -16,6 +16,7 @@
 
 #include "first_flake.h"
 #include "flake_tile.h"
+#include "last_flake.h"
 #include "mc_connection.h"
 #include "mc_glints.h"
 #include "mc_stack.h"
@@ -97,6 +98,7 @@ private:
     std::vector<std::vector<std::unique_ptr<FlakeTile>>> m_tiles;  // [batch][layer]
     std::vector<std::vector<TiltIndex>> m_tilts;                   // [batch][layer], for every band
     std::vector<std::vector<FlakeGroups>> m_groups;                // [batch][layer] (first_flake_walks)
+    std::vector<LastFlakeLaw> m_last_flake;                        // [layer] (last_flake_connections)
     double m_tile_side_um = 1.0;
 };
 

@@ -207,7 +207,9 @@ void JobRunner::chunkDelta(std::size_t batch, std::int64_t first_path, std::int6
         double cost = 0.0;
         if (m_uniform_delta) {
             const PathOutcome out = traceDeltaChains(context, view.v_in, m_entry_weight, x, y, rng, f);
-            cost += kCostPerPath + kCostPerWalkStep * static_cast<double>(out.events + out.rays);
+            // A last-flake connection (a cone's draw, kernel and roulette) costs about two walk steps.
+            cost += kCostPerPath +
+                    kCostPerWalkStep * static_cast<double>(out.events + out.rays + 2 * out.nee_attempts);
         }
         if (m_first_flake) {
             FirstFlakeTable& table = tables[view_index];

@@ -52,6 +52,8 @@ Walker deltaWalker(const PathContext& context, const WalkSettings& settings, Pat
     walker.depth = depth;
     walker.history.path_class = path_class;
     walker.mode = Walker::Mode::DeltaChain;
+    walker.ux = x;
+    walker.uy = y;
     return walker;
 }
 
@@ -67,8 +69,10 @@ PathOutcome traceDeltaChains(const PathContext& context, Vec3 v, double weight, 
         walker.beam_y = v.y / lateral;
     }
     walker.promise_weight = settings.promise_threshold * weight;
+    walker.markVertex();  // the entry point
     const double escaped = walker.run() + walker.tally.escaped_extra;
-    return {escaped, walker.tally.transmitted, walker.tally.events, walker.tally.rays, 0, 0};
+    return {escaped, walker.tally.transmitted, walker.tally.events, walker.tally.rays,
+            0,       walker.tally.nee_attempts};
 }
 
 PathOutcome traceFromFirstFlake(const PathContext& context, const Vec3& v_top, double weight,
@@ -108,6 +112,10 @@ PathOutcome traceFromFirstFlake(const PathContext& context, const Vec3& v_top, d
     Walker walker = deltaWalker(context, settings, rng, f_out, r, start, draw.point.x, draw.point.y, j, depth,
                                 PathClass::BeamFlake);
     walker.splits = 1;  // as after the uniform walk's split at this flake
+    // The chain's flakes met before its first are not known here (the beam's
+    // leg down to it is traced by straightToTop): the walk scores all of its
+    // escapes itself (last_flake.h).
+    walker.last_flake_connections = false;
     if (!walker.roulette()) return outcome;
     outcome.escaped = walker.run() + walker.tally.escaped_extra;
     outcome.transmitted = walker.tally.transmitted;

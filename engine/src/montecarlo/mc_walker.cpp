@@ -100,6 +100,7 @@ double Walker::run() {
                 weight *= F;
                 v.z = -v.z;
                 history.deltaChange(true);
+                changedAtVertex();
                 if (!roulette() || !promiseRoulette()) return 0.0;
                 continue;
             }
@@ -153,11 +154,17 @@ int Walker::traceTile(const Slice& s, double sigma, double t, double to_boundary
     const double t_far = std::min({t, to_boundary, t_side});
     const FlakeHit hit = lf.tile->intersect({x, y, -depth}, v, kTileEpsilonUm, t_far);
     ++tally.rays;
+    if (mode == Mode::DeltaChain && last_flake_connections && lf.last_flake != nullptr &&
+        history.path_class != PathClass::Beam)
+        lastFlakeConnections(s, lf, hit.kind >= 0 ? hit.t : t_far, sigma);
     if (hit.kind >= 0) {
         move(hit.t);
         depth = std::clamp(depth - v.z * hit.t, s.top_um, s.bottom_um);
         if (mode == Mode::DeltaChain) weight *= std::exp(-sigma * hit.t);
-        return explicitFlakeEvent(lf.kinds[static_cast<std::size_t>(hit.kind)], hit.normal, s.layer) ? 1 : -1;
+        return explicitFlakeEvent(lf.kinds[static_cast<std::size_t>(hit.kind)], hit.normal, s.layer,
+                                  hit.flake)
+                   ? 1
+                   : -1;
     }
     if (t_side < t && t_side < to_boundary) {
         move(t_side);
@@ -172,8 +179,13 @@ int Walker::traceTile(const Slice& s, double sigma, double t, double to_boundary
     return 0;
 }
 
-bool Walker::explicitFlakeEvent(const FlakeKind& f, const Vec3& n, int layer) {
+bool Walker::explicitFlakeEvent(const FlakeKind& f, const Vec3& n, int layer, std::int64_t flake) {
     if (history.path_class == PathClass::Beam) history.beam_flake_layer = layer;
+    // The last-flake connections take the escapes after a reflection off a flake
+    // met for the first time whose orientation law has a density (not the
+    // delta); the walk keeps the others (escape, last_flake.h).
+    const bool met_before = mode == Mode::DeltaChain && flake >= 0 && meetFlake(layer, flake);
+    const int flake_layer = f.orientation.isDelta() || met_before ? -1 : layer;
     const double vn = dot(v, n);
     const double c = std::abs(vn);
     const double R = f.R(c);
@@ -196,12 +208,14 @@ bool Walker::explicitFlakeEvent(const FlakeKind& f, const Vec3& n, int layer) {
         weight *= R;
         v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
         history.flakeReflection(layer);
+        changedAtVertex(flake_layer);
         return roulette() && promiseRoulette();
     }
     const double u = rng.uniform();
     if (u < R) {
         v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
         history.flakeReflection(layer);
+        changedAtVertex(flake_layer);
         return roulette() && promiseRoulette();
     }
     return u < R + f.T(c);
@@ -273,9 +287,11 @@ bool Walker::crossInterface(double n_from, double n_to, bool top) {
     if (rng.uniform() < fresnelDielectric(std::abs(v.z), n_to / n_from)) {
         v.z = -v.z;
         history.deltaChange(top);
+        changedAtVertex();
         return false;
     }
     v = refract(v, n_from, n_to);
+    if (mode == Mode::DeltaChain) markVertex();  // the leg bends; the class stays
     return true;
 }
 
@@ -302,11 +318,13 @@ bool Walker::substrate(const Slice& s) {
         weight *= stack.substrateMirrorReflectance(std::abs(v.z));
         v.z = -v.z;
         history.deltaChange(false);
+        changedAtVertex();
         return roulette();
     case SubstrateKind::Transparent:
         if (rng.uniform() < fresnelDielectric(std::abs(v.z), stack.below_n / s.n)) {
             v.z = -v.z;
             history.deltaChange(false);
+            changedAtVertex();
             return true;
         }
         // += : split branches of this path may already have transmitted (runBranch).

@@ -9,6 +9,7 @@
 #include "mc_path_history.h"
 #include "mc_walk.h"
 
+#include <array>
 #include <cstdint>
 #include <span>
 
@@ -95,6 +96,44 @@ struct Walker {
     void move(double t) {
         x += v.x * t;
         y += v.y * t;
+        ux += v.x * t;
+        uy += v.y * t;
+    }
+
+    // Delta-chain walks with last-flake connections (last_flake.h): the
+    // lateral position without the tile's wraps, the path's last vertices
+    // (where its straight legs meet; a ring of the latest kLegVertices), and
+    // the layer of the flake whose reflection was the last direction change
+    // (-1: another change, or a flake the path met before: the walk scores
+    // those escapes, the connections only the last flakes met once), and the
+    // flakes met so far (layer, index; a ring of the latest kLegVertices).
+    static constexpr int kLegVertices = 32;
+    std::array<std::int64_t, kLegVertices> met{};
+    int met_count = 0;
+    // Records flake `flake` of `layer` as met; returns whether it was met before.
+    bool meetFlake(int layer, std::int64_t flake) {
+        const std::int64_t id = flake * 64 + layer;
+        const int stored = met_count < kLegVertices ? met_count : kLegVertices;
+        bool before = false;
+        for (int i = 0; i < stored; ++i) before = before || met[static_cast<std::size_t>(i)] == id;
+        met[static_cast<std::size_t>(met_count % kLegVertices)] = id;
+        ++met_count;
+        return before;
+    }
+    double ux = 0.0;
+    double uy = 0.0;
+    std::array<Vec3, kLegVertices> vertices{};
+    int vertex_count = 0;
+    int last_flake_layer = -1;
+    bool last_flake_connections = true;  // false: the walk scores every escape (first-flake walks)
+    void markVertex() {
+        vertices[static_cast<std::size_t>(vertex_count % kLegVertices)] = {ux, uy, -depth};
+        ++vertex_count;
+    }
+    // A direction change here: by a reflection off a flake of `flake_layer`, or (-1) another.
+    void changedAtVertex(int flake_layer = -1) {
+        last_flake_layer = flake_layer;
+        if (mode == Mode::DeltaChain) markVertex();
     }
 
     // The weight that leaves through the top; 0 when the path is absorbed or lost.
@@ -112,7 +151,7 @@ struct Walker {
     // wrapped at the tile's side, 0 = nothing in the way, -1 = the path ended.
     int traceTile(const Slice& s, double sigma, double t, double to_boundary);
     // An explicit flake hit with unit normal n: reflect, pass or absorb.
-    bool explicitFlakeEvent(const FlakeKind& f, const Vec3& n, int layer);
+    bool explicitFlakeEvent(const FlakeKind& f, const Vec3& n, int layer, std::int64_t flake = -1);
     // A flake collision: sample a normal from D weighted by |v.n| (the flakes a
     // ray meets), then reflect, pass (interference flakes) or absorb.
     bool flakeEvent(const FlakeKind& f);
@@ -132,6 +171,13 @@ struct Walker {
     void scoreLambert(const Slice& s);
     // Connections from a pigment collision into the cones (directly and through a flake's image).
     void connectFromPigment(const Slice& s, double sigma);
+    // Delta-chain walk: the last-flake connections from the flight of `length`
+    // µm ahead (no real flake on it) in slice s of a layer with a law (last_flake.h).
+    void lastFlakeConnections(const Slice& s, const LayerFlakes& lf, double length, double sigma);
+    // Whether one of the path's previous legs crosses the disk (centre, unit normal n, radius) within
+    // the layer's depths [top_um, bottom_um].
+    bool legsCross(const Vec3& centre, const Vec3& n, double radius_um, double top_um,
+                   double bottom_um) const;
     // Reverse walk: the estimates from a pigment collision and from the Lambertian substrate.
     void reverseFromPigment(const Slice& s, double sigma);
     void reverseFromLambert(const Slice& s);

@@ -1,10 +1,12 @@
 #include "mc_walker.h"
 
+#include "last_flake.h"
 #include "mc_reflected_beams.h"
 
 #include "paintlab/engine/optics/fresnel.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -116,6 +118,13 @@ void Walker::reverseReflectedBeams(const Slice& s, double factor) {
 }
 
 void Walker::escape() {
+    // Delta-chain walks: an escape right after a reflection off a flake of a
+    // layer with a law (and an earlier change: class Other) is the
+    // last-flake connections' (lastFlakeConnections).
+    if (mode == Mode::DeltaChain && last_flake_connections && last_flake_layer >= 0 &&
+        history.path_class == PathClass::Other &&
+        explicit_flakes[static_cast<std::size_t>(last_flake_layer)].last_flake != nullptr)
+        return;
     if (history.histogramScores(settings.histogram_classes, settings.histogram_other))
         for (std::size_t k = 0; k < bins.size(); ++k)
             if (dot(v, bins[k].wo) >= bins[k].cos_cone) brdf_out[k] += weight / bins[k].projected_solid_angle;
@@ -203,6 +212,86 @@ void Walker::connectFromPigment(const Slice& s, double sigma) {
                 coneFlakeImages(s, weight / (sigma * q), [](std::size_t /*k*/) { return 1.0; });
         }
     }
+}
+
+// Next-event estimation through a flake on the flight ahead (last_flake.h):
+// per cone, a point uniform on the flight (t in [0, length), weight length),
+// a direction w uniform in the cone (u in the slice), the flake normal h that
+// mirrors v into u, and per kind the kernel A R(|v.h|) D(h) rho / 4 (rho from
+// a flake of the tile's law drawn through the point, 0 if one of the path's
+// earlier legs crosses it), times the flight's transmittance e^(-sigma t) and
+// the straight one from the point to the ambient, with eachCone's factors.
+// Russian roulette below settings.roulette_weight (per sr) on the value at
+// rho = 1, before the flake is drawn and traced (a layer's first 4 kinds).
+void Walker::lastFlakeConnections(const Slice& s, const LayerFlakes& lf, double length, double sigma) {
+    const LastFlakeLaw& law = *lf.last_flake;
+    if (!(length > 0.0) || bins.empty()) return;
+    const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
+    const std::size_t kinds = std::min(law.kinds.size(), lf.kinds.size());
+    for (std::size_t k = 0; k < bins.size(); ++k) {
+        const HistogramBin& bin = bins[k];
+        const double t = length * rng.uniform();
+        const double u1 = rng.uniform();
+        const Vec3 w = sampleInCone(bin, u1, rng.uniform());
+        Vec3 u;
+        if (!(w.z > 0.0) || !refractPlanar(w, stack.ambient_n, s.n, u) || !(u.z > 0.0)) continue;
+        Vec3 h{u.x - v.x, u.y - v.y, u.z - v.z};
+        const double len = std::sqrt(dot(h, h));
+        if (len < 1e-12) continue;
+        h = {h.x / len, h.y / len, h.z / len};
+        const double cos_vh = std::abs(dot(v, h));
+        const double point_depth = std::clamp(depth - v.z * t, s.top_um, s.bottom_um);
+        const Vec3 point{ux + v.x * t, uy + v.y * t, -point_depth};
+        // The kernel per kind before rho (A R D / 4), and the roulette on the
+        // value it gives at rho = 1, before the flakes are drawn and traced.
+        const double factor = length * weight * std::exp(-sigma * t) / u.z * scale * w.z * bin.solid_angle /
+                              bin.projected_solid_angle;
+        std::array<double, 4> per_kind{};
+        double bare = 0.0;
+        for (std::size_t i = 0; i < kinds && i < per_kind.size(); ++i) {
+            const FlakeKind& kind = lf.kinds[i];
+            per_kind[i] =
+                0.25 * law.kinds[i].geometry.area_density_per_um * kind.R(cos_vh) * kind.orientation.pdf(h.z);
+            bare += per_kind[i];
+        }
+        ++tally.nee_attempts;
+        if (!(bare * factor > 0.0)) continue;
+        const double q = std::min(1.0, bare * factor / settings.roulette_weight);
+        if (q < 1.0 && rng.uniform() >= q) continue;
+        double kernel = 0.0;
+        for (std::size_t i = 0; i < kinds && i < per_kind.size(); ++i) {
+            if (!(per_kind[i] > 0.0)) continue;
+            const VirtualFlake flake = drawVirtualFlake(law, i, h, point_depth, rng);
+            if (!(flake.rho > 0.0)) continue;
+            const Vec3 centre{point.x + flake.centre_offset.x, point.y + flake.centre_offset.y,
+                              point.z + flake.centre_offset.z};
+            if (legsCross(centre, h, flake.radius_um, law.top_um, law.bottom_um)) continue;
+            kernel += per_kind[i] * flake.rho;
+        }
+        if (!(kernel > 0.0)) continue;
+        brdf_out[k] += kernel * factor / q *
+                       straightToAmbient(stack, explicit_flakes, j, point_depth, x + v.x * t, y + v.y * t, u,
+                                         &tally.rays);
+    }
+}
+
+bool Walker::legsCross(const Vec3& centre, const Vec3& n, double radius_um, double top_um,
+                       double bottom_um) const {
+    const int stored = std::min(vertex_count, kLegVertices);
+    for (int i = vertex_count - stored; i + 1 < vertex_count; ++i) {
+        const Vec3& a = vertices[static_cast<std::size_t>(i % kLegVertices)];
+        const Vec3& b = vertices[static_cast<std::size_t>((i + 1) % kLegVertices)];
+        const double sa = dot(n, {a.x - centre.x, a.y - centre.y, a.z - centre.z});
+        const double sb = dot(n, {b.x - centre.x, b.y - centre.y, b.z - centre.z});
+        if (!(sa * sb < 0.0)) continue;
+        const double f = sa / (sa - sb);
+        const Vec3 p{a.x + f * (b.x - a.x) - centre.x, a.y + f * (b.y - a.y) - centre.y,
+                     a.z + f * (b.z - a.z) - centre.z};
+        const double p_depth = -(centre.z + p.z);
+        if (p_depth < top_um || p_depth > bottom_um) continue;
+        if (dot(p, p) < radius_um * radius_um) return true;
+    }
+    return false;
 }
 
 void Walker::reverseFromPigment(const Slice& s, double sigma) {

@@ -219,15 +219,21 @@ TEST(MonteCarloExplicitFlakes, SmallSparseFlakesApproachTheFastModel) {
     const mc::IncidenceRequest& inc = c.incidence;
     const double cone_deg = 8.0;
     const std::vector<mc::IncidenceRequest> req{inc};
-    const auto result = mc::runMonteCarlo(r, std::vector<double>{fast.wavelengthsNm()[0]}, req,
-                                          explicitSettings(100000, cone_deg));
-    const auto& out = result.bands[0][0];
-    const double a_fast = fast.albedo(inc.wi)[0];
-    expectClose(out.albedo.mean, out.albedo.std_error, a_fast, 0.02 * a_fast, "albedo");
-    for (std::size_t k = 0; k < inc.wo.size(); ++k) {
-        const double f_fast = mc::coneAverage(fast, inc.wi, inc.wo[k], cone_deg)[0];
-        expectClose(out.brdf_per_sr[k].mean, out.brdf_per_sr[k].std_error, f_fast, 0.02 * f_fast,
-                    "f (cone) exit " + std::to_string(k));
+    // Also with the delta walks' last-flake connections (last_flake.h), whose
+    // flake law is the continuum's in this limit.
+    for (const bool last_flake : {false, true}) {
+        mc::McSettings s = explicitSettings(100000, cone_deg);
+        s.last_flake_connections = last_flake;
+        const auto result = mc::runMonteCarlo(r, std::vector<double>{fast.wavelengthsNm()[0]}, req, s);
+        const auto& out = result.bands[0][0];
+        const std::string what = last_flake ? "last-flake connections, " : "";
+        const double a_fast = fast.albedo(inc.wi)[0];
+        expectClose(out.albedo.mean, out.albedo.std_error, a_fast, 0.02 * a_fast, what + "albedo");
+        for (std::size_t k = 0; k < inc.wo.size(); ++k) {
+            const double f_fast = mc::coneAverage(fast, inc.wi, inc.wo[k], cone_deg)[0];
+            expectClose(out.brdf_per_sr[k].mean, out.brdf_per_sr[k].std_error, f_fast, 0.02 * f_fast,
+                        what + "f (cone) exit " + std::to_string(k));
+        }
     }
 }
 

@@ -180,6 +180,15 @@ struct McSettings {
     bool chain_promise = true;
     double chain_promise_threshold = 1.4e-4;  // of the walk's start weight (mc_walk.h)
     double chain_promise_floor = 0.2;         // the lowest survival probability
+    // Delta-chain walks: the escapes whose last change is a reflection off an
+    // explicit flake met for the first time (after an earlier change) are
+    // scored by next-event estimation through a flake drawn on each flight
+    // with the tiles' law (mc/last_flake.h) instead of by the walk reaching a
+    // cone; ignored with reject_overlaps (the law assumes independently
+    // placed flakes). Off by default: same mean, and it lowers the error of
+    // the fast-vs-full grid's aluminium points, but on silver metallic the
+    // time to 1 % rose (docs/PERFORMANCE.md, issue 30).
+    bool last_flake_connections = false;
     // Connections (next-event into the cones, the reverse walks' towards the
     // beam): Russian roulette of those whose transmittance before the first
     // flake tile is below 1e-3 (mc_connection.h, kConnectionRouletteT);
