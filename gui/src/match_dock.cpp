@@ -5,6 +5,7 @@
 #include "cost_curve.h"
 #include "fit_runner.h"
 #include "recipe_document.h"
+#include "split_sphere_view.h"
 
 #include "paintlab/database/exchange.h"
 #include "paintlab/database/fit_observations.h"
@@ -26,6 +27,7 @@
 #include <QPushButton>
 #include <QScrollArea>
 #include <QSpinBox>
+#include <QSplitter>
 #include <QTableWidget>
 #include <QVBoxLayout>
 
@@ -57,15 +59,34 @@ std::optional<double> parseBound(const QString& text, const std::string& field) 
     return value;
 }
 
+// Compact rows (a line of text each), smooth vertical scrolling, long texts
+// elided in the middle (the tooltips hold them whole).
 QTableWidget* makeTable(const QStringList& headers, const char* name) {
     auto* table = new QTableWidget(0, static_cast<int>(headers.size()));
     table->setObjectName(name);
     table->setHorizontalHeaderLabels(headers);
     table->verticalHeader()->hide();
+    table->verticalHeader()->setDefaultSectionSize(table->fontMetrics().height() + 8);
+    table->setVerticalScrollMode(QAbstractItemView::ScrollPerPixel);
+    table->setHorizontalScrollMode(QAbstractItemView::ScrollPerPixel);
+    table->setWordWrap(false);
+    table->setTextElideMode(Qt::ElideMiddle);
     table->horizontalHeader()->setStretchLastSection(true);
     table->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
     table->setMinimumHeight(80);
     return table;
+}
+
+// A pane of the dock's splitter: its widgets stacked, scrolling vertically
+// when the pane is shorter than they need.
+QWidget* scrollingPane(QWidget* content, const char* name) {
+    auto* scroll = new QScrollArea;
+    scroll->setObjectName(name);
+    scroll->setWidgetResizable(true);
+    scroll->setFrameShape(QFrame::NoFrame);
+    scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+    scroll->setWidget(content);
+    return scroll;
 }
 
 QString geometryName(const fit::GeometryMatch& g) {
@@ -84,8 +105,12 @@ QString labText(const Lab& lab) {
 MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     : QDockWidget(tr("Match"), parent), m_document(document), m_runner(new FitRunner(this)) {
     setObjectName("match_dock");
-    auto* body = new QWidget;
-    auto* layout = new QVBoxLayout(body);
+    // Three panes in a splitter: the choices (measurement, fields), the run
+    // and its results, the split view. Side by side in a wide dock (the bottom tab
+    // of a laptop's layout), stacked in a tall one (resizeEvent).
+    auto* setup = new QWidget;
+    auto* layout = new QVBoxLayout(setup);
+    layout->setContentsMargins(4, 4, 4, 4);
 
     auto* form = new QFormLayout;
     auto* measurement_row = new QHBoxLayout;
@@ -114,8 +139,22 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
         makeTable({tr("Field (tick to fit)"), tr("Now"), tr("Lower"), tr("Upper")}, "match_parameters");
     m_parameters->setToolTip(
         tr("Tick the recipe fields the fit may change; bounds default to the allowed range"));
-    layout->addWidget(m_parameters, 2);
+    // The field names take the room left; Now, Lower and Upper keep a
+    // number's width (typed bounds must stay readable).
+    m_parameters->horizontalHeader()->setStretchLastSection(false);
+    m_parameters->horizontalHeader()->setSectionResizeMode(kColumnParameter, QHeaderView::Stretch);
+    for (int column : {kColumnNow, kColumnLower, kColumnUpper}) {
+        m_parameters->horizontalHeader()->setSectionResizeMode(column, QHeaderView::Interactive);
+        m_parameters->setColumnWidth(column, m_parameters->fontMetrics().horizontalAdvance("0.00000") + 10);
+    }
+    // At least five rows show; more scroll inside the table.
+    m_parameters->setMinimumHeight(m_parameters->horizontalHeader()->sizeHint().height() +
+                                   5 * m_parameters->verticalHeader()->defaultSectionSize() + 4);
+    layout->addWidget(m_parameters, 1);
 
+    auto* results = new QWidget;
+    layout = new QVBoxLayout(results);
+    layout->setContentsMargins(4, 4, 4, 4);
     auto* run_row = new QHBoxLayout;
     run_row->addWidget(new QLabel(tr("Starts")));
     m_starts = new QSpinBox;
@@ -148,6 +187,7 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     m_status->setObjectName("match_status");
     m_status->setWordWrap(true);
     layout->addWidget(m_status);
+
     m_warnings = new QLabel;
     m_warnings->setObjectName("match_warnings");
     m_warnings->setWordWrap(true);
@@ -156,10 +196,10 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     layout->addWidget(m_warnings);
 
     m_fitted = makeTable({tr("Parameter"), tr("Fitted"), tr("± 1σ"), tr("Note")}, "match_fitted");
-    layout->addWidget(m_fitted, 2);
+    layout->addWidget(m_fitted, 1);
     m_geometries = makeTable({tr("Geometry"), tr("ΔE00"), tr("Measured L*a*b*"), tr("Fitted L*a*b*")},
                              "match_geometries");
-    layout->addWidget(m_geometries, 2);
+    layout->addWidget(m_geometries, 1);
     m_alternatives = new QLabel;
     m_alternatives->setObjectName("match_alternatives");
     m_alternatives->setWordWrap(true);
@@ -173,16 +213,25 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
         tr("Edit the recipe to the fitted values and save it as a new version (Undo reverts the edit)"));
     layout->addWidget(m_accept);
 
-    auto* scroll = new QScrollArea;
-    scroll->setWidgetResizable(true);
-    scroll->setFrameShape(QFrame::NoFrame);
-    scroll->setWidget(body);
-    setWidget(scroll);
+    m_split = new SplitSphereView;
+    m_splitter = new QSplitter(Qt::Vertical);
+    m_splitter->setObjectName("match_panes");
+    m_splitter->setChildrenCollapsible(false);
+    m_splitter->addWidget(scrollingPane(setup, "match_setup"));
+    m_splitter->addWidget(scrollingPane(results, "match_results"));
+    m_splitter->addWidget(m_split);
+    m_splitter->setStretchFactor(0, 4);
+    m_splitter->setStretchFactor(1, 4);
+    m_splitter->setStretchFactor(2, 2);
+    setWidget(m_splitter);
 
     connect(import, &QPushButton::clicked, this, &MatchDock::importFile);
     connect(m_run, &QPushButton::clicked, this, &MatchDock::run);
     connect(m_cancel, &QPushButton::clicked, this, &MatchDock::cancel);
-    connect(m_measurement, &QComboBox::currentIndexChanged, this, [this]() { emit measuredChanged(); });
+    connect(m_measurement, &QComboBox::currentIndexChanged, this, [this]() {
+        refreshSplitView();
+        emit measuredChanged();
+    });
     connect(m_accept, &QPushButton::clicked, this, [this]() {
         if (!m_result) return;
         QStringList names;
@@ -205,9 +254,14 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
         setRunning(false);
         showMessage(tr("Fit cancelled: nothing changed."), false);
     });
-    connect(m_document, &RecipeDocument::recipeLoaded, this, &MatchDock::fillParameters);
+    connect(m_document, &RecipeDocument::recipeLoaded, this, [this]() {
+        fillParameters();
+        refreshSplitView();
+    });
     connect(m_document, &RecipeDocument::recipeChanged, this, [this](bool interactive) {
-        if (!interactive) fillParameters();
+        if (interactive) return;
+        fillParameters();
+        refreshSplitView();
     });
     setMeasurements({});
     fillParameters();
@@ -262,6 +316,7 @@ void MatchDock::rebuildMeasurementBoxes() {
     }
     m_measurement->setCurrentIndex(std::max(0, m_measurement->findText(top)));
     m_bottom->setCurrentIndex(std::max(0, m_bottom->findText(bottom)));
+    refreshSplitView();
     emit measuredChanged();
 }
 
@@ -491,6 +546,40 @@ void MatchDock::showResult(std::shared_ptr<const fit::FitResult> result) {
         m_alternatives->show();
     }
     m_accept->setEnabled(true);
+    refreshSplitView();
+}
+
+void MatchDock::refreshSplitView() {
+    const db::Measurement* m = chosen(m_measurement);
+    if (m == nullptr) {
+        m_split->showMessage(tr("Choose a BRDF measurement for the split view of measured against fitted."));
+        return;
+    }
+    if (m->kind != db::MeasurementKind::Brdf) {
+        m_split->showMessage(tr("The split view shades a BRDF measurement; '%1' is a multi-angle reading "
+                                "(its spectra and flop path are on the plots).")
+                                 .arg(QString::fromStdString(m->name)));
+        return;
+    }
+    // The fitted recipe once this measurement has been fitted; the edited one before.
+    const bool fitted = m_result && !m_fitted_measurements.empty() && m_fitted_measurements.front() == *m;
+    if (!fitted && !m_document->hasRecipe()) {
+        m_split->showMessage(tr("Open a recipe to compare with the measurement."));
+        return;
+    }
+    m_split->shade(std::make_shared<const db::Measurement>(*m),
+                   fitted ? m_result->recipe : m_document->recipe(),
+                   fitted ? tr("fitted") : tr("recipe (not fitted)"));
+}
+
+void MatchDock::resizeEvent(QResizeEvent* event) {
+    QDockWidget::resizeEvent(event);
+    // Side by side where the dock is much wider than tall (a bottom tab), stacked otherwise.
+    const Qt::Orientation wanted = width() >= 3 * height() / 2 ? Qt::Horizontal : Qt::Vertical;
+    if (m_splitter->orientation() == wanted) return;
+    m_splitter->setOrientation(wanted);
+    const int extent = wanted == Qt::Horizontal ? m_splitter->width() : m_splitter->height();
+    m_splitter->setSizes({extent * 45 / 100, extent * 33 / 100, extent * 22 / 100});
 }
 
 std::optional<MultiAngleReport> MatchDock::measuredReport() const {
