@@ -84,7 +84,6 @@ QWidget* scrollingPane(QWidget* content, const char* name) {
     scroll->setObjectName(name);
     scroll->setWidgetResizable(true);
     scroll->setFrameShape(QFrame::NoFrame);
-    scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
     scroll->setWidget(content);
     return scroll;
 }
@@ -145,7 +144,7 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     m_parameters->horizontalHeader()->setSectionResizeMode(kColumnParameter, QHeaderView::Stretch);
     for (int column : {kColumnNow, kColumnLower, kColumnUpper}) {
         m_parameters->horizontalHeader()->setSectionResizeMode(column, QHeaderView::Interactive);
-        m_parameters->setColumnWidth(column, m_parameters->fontMetrics().horizontalAdvance("0.00000") + 10);
+        m_parameters->setColumnWidth(column, m_parameters->fontMetrics().horizontalAdvance("0.0000") + 12);
     }
     // At least five rows show; more scroll inside the table.
     m_parameters->setMinimumHeight(m_parameters->horizontalHeader()->sizeHint().height() +
@@ -349,24 +348,47 @@ void MatchDock::fillParameters() {
     std::map<QString, Choice> kept;
     for (int row = 0; row < m_parameters->rowCount(); ++row) {
         const auto* item = m_parameters->item(row, kColumnParameter);
-        kept[item->data(kPathRole).toString()] = {item->checkState() == Qt::Checked,
-                                                  m_parameters->item(row, kColumnLower)->text(),
-                                                  m_parameters->item(row, kColumnUpper)->text()};
+        const QString path = item->data(kPathRole).toString();
+        if (path.isEmpty()) continue;  // a group's title row
+        kept[path] = {item->checkState() == Qt::Checked, m_parameters->item(row, kColumnLower)->text(),
+                      m_parameters->item(row, kColumnUpper)->text()};
     }
+    m_parameters->clearSpans();
     m_parameters->setRowCount(0);
     if (!m_document->hasRecipe()) return;
+    // Grouped by where the field is ("basecoat > blue interference flake"):
+    // a title row per group, the field's own name in its row, so that the
+    // names stay readable in a narrow column.
     const auto paths = fit::listParameterPaths(m_document->recipe());
-    m_parameters->setRowCount(static_cast<int>(paths.size()));
-    for (std::size_t i = 0; i < paths.size(); ++i) {
-        const auto& p = paths[i];
-        const int row = static_cast<int>(i);
+    QString group;
+    for (const auto& p : paths) {
         const QString path = QString::fromStdString(p.path);
-        auto* name = new QTableWidgetItem(QString::fromStdString(p.label));
+        const QString label = QString::fromStdString(p.label);
+        const auto split = label.lastIndexOf(QStringLiteral(" > "));
+        const QString where = split < 0 ? QString() : label.left(split);
+        const QString field = split < 0 ? label : label.mid(split + 3);
+        if (where != group || m_parameters->rowCount() == 0) {
+            group = where;
+            const int title_row = m_parameters->rowCount();
+            m_parameters->insertRow(title_row);
+            auto* title = new QTableWidgetItem(where.isEmpty() ? tr("Recipe") : where);
+            title->setFlags(Qt::ItemIsEnabled);
+            QFont bold = title->font();
+            bold.setBold(true);
+            title->setFont(bold);
+            title->setToolTip(title->text());
+            m_parameters->setItem(title_row, kColumnParameter, title);
+            m_parameters->setSpan(title_row, kColumnParameter, 1, 4);
+        }
+        const int row = m_parameters->rowCount();
+        m_parameters->insertRow(row);
+        auto* name = new QTableWidgetItem(field);
         name->setData(kPathRole, path);
         name->setFlags(Qt::ItemIsEnabled | Qt::ItemIsUserCheckable | Qt::ItemIsSelectable);
         name->setToolTip(
-            tr("%1\nunit %2, allowed %3 to %4")
-                .arg(path, QString::fromUtf8(p.decl->unit.data(), static_cast<int>(p.decl->unit.size())),
+            tr("%1\n%2\nunit %3, allowed %4 to %5")
+                .arg(label, path,
+                     QString::fromUtf8(p.decl->unit.data(), static_cast<int>(p.decl->unit.size())),
                      number(p.min), number(p.max)));
         const auto old = kept.find(path);
         name->setCheckState(old != kept.end() && old->second.free ? Qt::Checked : Qt::Unchecked);
@@ -406,7 +428,7 @@ fit::FitProblem MatchDock::problem() const {
         db::addFitObservation(problem.observations, *bottom, fit::Side::Bottom);
     for (int row = 0; row < m_parameters->rowCount(); ++row) {
         const auto* item = m_parameters->item(row, kColumnParameter);
-        if (item->checkState() != Qt::Checked) continue;
+        if (item->data(kPathRole).toString().isEmpty() || item->checkState() != Qt::Checked) continue;
         fit::FreeParameter p;
         p.path = item->data(kPathRole).toString().toStdString();
         p.lower = parseBound(m_parameters->item(row, kColumnLower)->text(), p.path + " (lower bound)");
@@ -551,6 +573,8 @@ void MatchDock::showResult(std::shared_ptr<const fit::FitResult> result) {
 
 void MatchDock::refreshSplitView() {
     const db::Measurement* m = chosen(m_measurement);
+    // The split view's pane is there for a BRDF measurement only: the other panes get its room otherwise.
+    m_split->setVisible(m != nullptr && m->kind == db::MeasurementKind::Brdf);
     if (m == nullptr) {
         m_split->showMessage(tr("Choose a BRDF measurement for the split view of measured against fitted."));
         return;
@@ -568,8 +592,7 @@ void MatchDock::refreshSplitView() {
         return;
     }
     m_split->shade(std::make_shared<const db::Measurement>(*m),
-                   fitted ? m_result->recipe : m_document->recipe(),
-                   fitted ? tr("fitted") : tr("recipe (not fitted)"));
+                   fitted ? m_result->recipe : m_document->recipe(), fitted ? tr("fitted") : tr("recipe"));
 }
 
 void MatchDock::resizeEvent(QResizeEvent* event) {

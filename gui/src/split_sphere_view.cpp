@@ -131,9 +131,13 @@ void SplitSphereView::paintEvent(QPaintEvent* /*event*/) {
     const int middle = target.left() + side / 2;
     painter.drawLine(middle, target.top(), middle, target.bottom());
     painter.setPen(QColor(230, 230, 230));
+    // Each label in its half, elided if the view is narrow.
     const QRect labels(target.left(), target.top() - label_h, side, label_h);
-    painter.drawText(labels.adjusted(2, 0, -side / 2, 0), Qt::AlignLeft | Qt::AlignVCenter, tr("measured"));
-    painter.drawText(labels.adjusted(side / 2, 0, -2, 0), Qt::AlignRight | Qt::AlignVCenter, m_right_label);
+    const int half = side / 2 - 4;
+    painter.drawText(labels.adjusted(2, 0, -side / 2, 0), Qt::AlignLeft | Qt::AlignVCenter,
+                     fontMetrics().elidedText(tr("measured"), Qt::ElideRight, half));
+    painter.drawText(labels.adjusted(side / 2, 0, -2, 0), Qt::AlignRight | Qt::AlignVCenter,
+                     fontMetrics().elidedText(m_right_label, Qt::ElideRight, half));
 }
 
 }  // namespace paintlab::gui

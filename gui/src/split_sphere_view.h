@@ -1,8 +1,8 @@
 #pragma once
 // The Match dock's split view (issue 28, part 3): a sphere painted half with
 // a BRDF measurement (left, "measured") and half with a recipe (right: the
-// fitted recipe, or the recipe being edited before a fit), split_sphere.h
-// shading them. Everything slow runs on a worker (latest_job.h): reading
+// fitted recipe, "fitted", or the recipe being edited before a fit,
+// "recipe"), split_sphere.h shading them. Everything slow runs on a worker (latest_job.h): reading
 // the samples, judging their density, the recipe's fast model and the
 // shading; a newer request or cancel() stops a running one between rows (or
 // in the fast model's progress), and the GUI thread only shows the image.

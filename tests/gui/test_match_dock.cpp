@@ -301,7 +301,7 @@ void MatchDockTest::brdfMeasurementPointsAndSplitView() {
     // Dense: the split view shades the samples against the edited recipe.
     dock()->addFileMeasurement(brdfSamples(brdf, "gonio dense", true));
     QVERIFY(QTest::qWaitFor([&]() { return view->showsSpheres() && !view->busy(); }, kGuiWaitMs));
-    QCOMPARE(view->rightLabel(), QStringLiteral("recipe (not fitted)"));
+    QCOMPARE(view->rightLabel(), QStringLiteral("recipe"));
     QCOMPARE(points_plot->measuredSamples().total, kDenseSamples);
     QCOMPARE(points_plot->measuredPointsDrawn(), kDenseInPlane);
     // Every drawn point is a sample of the 45 deg light in its plane: pi f
