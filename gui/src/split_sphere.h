@@ -50,7 +50,9 @@ std::vector<measured::DirectionPair> splitSphereQueries(int size_px);
 // f in linear sRGB (1/sr) for a direction pair in the tangent frame.
 using RgbBrdf = std::function<Rgb(const Direction& wi, const Direction& wo)>;
 RgbBrdf rgbBrdf(const measured::ScatteredBrdf& brdf);  // three channels, R, G, B
-RgbBrdf rgbBrdf(const LayeredBrdf& brdf);              // spectral f weighted to linear sRGB
+// The fast model as the render dock's explicit lights read it (raymaps
+// RelightTables: linear sRGB, tabulated); the result keeps the tables.
+RgbBrdf rgbBrdf(const LayeredBrdf& brdf);
 
 // Linear sRGB radiance, row-major, top row first; 0 outside the sphere.
 // Rows run in parallel; alive() is asked between rows and a false answer

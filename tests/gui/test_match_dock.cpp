@@ -294,6 +294,7 @@ void MatchDockTest::brdfMeasurementPointsAndSplitView() {
         QTest::qWaitFor([&]() { return !view->busy() && !view->message().contains("Shading"); }, kGuiWaitMs));
     QVERIFY(!view->showsSpheres());
     QVERIFY2(view->message().contains("too sparse"), qPrintable(view->message()));
+    qInfo("sparse: %s", qPrintable(view->message()));
     QCOMPARE(points_plot->measuredPointsDrawn(), kDenseInPlane);
     QCOMPARE(m_window->plot()->measuredPointsDrawn(), kDenseInPlane);
     paintlab::test::saveScreenshot(dock(), "dock-match-sparse");
@@ -302,6 +303,8 @@ void MatchDockTest::brdfMeasurementPointsAndSplitView() {
     dock()->addFileMeasurement(brdfSamples(brdf, "gonio dense", true));
     QVERIFY(QTest::qWaitFor([&]() { return view->showsSpheres() && !view->busy(); }, kGuiWaitMs));
     QCOMPARE(view->rightLabel(), QStringLiteral("recipe"));
+    qInfo("split view: %d px sphere, %zu samples, shaded in %.2f s (worker), exposure %.2f EV",
+          paintlab::gui::SplitSphereView::kSpherePx, kDenseSamples, view->seconds(), view->exposureEv());
     QCOMPARE(points_plot->measuredSamples().total, kDenseSamples);
     QCOMPARE(points_plot->measuredPointsDrawn(), kDenseInPlane);
     // Every drawn point is a sample of the 45 deg light in its plane: pi f
