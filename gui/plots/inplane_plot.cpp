@@ -373,12 +373,21 @@ void InplanePlot::updateChart() {
     emit dataChanged();
 }
 
-void InplanePlot::layoutForSize(int width_px, int /*height_px*/) {
+void InplanePlot::layoutForSize(int width_px, int height_px) {
     if (!m_vtk) return;
     // A narrow plot (the main window's central one) keeps its width for the
     // curves: the legend goes below them.
     constexpr int kNarrowPx = 640;  // device pixels
     placeLegend(m_vtk->chart, width_px < kNarrowPx ? LegendPlace::Below : LegendPlace::Right);
+    // Data handed over while the plot was hidden set the axes up for a
+    // 1-pixel chart; at the first drawing at a real size the value axis
+    // stayed empty (seen on the In-plane BRDF dock with measured points and
+    // a tall legend). The bounds are recomputed whenever the size changes.
+    if (width_px != m_laid_out_width || height_px != m_laid_out_height) {
+        m_laid_out_width = width_px;
+        m_laid_out_height = height_px;
+        m_vtk->chart->RecalculateBounds();
+    }
 }
 
 bool InplanePlot::exportCsv(const QString& path) const {

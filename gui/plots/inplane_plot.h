@@ -84,6 +84,8 @@ private:
     void updateChart();
     struct Vtk;
     std::unique_ptr<Vtk> m_vtk;  // render thread only (plot_widget.h)
+    int m_laid_out_width = 0;    // render thread only: the size of the last layoutForSize
+    int m_laid_out_height = 0;
     std::shared_ptr<const LayeredBrdf> m_brdf;
     std::vector<double> m_incidences{45.0};
     std::vector<Curve> m_curves;

@@ -466,8 +466,14 @@ void MatchDock::cancel() { m_runner->cancel(); }
 bool MatchDock::running() const { return m_runner->running(); }
 
 void MatchDock::setRunning(bool running) {
-    m_run->setEnabled(!running);
-    m_cancel->setEnabled(running);
+    // The button about to be disabled hands its focus to the other one:
+    // Qt would give it to the next widget in the chain, and the results
+    // pane would scroll to it, taking Cancel out of view.
+    QPushButton* on = running ? m_cancel : m_run;
+    QPushButton* off = running ? m_run : m_cancel;
+    on->setEnabled(true);
+    if (off->hasFocus()) on->setFocus();
+    off->setEnabled(false);
     m_parameters->setEnabled(!running);
     m_measurement->setEnabled(!running);
     m_bottom->setEnabled(!running);
@@ -502,8 +508,10 @@ void MatchDock::showResult(std::shared_ptr<const fit::FitResult> result) {
     for (std::size_t i = 0; i < r.parameters.size(); ++i) {
         const auto& p = r.parameters[i];
         const int row = static_cast<int>(i);
-        auto* name = new QTableWidgetItem(QString::fromStdString(p.label));
-        name->setToolTip(QString::fromStdString(p.path));
+        // The field's own name (as in the parameter table); where it is, in the tooltip.
+        const QString label = QString::fromStdString(p.label);
+        auto* name = new QTableWidgetItem(label.section(QStringLiteral(" > "), -1));
+        name->setToolTip(label + "\n" + QString::fromStdString(p.path));
         m_fitted->setItem(row, 0, name);
         m_fitted->setItem(row, 1,
                           new QTableWidgetItem(number(p.value) + " " + QString::fromStdString(p.unit)));
