@@ -31,6 +31,7 @@
 
 #include <QComboBox>
 #include <QDockWidget>
+#include <QElapsedTimer>
 #include <QLabel>
 #include <QPushButton>
 #include <QSignalSpy>
@@ -348,6 +349,22 @@ void MatchDockTest::brdfMeasurementPointsAndSplitView() {
     QTest::qWait(300);
     paintlab::gui::PlotRenderThread::instance().settle();
     paintlab::test::saveScreenshot(m_window->plotsDock(), "plots-inplane-measured");
+
+    // Choosing another measurement while the split view shades stops it:
+    // the running shading is cancelled and never shown.
+    dock()->measurementBox()->setCurrentIndex(0);
+    dock()->measurementBox()->setCurrentIndex(
+        dock()->measurementBox()->findText("gonio dense", Qt::MatchStartsWith));
+    QVERIFY(view->busy());
+    dock()->measurementBox()->setCurrentIndex(
+        dock()->measurementBox()->findText("red panel 7", Qt::MatchStartsWith));
+    QVERIFY(view->isHidden());
+    QElapsedTimer stopping;
+    stopping.start();
+    QVERIFY(QTest::qWaitFor([&]() { return !view->busy(); }, kGuiWaitMs));
+    qInfo("split view: cancelled shading stopped after %lld ms", stopping.elapsed());
+    QVERIFY(!view->showsSpheres());
+    QCOMPARE(points_plot->measuredPointsDrawn(), std::size_t{0});
 
     // Fitted (to the sparse set: a fit to the dense one takes a minute on 2
     // cores, too long for CI): the plots' dashed curves become the fit's,
