@@ -116,7 +116,7 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     m_measurement = new QComboBox;
     m_measurement->setObjectName("match_measurement");
     m_measurement->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
-    m_measurement->setMinimumContentsLength(12);
+    m_measurement->setMinimumContentsLength(8);
     m_measurement->setToolTip(tr("The measured panel to match: multi-angle readings or BRDF samples"));
     auto* import = new QPushButton(tr("File..."));
     import->setObjectName("match_import");
@@ -155,9 +155,9 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     layout = new QVBoxLayout(results);
     layout->setContentsMargins(4, 4, 4, 4);
     auto* run_row = new QHBoxLayout;
-    run_row->addWidget(new QLabel(tr("Starts")));
     m_starts = new QSpinBox;
     m_starts->setObjectName("match_starts");
+    m_starts->setPrefix(tr("starts "));  // no label beside it: the row fits a narrow pane
     m_starts->setRange(1, 200);
     m_starts->setValue(8);
     m_starts->setToolTip(
@@ -168,9 +168,9 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     m_cancel = new QPushButton(tr("Cancel"));
     m_cancel->setObjectName("match_cancel");
     m_cancel->setEnabled(false);
-    run_row->addStretch(1);
     run_row->addWidget(m_run);
     run_row->addWidget(m_cancel);
+    run_row->addStretch(1);  // compact: the row fits a narrow pane
     layout->addLayout(run_row);
 
     m_progress = new QProgressBar;
@@ -581,8 +581,17 @@ void MatchDock::showResult(std::shared_ptr<const fit::FitResult> result) {
 
 void MatchDock::refreshSplitView() {
     const db::Measurement* m = chosen(m_measurement);
-    // The split view's pane is there for a BRDF measurement only: the other panes get its room otherwise.
-    m_split->setVisible(m != nullptr && m->kind == db::MeasurementKind::Brdf);
+    // The split view's pane is there for a BRDF measurement only: the other
+    // panes get its room otherwise, and give it a share back when it comes.
+    const bool split = m != nullptr && m->kind == db::MeasurementKind::Brdf;
+    if (split != m_split->isVisibleTo(this)) {
+        m_split->setVisible(split);
+        const bool across = m_splitter->orientation() == Qt::Horizontal;
+        const int extent = across ? m_splitter->width() : m_splitter->height();
+        // Side by side the sphere needs no more width than the dock's height.
+        const int sphere = across ? std::min(extent / 5, m_splitter->height()) : extent / 4;
+        if (split && extent > 0) m_splitter->setSizes({(extent - sphere) / 2, (extent - sphere) / 2, sphere});
+    }
     if (m == nullptr) {
         m_split->showMessage(tr("Choose a BRDF measurement for the split view of measured against fitted."));
         return;

@@ -19,7 +19,7 @@ namespace paintlab::gui {
 
 SplitSphereView::SplitSphereView(QWidget* parent) : QWidget(parent) {
     setObjectName("match_split_view");
-    setMinimumSize(150, 150);
+    setMinimumSize(120, 120);
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(4, 4, 4, 4);
     m_message = new QLabel;
