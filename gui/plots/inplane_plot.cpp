@@ -11,6 +11,7 @@
 #include <vtkNew.h>
 #include <vtkPen.h>
 #include <vtkPlot.h>
+#include <vtkPlotPoints.h>
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
 #include <vtkTable.h>
@@ -30,6 +31,7 @@ struct InplanePlot::Vtk {
     vtkNew<vtkChartXY> chart;
     vtkNew<vtkTable> table;       // view_deg, then the current BRDF's columns
     vtkNew<vtkTable> comparison;  // the same for the comparison
+    vtkNew<vtkTable> measured;    // view_deg, R, G, B of the measured samples in the plane
 };
 
 namespace {
@@ -43,6 +45,9 @@ std::array<unsigned char, 3> incidenceColour(std::size_t k, std::size_t count) {
     if (count == 1) return kPalette[2];
     return kPalette[k % kPalette.size()];
 }
+
+// R, G, B of the primary curve, the comparison's dashed ones and the measured points.
+constexpr unsigned char kChannelColour[3][3] = {{200, 30, 30}, {30, 150, 30}, {30, 60, 200}};
 
 QString degrees(double v) { return QString::number(v, 'g', 4) + QStringLiteral(" deg"); }
 
@@ -92,6 +97,26 @@ void fillTable(vtkTable* t, const std::vector<InplaneCurve>& curves, std::size_t
             t->SetValue(i, col++, shown(p.g[k], log_scale, true));
             t->SetValue(i, col++, shown(p.b[k], log_scale, true));
         }
+    }
+    t->Modified();
+}
+
+// The measured points: view angle, then pi f in R, G, B (log axis: values <= 0 left out).
+void fillMeasuredTable(vtkTable* t, const InplaneSamples& samples, bool log_scale) {
+    t->Initialize();
+    for (const char* name : {"view_deg", "R", "G", "B"}) {
+        vtkNew<vtkDoubleArray> column;
+        column->SetName(name);
+        t->AddColumn(column);
+    }
+    const auto n = static_cast<vtkIdType>(samples.view_deg.size());
+    t->SetNumberOfRows(n);
+    for (vtkIdType i = 0; i < n; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        t->SetValue(i, 0, samples.view_deg[k]);
+        t->SetValue(i, 1, shown(samples.r[k], log_scale, false));
+        t->SetValue(i, 2, shown(samples.g[k], log_scale, false));
+        t->SetValue(i, 3, shown(samples.b[k], log_scale, false));
     }
     t->Modified();
 }
@@ -173,6 +198,27 @@ void InplanePlot::setComparisonCurves(std::vector<Curve> curves, const QString& 
     updateChart();
 }
 
+void InplanePlot::setMeasuredSamples(InplaneSamples samples, const QString& label) {
+    m_measured = std::move(samples);
+    m_measured_label = label.isEmpty() ? QStringLiteral("measured") : label;
+    updateChart();
+}
+
+void InplanePlot::clearMeasuredSamples() {
+    m_measured = {};
+    m_measured_label.clear();
+    updateChart();
+}
+
+QString InplanePlot::measuredCaption() const {
+    if (!hasMeasuredSamples()) return {};
+    return QStringLiteral("points: %1 of the %2 samples of %3 lie within %4 of this plane")
+        .arg(m_measured.view_deg.size())
+        .arg(m_measured.total)
+        .arg(m_measured_label)
+        .arg(degrees(m_measured.tolerance_deg));
+}
+
 void InplanePlot::setBrdf(const LayeredBrdf& brdf) {
     m_brdf.reset();
     compute(brdf);
@@ -224,6 +270,15 @@ void InplanePlot::updateChart() {
             ? QStringLiteral("In-plane reflectance factor, light at %1").arg(degrees(m_curve.theta_i_deg))
             : QStringLiteral("In-plane reflectance factor at several incidences")};
     if (!m_comparison.empty()) lines << QStringLiteral("dashed: %1").arg(m_comparison_label);
+    const bool points = hasMeasuredSamples();
+    if (points) lines << measuredCaption();
+    // With measured points the comparison (the fitted recipe) shows its
+    // channels too, at the points' incidence.
+    const auto comparison_primary = static_cast<std::size_t>(
+        std::find_if(m_comparison.begin(), m_comparison.end(),
+                     [this](const Curve& c) { return c.theta_i_deg == m_measured.theta_i_deg; }) -
+        m_comparison.begin());
+    const std::size_t comparison_channels = points ? comparison_primary : m_comparison.size();
     std::vector<std::string> channel_labels;
     if (primary < m_curves.size()) {
         const Curve& p = m_curves[primary];
@@ -238,16 +293,23 @@ void InplanePlot::updateChart() {
         if (primary < m_curves.size())
             for (const std::vector<double>* v : {&m_curve.r, &m_curve.g, &m_curve.b})
                 dropped = dropped || anyNonPositive(*v);
+        for (const std::vector<double>* v : {&m_measured.r, &m_measured.g, &m_measured.b})
+            dropped = dropped || anyNonPositive(*v);
         if (dropped) lines << QStringLiteral("log axis: values <= 0 are not drawn");
     }
     const QString title = lines.join(QLatin1Char('\n'));
     // The comparison's legend line names it short: "full model", "version 3".
     const QString short_label = m_comparison_label.section(QStringLiteral(" ("), 0, 0);
     // The render thread draws copies: the GUI thread may change the curves meanwhile.
+    const std::string points_label = m_measured_label.toStdString();
+    const std::string points_at = degrees(m_measured.theta_i_deg).toStdString();
     onRenderThread([this, curves = m_curves, comparison = m_comparison, primary, title = title.toStdString(),
-                    log_scale = m_log_scale, channel_labels, comparison_label = short_label.toStdString()] {
+                    log_scale = m_log_scale, channel_labels, comparison_label = short_label.toStdString(),
+                    comparison_channels, measured = points ? m_measured : InplaneSamples{}, points,
+                    points_label, points_at] {
         fillTable(m_vtk->table, curves, primary, log_scale);
-        fillTable(m_vtk->comparison, comparison, comparison.size(), log_scale);
+        fillTable(m_vtk->comparison, comparison, comparison_channels, log_scale);
+        fillMeasuredTable(m_vtk->measured, measured, log_scale);
         vtkChartXY* chart = m_vtk->chart;
         chart->ClearPlots();
         chart->SetTitle(title);
@@ -270,30 +332,62 @@ void InplanePlot::updateChart() {
                 }
             }
             if (!channels) return;
-            const unsigned char rgb[3][3] = {{200, 30, 30}, {30, 150, 30}, {30, 60, 200}};
             for (std::size_t k = 0; k < 3; ++k) {
                 vtkPlot* line = chart->AddPlot(vtkChart::LINE);
                 line->SetInputData(t, 0, col++);
-                line->SetColor(rgb[k][0], rgb[k][1], rgb[k][2], 255);
-                line->SetWidth(1.2F);
-                line->SetLabel(channel_labels[k]);
+                line->SetColor(kChannelColour[k][0], kChannelColour[k][1], kChannelColour[k][2], 255);
+                line->SetWidth(dashed ? 1.8F : 1.2F);
+                if (dashed) {
+                    line->GetPen()->SetLineType(vtkPen::DASH_LINE);
+                    line->SetLegendVisibility(false);  // the comparison's one legend line above
+                } else {
+                    line->SetLabel(channel_labels[k]);
+                }
             }
         };
         addLines(m_vtk->table, curves, false, true);
-        addLines(m_vtk->comparison, comparison, true, false);
-        const auto [lo, hi] = positiveRange({m_vtk->table, m_vtk->comparison});
+        addLines(m_vtk->comparison, comparison, true, points && comparison_channels < comparison.size());
+        // The measured samples as markers, in the channels' colours.
+        if (points)
+            for (vtkIdType k = 0; k < 3; ++k) {
+                vtkPlot* plot = chart->AddPlot(vtkChart::POINTS);
+                plot->SetInputData(m_vtk->measured, 0, k + 1);
+                const auto c = static_cast<std::size_t>(k);
+                plot->SetColor(kChannelColour[c][0], kChannelColour[c][1], kChannelColour[c][2], 255);
+                std::string label = k == 0 ? "R" : k == 1 ? "G" : "B";
+                label += " measured (";
+                label += points_label;
+                label += ", light at ";
+                label += points_at;
+                label += ")";
+                plot->SetLabel(label);
+                if (auto* p = vtkPlotPoints::SafeDownCast(plot)) {
+                    p->SetMarkerStyle(vtkPlotPoints::CIRCLE);
+                    p->SetMarkerSize(7.0F);
+                }
+            }
+        const auto [lo, hi] = positiveRange({m_vtk->table, m_vtk->comparison, m_vtk->measured});
         chart->RecalculateBounds();
         setValueAxis(chart, log_scale, lo, hi);
     });
     emit dataChanged();
 }
 
-void InplanePlot::layoutForSize(int width_px, int /*height_px*/) {
+void InplanePlot::layoutForSize(int width_px, int height_px) {
     if (!m_vtk) return;
     // A narrow plot (the main window's central one) keeps its width for the
     // curves: the legend goes below them.
     constexpr int kNarrowPx = 640;  // device pixels
     placeLegend(m_vtk->chart, width_px < kNarrowPx ? LegendPlace::Below : LegendPlace::Right);
+    // Data handed over while the plot was hidden set the axes up for a
+    // 1-pixel chart; at the first drawing at a real size the value axis
+    // stayed empty (seen on the In-plane BRDF dock with measured points and
+    // a tall legend). The bounds are recomputed whenever the size changes.
+    if (width_px != m_laid_out_width || height_px != m_laid_out_height) {
+        m_laid_out_width = width_px;
+        m_laid_out_height = height_px;
+        m_vtk->chart->RecalculateBounds();
+    }
 }
 
 bool InplanePlot::exportCsv(const QString& path) const {
@@ -306,6 +400,12 @@ bool InplanePlot::exportCsv(const QString& path) const {
     };
     add(m_curves, QStringLiteral("current"));
     add(m_comparison, m_comparison_label);
+    // The measured points: one row each, Y left empty (not measured).
+    for (std::size_t i = 0; i < m_measured.view_deg.size(); ++i)
+        rows.push_back({csvText(QStringLiteral("measured: ") + m_measured_label),
+                        csvNumber(m_measured.theta_i_deg), csvNumber(m_measured.view_deg[i]),
+                        csvNumber(m_measured.r[i]), csvNumber(m_measured.g[i]), csvNumber(m_measured.b[i]),
+                        QString()});
     return writeCsv(path, {"series", "theta_i_deg", "view_deg", "R", "G", "B", "Y"}, rows);
 }
 

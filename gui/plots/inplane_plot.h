@@ -45,6 +45,21 @@ public:
     void clearComparison();
     bool hasComparison() const { return !m_comparison.empty(); }
 
+    // Measured BRDF samples in the plane of the 45 degree curve (plot_data.h
+    // inplaneSamples) drawn as points in the R, G, B colours, with
+    // `label` (the measurement's name) in the legend and the title saying
+    // how many of its samples lie in the plane; while they are shown the
+    // comparison (the fitted recipe) is drawn with its R, G, B curves too.
+    void setMeasuredSamples(InplaneSamples samples, const QString& label);
+    void clearMeasuredSamples();
+    bool hasMeasuredSamples() const { return !m_measured_label.isEmpty(); }
+    const InplaneSamples& measuredSamples() const { return m_measured; }
+    // The points drawn (the samples in the plane), and the title's line
+    // that says so ("points: 45 of the 1768 samples of NAME lie within 2.5
+    // deg of this plane"; empty without samples).
+    std::size_t measuredPointsDrawn() const { return m_measured.view_deg.size(); }
+    QString measuredCaption() const;
+
     // The plotted data at the 45 degree incidence (else the first curve's):
     // view angle (deg, negative = towards the light) and per angle R, G, B, Y
     // reflectance factors.
@@ -69,11 +84,15 @@ private:
     void updateChart();
     struct Vtk;
     std::unique_ptr<Vtk> m_vtk;  // render thread only (plot_widget.h)
+    int m_laid_out_width = 0;    // render thread only: the size of the last layoutForSize
+    int m_laid_out_height = 0;
     std::shared_ptr<const LayeredBrdf> m_brdf;
     std::vector<double> m_incidences{45.0};
     std::vector<Curve> m_curves;
     std::vector<Curve> m_comparison;
     QString m_comparison_label;
+    InplaneSamples m_measured;
+    QString m_measured_label;
     Curve m_curve;
     bool m_log_scale = false;
 };

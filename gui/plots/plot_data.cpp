@@ -53,6 +53,33 @@ void sumSeries(const double* coefficients, std::size_t orders, std::size_t bands
 
 }  // namespace
 
+InplaneSamples inplaneSamples(std::span<const measured::ScatteredSample> samples, double theta_i_deg,
+                              double tolerance_deg) {
+    InplaneSamples out;
+    out.theta_i_deg = theta_i_deg;
+    out.tolerance_deg = tolerance_deg;
+    out.total = samples.size();
+    const double sin_tolerance = std::sin(tolerance_deg * kDeg);
+    for (const measured::ScatteredSample& s : samples) {
+        const double wi_len = std::sqrt(s.wi.x * s.wi.x + s.wi.y * s.wi.y + s.wi.z * s.wi.z);
+        const double wo_len = std::sqrt(s.wo.x * s.wo.x + s.wo.y * s.wo.y + s.wo.z * s.wo.z);
+        const double sample_theta_i = std::acos(std::clamp(s.wi.z / wi_len, -1.0, 1.0)) / kDeg;
+        if (std::abs(sample_theta_i - theta_i_deg) > tolerance_deg || s.values.size() < 3) continue;
+        // u: in the surface, away from the light (towards the mirror
+        // direction); the plane of incidence is spanned by u and the normal.
+        const double h = std::hypot(s.wi.x, s.wi.y);
+        const double ux = h > 1e-9 ? -s.wi.x / h : 1.0;
+        const double uy = h > 1e-9 ? -s.wi.y / h : 0.0;
+        const double off_plane = (-uy * s.wo.x + ux * s.wo.y) / wo_len;  // sine of the angle to the plane
+        if (std::abs(off_plane) > sin_tolerance) continue;
+        out.view_deg.push_back(std::atan2(ux * s.wo.x + uy * s.wo.y, s.wo.z) / kDeg);
+        out.r.push_back(std::numbers::pi * s.values[0]);
+        out.g.push_back(std::numbers::pi * s.values[1]);
+        out.b.push_back(std::numbers::pi * s.values[2]);
+    }
+    return out;
+}
+
 std::vector<double> inplaneViewAnglesDeg() {
     std::vector<double> view;
     for (int k = 0; k <= 68; ++k) view.push_back(-85.0 + 2.5 * k);

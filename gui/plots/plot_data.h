@@ -14,6 +14,7 @@
 // (colour/band_weights.h).
 
 #include "paintlab/engine/fast_model/brdf_colour.h"
+#include "paintlab/engine/measured/scattered_brdf.h"
 #include "paintlab/engine/multiangle.h"
 #include "paintlab/engine/recipe.h"
 #include "paintlab/engine/spectrum.h"
@@ -38,6 +39,23 @@ struct InplaneCurve {
     std::vector<double> view_deg;
     std::vector<double> r, g, b, y;
 };
+
+// Measured BRDF samples (linear sRGB, 1/sr) that lie in a plane of
+// incidence, as points for the in-plane plot: reflectance factors pi f at
+// view_deg in InplaneCurve's convention (negative on the light's side). A
+// sample lies in the plane of the curve at theta_i_deg when its incidence is
+// within tolerance_deg of it and its view direction within tolerance_deg of
+// the plane through the normal and its light (its azimuth is free: the
+// BRDF is taken as isotropic).
+struct InplaneSamples {
+    double theta_i_deg = 45.0;
+    double tolerance_deg = 2.5;
+    std::size_t total = 0;  // samples offered, in the plane or not
+    std::vector<double> view_deg;
+    std::vector<double> r, g, b;
+};
+InplaneSamples inplaneSamples(std::span<const measured::ScatteredSample> samples, double theta_i_deg,
+                              double tolerance_deg = 2.5);
 
 // -85 .. 85 degrees in 2.5 degree steps.
 std::vector<double> inplaneViewAnglesDeg();

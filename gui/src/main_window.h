@@ -198,6 +198,8 @@ private:
     // main_window_match.cpp: the Match dock (a recipe fitted to a measurement).
     void addMatchDock();
     void refreshMatchMeasurements();
+    // A BRDF measurement chosen in the Match dock: its in-plane samples on both in-plane plots.
+    void showMeasuredSamples();
     // After an accepted fit was saved as a version: the fit's rows in the database.
     void recordMatchFit(const QString& note);
     MatchDock* m_match = nullptr;

@@ -5,6 +5,7 @@
 #include "cost_curve.h"
 #include "fit_runner.h"
 #include "recipe_document.h"
+#include "split_sphere_view.h"
 
 #include "paintlab/database/exchange.h"
 #include "paintlab/database/fit_observations.h"
@@ -26,6 +27,7 @@
 #include <QPushButton>
 #include <QScrollArea>
 #include <QSpinBox>
+#include <QSplitter>
 #include <QTableWidget>
 #include <QVBoxLayout>
 
@@ -57,15 +59,33 @@ std::optional<double> parseBound(const QString& text, const std::string& field) 
     return value;
 }
 
+// Compact rows (a line of text each), smooth vertical scrolling, long texts
+// elided in the middle (the tooltips hold them whole).
 QTableWidget* makeTable(const QStringList& headers, const char* name) {
     auto* table = new QTableWidget(0, static_cast<int>(headers.size()));
     table->setObjectName(name);
     table->setHorizontalHeaderLabels(headers);
     table->verticalHeader()->hide();
+    table->verticalHeader()->setDefaultSectionSize(table->fontMetrics().height() + 8);
+    table->setVerticalScrollMode(QAbstractItemView::ScrollPerPixel);
+    table->setHorizontalScrollMode(QAbstractItemView::ScrollPerPixel);
+    table->setWordWrap(false);
+    table->setTextElideMode(Qt::ElideMiddle);
     table->horizontalHeader()->setStretchLastSection(true);
     table->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
     table->setMinimumHeight(80);
     return table;
+}
+
+// A pane of the dock's splitter: its widgets stacked, scrolling vertically
+// when the pane is shorter than they need.
+QWidget* scrollingPane(QWidget* content, const char* name) {
+    auto* scroll = new QScrollArea;
+    scroll->setObjectName(name);
+    scroll->setWidgetResizable(true);
+    scroll->setFrameShape(QFrame::NoFrame);
+    scroll->setWidget(content);
+    return scroll;
 }
 
 QString geometryName(const fit::GeometryMatch& g) {
@@ -84,15 +104,19 @@ QString labText(const Lab& lab) {
 MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     : QDockWidget(tr("Match"), parent), m_document(document), m_runner(new FitRunner(this)) {
     setObjectName("match_dock");
-    auto* body = new QWidget;
-    auto* layout = new QVBoxLayout(body);
+    // Three panes in a splitter: the choices (measurement, fields), the run
+    // and its results, the split view. Side by side in a wide dock (the bottom tab
+    // of a laptop's layout), stacked in a tall one (resizeEvent).
+    auto* setup = new QWidget;
+    auto* layout = new QVBoxLayout(setup);
+    layout->setContentsMargins(4, 4, 4, 4);
 
     auto* form = new QFormLayout;
     auto* measurement_row = new QHBoxLayout;
     m_measurement = new QComboBox;
     m_measurement->setObjectName("match_measurement");
     m_measurement->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
-    m_measurement->setMinimumContentsLength(12);
+    m_measurement->setMinimumContentsLength(8);
     m_measurement->setToolTip(tr("The measured panel to match: multi-angle readings or BRDF samples"));
     auto* import = new QPushButton(tr("File..."));
     import->setObjectName("match_import");
@@ -114,12 +138,26 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
         makeTable({tr("Field (tick to fit)"), tr("Now"), tr("Lower"), tr("Upper")}, "match_parameters");
     m_parameters->setToolTip(
         tr("Tick the recipe fields the fit may change; bounds default to the allowed range"));
-    layout->addWidget(m_parameters, 2);
+    // The field names take the room left; Now, Lower and Upper keep a
+    // number's width (typed bounds must stay readable).
+    m_parameters->horizontalHeader()->setStretchLastSection(false);
+    m_parameters->horizontalHeader()->setSectionResizeMode(kColumnParameter, QHeaderView::Stretch);
+    for (int column : {kColumnNow, kColumnLower, kColumnUpper}) {
+        m_parameters->horizontalHeader()->setSectionResizeMode(column, QHeaderView::Interactive);
+        m_parameters->setColumnWidth(column, m_parameters->fontMetrics().horizontalAdvance("0.0000") + 12);
+    }
+    // At least five rows show; more scroll inside the table.
+    m_parameters->setMinimumHeight(m_parameters->horizontalHeader()->sizeHint().height() +
+                                   5 * m_parameters->verticalHeader()->defaultSectionSize() + 4);
+    layout->addWidget(m_parameters, 1);
 
+    auto* results = new QWidget;
+    layout = new QVBoxLayout(results);
+    layout->setContentsMargins(4, 4, 4, 4);
     auto* run_row = new QHBoxLayout;
-    run_row->addWidget(new QLabel(tr("Starts")));
     m_starts = new QSpinBox;
     m_starts->setObjectName("match_starts");
+    m_starts->setPrefix(tr("starts "));  // no label beside it: the row fits a narrow pane
     m_starts->setRange(1, 200);
     m_starts->setValue(8);
     m_starts->setToolTip(
@@ -130,9 +168,9 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     m_cancel = new QPushButton(tr("Cancel"));
     m_cancel->setObjectName("match_cancel");
     m_cancel->setEnabled(false);
-    run_row->addStretch(1);
     run_row->addWidget(m_run);
     run_row->addWidget(m_cancel);
+    run_row->addStretch(1);  // compact: the row fits a narrow pane
     layout->addLayout(run_row);
 
     m_progress = new QProgressBar;
@@ -148,6 +186,7 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     m_status->setObjectName("match_status");
     m_status->setWordWrap(true);
     layout->addWidget(m_status);
+
     m_warnings = new QLabel;
     m_warnings->setObjectName("match_warnings");
     m_warnings->setWordWrap(true);
@@ -156,10 +195,10 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     layout->addWidget(m_warnings);
 
     m_fitted = makeTable({tr("Parameter"), tr("Fitted"), tr("± 1σ"), tr("Note")}, "match_fitted");
-    layout->addWidget(m_fitted, 2);
+    layout->addWidget(m_fitted, 1);
     m_geometries = makeTable({tr("Geometry"), tr("ΔE00"), tr("Measured L*a*b*"), tr("Fitted L*a*b*")},
                              "match_geometries");
-    layout->addWidget(m_geometries, 2);
+    layout->addWidget(m_geometries, 1);
     m_alternatives = new QLabel;
     m_alternatives->setObjectName("match_alternatives");
     m_alternatives->setWordWrap(true);
@@ -173,16 +212,25 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
         tr("Edit the recipe to the fitted values and save it as a new version (Undo reverts the edit)"));
     layout->addWidget(m_accept);
 
-    auto* scroll = new QScrollArea;
-    scroll->setWidgetResizable(true);
-    scroll->setFrameShape(QFrame::NoFrame);
-    scroll->setWidget(body);
-    setWidget(scroll);
+    m_split = new SplitSphereView;
+    m_splitter = new QSplitter(Qt::Vertical);
+    m_splitter->setObjectName("match_panes");
+    m_splitter->setChildrenCollapsible(false);
+    m_splitter->addWidget(scrollingPane(setup, "match_setup"));
+    m_splitter->addWidget(scrollingPane(results, "match_results"));
+    m_splitter->addWidget(m_split);
+    m_splitter->setStretchFactor(0, 4);
+    m_splitter->setStretchFactor(1, 4);
+    m_splitter->setStretchFactor(2, 2);
+    setWidget(m_splitter);
 
     connect(import, &QPushButton::clicked, this, &MatchDock::importFile);
     connect(m_run, &QPushButton::clicked, this, &MatchDock::run);
     connect(m_cancel, &QPushButton::clicked, this, &MatchDock::cancel);
-    connect(m_measurement, &QComboBox::currentIndexChanged, this, [this]() { emit measuredChanged(); });
+    connect(m_measurement, &QComboBox::currentIndexChanged, this, [this]() {
+        refreshSplitView();
+        emit measuredChanged();
+    });
     connect(m_accept, &QPushButton::clicked, this, [this]() {
         if (!m_result) return;
         QStringList names;
@@ -205,9 +253,14 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
         setRunning(false);
         showMessage(tr("Fit cancelled: nothing changed."), false);
     });
-    connect(m_document, &RecipeDocument::recipeLoaded, this, &MatchDock::fillParameters);
+    connect(m_document, &RecipeDocument::recipeLoaded, this, [this]() {
+        fillParameters();
+        refreshSplitView();
+    });
     connect(m_document, &RecipeDocument::recipeChanged, this, [this](bool interactive) {
-        if (!interactive) fillParameters();
+        if (interactive) return;
+        fillParameters();
+        refreshSplitView();
     });
     setMeasurements({});
     fillParameters();
@@ -262,6 +315,7 @@ void MatchDock::rebuildMeasurementBoxes() {
     }
     m_measurement->setCurrentIndex(std::max(0, m_measurement->findText(top)));
     m_bottom->setCurrentIndex(std::max(0, m_bottom->findText(bottom)));
+    refreshSplitView();
     emit measuredChanged();
 }
 
@@ -294,24 +348,47 @@ void MatchDock::fillParameters() {
     std::map<QString, Choice> kept;
     for (int row = 0; row < m_parameters->rowCount(); ++row) {
         const auto* item = m_parameters->item(row, kColumnParameter);
-        kept[item->data(kPathRole).toString()] = {item->checkState() == Qt::Checked,
-                                                  m_parameters->item(row, kColumnLower)->text(),
-                                                  m_parameters->item(row, kColumnUpper)->text()};
+        const QString path = item->data(kPathRole).toString();
+        if (path.isEmpty()) continue;  // a group's title row
+        kept[path] = {item->checkState() == Qt::Checked, m_parameters->item(row, kColumnLower)->text(),
+                      m_parameters->item(row, kColumnUpper)->text()};
     }
+    m_parameters->clearSpans();
     m_parameters->setRowCount(0);
     if (!m_document->hasRecipe()) return;
+    // Grouped by where the field is ("basecoat > blue interference flake"):
+    // a title row per group, the field's own name in its row, so that the
+    // names stay readable in a narrow column.
     const auto paths = fit::listParameterPaths(m_document->recipe());
-    m_parameters->setRowCount(static_cast<int>(paths.size()));
-    for (std::size_t i = 0; i < paths.size(); ++i) {
-        const auto& p = paths[i];
-        const int row = static_cast<int>(i);
+    QString group;
+    for (const auto& p : paths) {
         const QString path = QString::fromStdString(p.path);
-        auto* name = new QTableWidgetItem(QString::fromStdString(p.label));
+        const QString label = QString::fromStdString(p.label);
+        const auto split = label.lastIndexOf(QStringLiteral(" > "));
+        const QString where = split < 0 ? QString() : label.left(split);
+        const QString field = split < 0 ? label : label.mid(split + 3);
+        if (where != group || m_parameters->rowCount() == 0) {
+            group = where;
+            const int title_row = m_parameters->rowCount();
+            m_parameters->insertRow(title_row);
+            auto* title = new QTableWidgetItem(where.isEmpty() ? tr("Recipe") : where);
+            title->setFlags(Qt::ItemIsEnabled);
+            QFont bold = title->font();
+            bold.setBold(true);
+            title->setFont(bold);
+            title->setToolTip(title->text());
+            m_parameters->setItem(title_row, kColumnParameter, title);
+            m_parameters->setSpan(title_row, kColumnParameter, 1, 4);
+        }
+        const int row = m_parameters->rowCount();
+        m_parameters->insertRow(row);
+        auto* name = new QTableWidgetItem(field);
         name->setData(kPathRole, path);
         name->setFlags(Qt::ItemIsEnabled | Qt::ItemIsUserCheckable | Qt::ItemIsSelectable);
         name->setToolTip(
-            tr("%1\nunit %2, allowed %3 to %4")
-                .arg(path, QString::fromUtf8(p.decl->unit.data(), static_cast<int>(p.decl->unit.size())),
+            tr("%1\n%2\nunit %3, allowed %4 to %5")
+                .arg(label, path,
+                     QString::fromUtf8(p.decl->unit.data(), static_cast<int>(p.decl->unit.size())),
                      number(p.min), number(p.max)));
         const auto old = kept.find(path);
         name->setCheckState(old != kept.end() && old->second.free ? Qt::Checked : Qt::Unchecked);
@@ -351,7 +428,7 @@ fit::FitProblem MatchDock::problem() const {
         db::addFitObservation(problem.observations, *bottom, fit::Side::Bottom);
     for (int row = 0; row < m_parameters->rowCount(); ++row) {
         const auto* item = m_parameters->item(row, kColumnParameter);
-        if (item->checkState() != Qt::Checked) continue;
+        if (item->data(kPathRole).toString().isEmpty() || item->checkState() != Qt::Checked) continue;
         fit::FreeParameter p;
         p.path = item->data(kPathRole).toString().toStdString();
         p.lower = parseBound(m_parameters->item(row, kColumnLower)->text(), p.path + " (lower bound)");
@@ -389,8 +466,14 @@ void MatchDock::cancel() { m_runner->cancel(); }
 bool MatchDock::running() const { return m_runner->running(); }
 
 void MatchDock::setRunning(bool running) {
-    m_run->setEnabled(!running);
-    m_cancel->setEnabled(running);
+    // The button about to be disabled hands its focus to the other one:
+    // Qt would give it to the next widget in the chain, and the results
+    // pane would scroll to it, taking Cancel out of view.
+    QPushButton* on = running ? m_cancel : m_run;
+    QPushButton* off = running ? m_run : m_cancel;
+    on->setEnabled(true);
+    if (off->hasFocus()) on->setFocus();
+    off->setEnabled(false);
     m_parameters->setEnabled(!running);
     m_measurement->setEnabled(!running);
     m_bottom->setEnabled(!running);
@@ -425,8 +508,10 @@ void MatchDock::showResult(std::shared_ptr<const fit::FitResult> result) {
     for (std::size_t i = 0; i < r.parameters.size(); ++i) {
         const auto& p = r.parameters[i];
         const int row = static_cast<int>(i);
-        auto* name = new QTableWidgetItem(QString::fromStdString(p.label));
-        name->setToolTip(QString::fromStdString(p.path));
+        // The field's own name (as in the parameter table); where it is, in the tooltip.
+        const QString label = QString::fromStdString(p.label);
+        auto* name = new QTableWidgetItem(label.section(QStringLiteral(" > "), -1));
+        name->setToolTip(label + "\n" + QString::fromStdString(p.path));
         m_fitted->setItem(row, 0, name);
         m_fitted->setItem(row, 1,
                           new QTableWidgetItem(number(p.value) + " " + QString::fromStdString(p.unit)));
@@ -491,6 +576,50 @@ void MatchDock::showResult(std::shared_ptr<const fit::FitResult> result) {
         m_alternatives->show();
     }
     m_accept->setEnabled(true);
+    refreshSplitView();
+}
+
+void MatchDock::refreshSplitView() {
+    const db::Measurement* m = chosen(m_measurement);
+    // The split view's pane is there for a BRDF measurement only: the other
+    // panes get its room otherwise, and give it a share back when it comes.
+    const bool split = m != nullptr && m->kind == db::MeasurementKind::Brdf;
+    if (split != m_split->isVisibleTo(this)) {
+        m_split->setVisible(split);
+        const bool across = m_splitter->orientation() == Qt::Horizontal;
+        const int extent = across ? m_splitter->width() : m_splitter->height();
+        // Side by side the sphere needs no more width than the dock's height.
+        const int sphere = across ? std::min(extent / 5, m_splitter->height()) : extent / 4;
+        if (split && extent > 0) m_splitter->setSizes({(extent - sphere) / 2, (extent - sphere) / 2, sphere});
+    }
+    if (m == nullptr) {
+        m_split->showMessage(tr("Choose a BRDF measurement for the split view of measured against fitted."));
+        return;
+    }
+    if (m->kind != db::MeasurementKind::Brdf) {
+        m_split->showMessage(tr("The split view shades a BRDF measurement; '%1' is a multi-angle reading "
+                                "(its spectra and flop path are on the plots).")
+                                 .arg(QString::fromStdString(m->name)));
+        return;
+    }
+    // The fitted recipe once this measurement has been fitted; the edited one before.
+    const bool fitted = m_result && !m_fitted_measurements.empty() && m_fitted_measurements.front() == *m;
+    if (!fitted && !m_document->hasRecipe()) {
+        m_split->showMessage(tr("Open a recipe to compare with the measurement."));
+        return;
+    }
+    m_split->shade(std::make_shared<const db::Measurement>(*m),
+                   fitted ? m_result->recipe : m_document->recipe(), fitted ? tr("fitted") : tr("recipe"));
+}
+
+void MatchDock::resizeEvent(QResizeEvent* event) {
+    QDockWidget::resizeEvent(event);
+    // Side by side where the dock is much wider than tall (a bottom tab), stacked otherwise.
+    const Qt::Orientation wanted = width() >= 3 * height() / 2 ? Qt::Horizontal : Qt::Vertical;
+    if (m_splitter->orientation() == wanted) return;
+    m_splitter->setOrientation(wanted);
+    const int extent = wanted == Qt::Horizontal ? m_splitter->width() : m_splitter->height();
+    m_splitter->setSizes({extent * 45 / 100, extent * 33 / 100, extent * 22 / 100});
 }
 
 std::optional<MultiAngleReport> MatchDock::measuredReport() const {

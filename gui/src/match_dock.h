@@ -4,7 +4,9 @@
 // below), tick the recipe fields to free with their bounds, run the fit
 // (progress, cancel, the best cost as it falls), then read measured against
 // fitted: ΔE00 per geometry, each parameter ± 1σ, what the measurement
-// cannot tell apart, other recipes that look nearly the same; and accept
+// cannot tell apart, other recipes that look nearly the same; for a BRDF
+// measurement, a sphere shaded half measured, half fitted
+// (split_sphere_view.h); and accept
 // the fitted recipe as a new version (one undoable step, main window).
 //
 // The dock holds no database: the main window gives it the measurements and
@@ -26,6 +28,7 @@ class QLabel;
 class QProgressBar;
 class QPushButton;
 class QSpinBox;
+class QSplitter;
 class QTableWidget;
 
 namespace paintlab::gui {
@@ -33,6 +36,7 @@ namespace paintlab::gui {
 class CostCurve;
 class FitRunner;
 class RecipeDocument;
+class SplitSphereView;
 
 class MatchDock : public QDockWidget {
     Q_OBJECT
@@ -77,6 +81,12 @@ public:
     QPushButton* runButton() const { return m_run; }
     QPushButton* acceptButton() const { return m_accept; }
     QComboBox* measurementBox() const { return m_measurement; }
+    // The split view of a BRDF measurement against the fitted recipe (or
+    // the edited one before a fit); its panes' splitter.
+    SplitSphereView* splitView() const { return m_split; }
+    QSplitter* panes() const { return m_splitter; }
+    // The chosen top measurement (nullptr: none).
+    const db::Measurement* chosenMeasurement() const { return chosen(m_measurement); }
 
     // The chosen top measurement's multi-angle colours as a report (for the
     // plots' measured overlay); nullopt for none or a BRDF measurement.
@@ -93,8 +103,12 @@ signals:
     void measuredChanged();
     void importRequested();
 
+protected:
+    void resizeEvent(QResizeEvent* event) override;
+
 private:
     void fillParameters();
+    void refreshSplitView();
     void rebuildMeasurementBoxes();
     void showProgress(const fit::FitProgress& progress);
     void showResult(std::shared_ptr<const fit::FitResult> result);
@@ -125,6 +139,8 @@ private:
     QTableWidget* m_geometries = nullptr;
     QLabel* m_alternatives = nullptr;
     QPushButton* m_accept = nullptr;
+    QSplitter* m_splitter = nullptr;
+    SplitSphereView* m_split = nullptr;
 };
 
 }  // namespace paintlab::gui
