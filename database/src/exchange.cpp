@@ -125,20 +125,7 @@ ImportResult importSpectra(Database& db, const std::string& text, FileFormat for
         throw InputError(source, "",
                          "spectra are imported from JSON, CSV or CGATS, not " +
                              std::string(fileFormatName(format)));
-    if (spectra.empty()) throw InputError(source, "spectra", "the file holds no spectrum");
-    ImportResult result;
-    result.kind = ContentKind::Spectra;
-    detail::Transaction transaction(db.impl().connection, detail::Transaction::Mode::Write);
-    for (const auto& s : spectra) {
-        try {
-            addNamedSpectrum(db, s.name, s.quantity, s.spectrum, s.info);
-        } catch (const InputError& e) {
-            rethrowForRecord(e, source, "spectrum '" + s.name + "'");
-        }
-        result.names.push_back(s.name);
-    }
-    transaction.commit();
-    return result;
+    return storeSpectra(db, spectra, source);
 }
 
 Measurement parseMeasurementFile(const std::filesystem::path& file, const std::string& text,
@@ -253,6 +240,24 @@ ContentKind parseContentKind(std::string_view name) {
     throw InputError("<argument>", "--kind",
                      "unknown kind '" + std::string(name) +
                          "' (ingredients, spectra, measurement or recipe)");
+}
+
+ImportResult storeSpectra(Database& db, const std::vector<NamedSpectrum>& spectra,
+                          const std::string& source) {
+    if (spectra.empty()) throw InputError(source, "spectra", "the file holds no spectrum");
+    ImportResult result;
+    result.kind = ContentKind::Spectra;
+    detail::Transaction transaction(db.impl().connection, detail::Transaction::Mode::Write);
+    for (const auto& s : spectra) {
+        try {
+            addNamedSpectrum(db, s.name, s.quantity, s.spectrum, s.info);
+        } catch (const InputError& e) {
+            rethrowForRecord(e, source, "spectrum '" + s.name + "'");
+        }
+        result.names.push_back(s.name);
+    }
+    transaction.commit();
+    return result;
 }
 
 Measurement readMeasurementFile(const std::filesystem::path& file, const ImportOptions& options) {

@@ -10,6 +10,7 @@
 #include <cctype>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <set>
 #include <system_error>
 
@@ -59,37 +60,47 @@ Head readHead(const std::filesystem::path& file) {
     return head;
 }
 
-// The importer chosen by id, extension and probe (registry.h).
-template <typename Importer, typename Offers>
-const Importer* chooseImporter(const std::vector<LoadedPlugin>& plugins, Offers offers,
-                               const std::filesystem::path& file,
-                               const std::optional<std::string>& format_id) {
-    std::vector<const Importer*> all;
-    for (const auto& loaded : plugins)
-        for (const Importer* offer : offers(*loaded.plugin)) all.push_back(offer);
+// An importer of either kind with what the choice needs.
+struct Offer {
+    const void* offer = nullptr;
+    FormatInfo info;
+    std::function<double(std::string_view, std::uintmax_t)> probe;
+};
+
+template <typename Importer>
+void addOffers(std::vector<Offer>& all, const std::vector<const Importer*>& offers) {
+    for (const Importer* offer : offers)
+        all.push_back({offer, offer->format(), [offer](std::string_view head, std::uintmax_t size) {
+                           return offer->probe(head, size);
+                       }});
+}
+
+// The offer chosen by id, extension and probe (registry.h), nullptr if none.
+const void* chooseOffer(const std::vector<Offer>& all, const std::filesystem::path& file,
+                        const std::optional<std::string>& format_id) {
     if (format_id) {
-        for (const Importer* offer : all)
-            if (offer->format().id == *format_id) return offer;
+        for (const Offer& offer : all)
+            if (offer.info.id == *format_id) return offer.offer;
         return nullptr;
     }
     const Head head = readHead(file);
-    const Importer* best = nullptr;
+    const void* best = nullptr;
     double best_confidence = -1.0;  // a claimed extension wins even when no probe recognises the content:
                                     // the importer then says what is wrong with the file
-    for (const Importer* offer : all) {
-        if (!claimsExtension(offer->format(), file)) continue;
-        const double confidence = offer->probe(head.bytes, head.size);
+    for (const Offer& offer : all) {
+        if (!claimsExtension(offer.info, file)) continue;
+        const double confidence = offer.probe(head.bytes, head.size);
         if (confidence > best_confidence) {
-            best = offer;
+            best = offer.offer;
             best_confidence = confidence;
         }
     }
     if (best != nullptr) return best;
     best_confidence = 0.5;  // without the extension, only a confident probe
-    for (const Importer* offer : all) {
-        const double confidence = offer->probe(head.bytes, head.size);
+    for (const Offer& offer : all) {
+        const double confidence = offer.probe(head.bytes, head.size);
         if (confidence > best_confidence) {
-            best = offer;
+            best = offer.offer;
             best_confidence = confidence;
         }
     }
@@ -220,14 +231,36 @@ bool Registry::add(std::unique_ptr<Plugin> plugin, const std::filesystem::path& 
 const MeasurementImporter*
 Registry::measurementImporterFor(const std::filesystem::path& file,
                                  const std::optional<std::string>& format_id) const {
-    return chooseImporter<MeasurementImporter>(
-        m_plugins, [](const Plugin& p) { return p.measurementImporters(); }, file, format_id);
+    std::vector<Offer> all;
+    for (const auto& loaded : m_plugins) addOffers(all, loaded.plugin->measurementImporters());
+    return static_cast<const MeasurementImporter*>(chooseOffer(all, file, format_id));
 }
 
 const SpectraImporter* Registry::spectraImporterFor(const std::filesystem::path& file,
                                                     const std::optional<std::string>& format_id) const {
-    return chooseImporter<SpectraImporter>(
-        m_plugins, [](const Plugin& p) { return p.spectraImporters(); }, file, format_id);
+    std::vector<Offer> all;
+    for (const auto& loaded : m_plugins) addOffers(all, loaded.plugin->spectraImporters());
+    return static_cast<const SpectraImporter*>(chooseOffer(all, file, format_id));
+}
+
+ImporterChoice Registry::importerFor(const std::filesystem::path& file,
+                                     const std::optional<std::string>& format_id) const {
+    std::vector<Offer> all;
+    for (const auto& loaded : m_plugins) addOffers(all, loaded.plugin->measurementImporters());
+    const std::size_t measurement_offers = all.size();
+    for (const auto& loaded : m_plugins) addOffers(all, loaded.plugin->spectraImporters());
+    const void* chosen = chooseOffer(all, file, format_id);
+    ImporterChoice choice;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        if (all[i].offer != chosen || chosen == nullptr) continue;
+        if (i < measurement_offers)
+            choice.measurement = static_cast<const MeasurementImporter*>(chosen);
+        else
+            choice.spectra = static_cast<const SpectraImporter*>(chosen);
+        choice.plugin = ownerOf(chosen);
+        break;
+    }
+    return choice;
 }
 
 const AppearanceExporter* Registry::exporterFor(const std::filesystem::path& file,

@@ -60,6 +60,11 @@ struct ImportResult {
 // format, bad record), DatabaseError naming the database when SQLite fails.
 ImportResult importFile(Database& db, const std::filesystem::path& file, const ImportOptions& options = {});
 
+// Stores spectra read elsewhere (a plugin's importer) in one transaction, as
+// importFile does: InputError naming source and the spectrum (an empty list,
+// a taken name), and nothing stored.
+ImportResult storeSpectra(Database& db, const std::vector<NamedSpectrum>& spectra, const std::string& source);
+
 // A measurement file (JSON or CSV, as importFile reads it) without storing
 // it: for a fit to a file. Throws InputError naming the file.
 Measurement readMeasurementFile(const std::filesystem::path& file, const ImportOptions& options = {});

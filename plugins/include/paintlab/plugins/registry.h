@@ -35,6 +35,14 @@ struct Refusal {
     std::string reason;
 };
 
+// An importer of either kind: at most one of the two is set.
+struct ImporterChoice {
+    const MeasurementImporter* measurement = nullptr;
+    const SpectraImporter* spectra = nullptr;
+    const LoadedPlugin* plugin = nullptr;  // the plugin offering it
+    bool found() const { return measurement != nullptr || spectra != nullptr; }
+};
+
 class Registry {
 public:
     // The built-in plugin only.
@@ -68,6 +76,12 @@ public:
                                                       const std::optional<std::string>& format_id = {}) const;
     const SpectraImporter* spectraImporterFor(const std::filesystem::path& file,
                                               const std::optional<std::string>& format_id = {}) const;
+    // For a file of unknown kind (`db import FILE`): the measurement or spectra
+    // importer chosen as above among the importers of both kinds, so that a
+    // content both kinds claim by extension (CGATS: spectra, or a multi-angle
+    // measurement) goes to the most confident probe.
+    ImporterChoice importerFor(const std::filesystem::path& file,
+                               const std::optional<std::string>& format_id = {}) const;
     // The exporter whose id is format_id, else the first claiming the file's extension.
     const AppearanceExporter* exporterFor(const std::filesystem::path& file,
                                           const std::optional<std::string>& format_id = {}) const;
