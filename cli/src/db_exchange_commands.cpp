@@ -185,10 +185,32 @@ int runImport(const ExchangeOptions& options) {
     return 0;
 }
 
+// The error when no exporter of the kind takes --format or the --out extension: what the registry offers.
+template <typename Offers> InputError noExporter(const ExchangeOptions& options, const std::string& kind,
+                                                 const std::vector<plugins::LoadedPlugin>& loaded,
+                                                 Offers offers) {
+    std::string list;
+    for (const auto& plugin : loaded)
+        for (const auto* offer : ((*plugin.plugin).*offers)()) {
+            const plugins::FormatInfo info = offer->format();
+            if (!list.empty()) list.append(", ");
+            list.append(info.id).append(" (");
+            for (std::size_t i = 0; i < info.extensions.size(); ++i)
+                list.append(i > 0 ? " " : "").append(info.extensions[i]);
+            list.append(")");
+        }
+    if (!options.format.empty())
+        return {"<argument>", "--format",
+                "no format '" + options.format + "' for " + kind + "; " + kind + " are exported as " + list};
+    return {options.file, "",
+            "cannot tell the format from the extension '" +
+                std::filesystem::path(options.file).extension().string() + "': " + kind +
+                " are exported as " + list + "; give --format"};
+}
+
 int runExport(const ExchangeOptions& options) {
     if (options.names.empty() == !options.all)
         throw InputError("<argument>", "NAME/--all", "give the names to export or --all, not both");
-    const db::FileFormat format = outputFormat(options);
     std::string kind = options.kind.empty() ? "ingredients" : options.kind;
     db::Database database = openCliDatabase(options.db_file, false);
     std::vector<std::string> names = options.names;
@@ -202,19 +224,36 @@ int runExport(const ExchangeOptions& options) {
             throw InputError(database.file().string(), "--kind " + kind, "no ingredient of this kind");
         kind = "ingredients";
     }
+    const plugins::Registry& registry = plugins::Registry::global();
+    const std::optional<std::string> format =
+        options.format.empty() ? std::nullopt : std::optional<std::string>(options.format);
     std::string text;
     switch (db::parseContentKind(kind)) {
-    case db::ContentKind::Ingredients:
-        text = db::exportIngredients(database, names, format);
+    case db::ContentKind::Ingredients: {
+        const auto* exporter = registry.ingredientExporterFor(options.file, format);
+        if (exporter == nullptr)
+            throw noExporter(options, kind, registry.plugins(), &plugins::Plugin::ingredientExporters);
+        text = exporter->text(db::ingredientsByName(database, names));
         break;
-    case db::ContentKind::Spectra:
-        text = db::exportSpectra(database, names, format);
+    }
+    case db::ContentKind::Spectra: {
+        const auto* exporter = registry.spectraExporterFor(options.file, format);
+        if (exporter == nullptr)
+            throw noExporter(options, kind, registry.plugins(), &plugins::Plugin::spectraExporters);
+        text = exporter->text(db::spectraByName(database, names));
         break;
-    case db::ContentKind::Measurement:
+    }
+    case db::ContentKind::Measurement: {
         if (options.names.size() != 1)
             throw InputError("<argument>", "NAME", "export one measurement at a time");
-        text = db::exportMeasurement(database, options.names.front(), format);
+        const db::Measurement m = db::measurementByName(database, options.names.front());
+        const auto* exporter = registry.measurementExporterFor(options.file, format);
+        if (exporter == nullptr)
+            throw noExporter(options, "measurements", registry.plugins(),
+                             &plugins::Plugin::measurementExporters);
+        text = exporter->text(m);
         break;
+    }
     case db::ContentKind::Recipe:
         throw InputError("<argument>", "--kind",
                          "recipes are exported with `db recipe-export NAME --out FILE.json`");

@@ -55,7 +55,10 @@ int runPlugins(bool json) {
                  {"file", loaded.file.string()},
                  {"measurement_importers", offersJson(loaded.plugin->measurementImporters())},
                  {"spectra_importers", offersJson(loaded.plugin->spectraImporters())},
-                 {"exporters", offersJson(loaded.plugin->exporters())}});
+                 {"exporters", offersJson(loaded.plugin->exporters())},
+                 {"measurement_exporters", offersJson(loaded.plugin->measurementExporters())},
+                 {"spectra_exporters", offersJson(loaded.plugin->spectraExporters())},
+                 {"ingredient_exporters", offersJson(loaded.plugin->ingredientExporters())}});
         out["refused"] = ordered_json::array();
         for (const auto& refusal : registry.refusals())
             out["refused"].push_back({{"file", refusal.file.string()}, {"reason", refusal.reason}});
@@ -71,6 +74,9 @@ int runPlugins(bool json) {
         printOffers("import measurement", loaded.plugin->measurementImporters());
         printOffers("import spectra", loaded.plugin->spectraImporters());
         printOffers("export", loaded.plugin->exporters());
+        printOffers("export measurement", loaded.plugin->measurementExporters());
+        printOffers("export spectra", loaded.plugin->spectraExporters());
+        printOffers("export ingredients", loaded.plugin->ingredientExporters());
     }
     std::cout << "Refused (" << registry.refusals().size() << "):\n";
     for (const auto& refusal : registry.refusals())

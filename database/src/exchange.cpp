@@ -284,29 +284,27 @@ ImportResult importFile(Database& db, const std::filesystem::path& file, const I
     return {};
 }
 
-std::string exportIngredients(Database& db, const std::vector<std::string>& names, FileFormat format) {
+std::vector<Ingredient> ingredientsByName(Database& db, const std::vector<std::string>& names) {
     const std::string file = db.file().string();
-    if (format != FileFormat::Json && format != FileFormat::Csv)
-        throw InputError("<argument>", "--format", "ingredients are exported as JSON or CSV");
     std::vector<Ingredient> ingredients;
     const auto all = searchIngredients(db);
     if (names.empty()) {
         for (const auto& summary : all) ingredients.push_back(readIngredient(db, summary.id));
-    } else {
-        for (const auto& name : names) {
-            bool found = false;
-            for (const auto& summary : all)
-                if (summary.name == name) {
-                    ingredients.push_back(readIngredient(db, summary.id));
-                    found = true;
-                }
-            if (!found) throw InputError(file, "ingredient '" + name + "'", "no such ingredient");
-        }
+        return ingredients;
     }
-    return format == FileFormat::Json ? ingredientsToJson(ingredients) : ingredientsToCsv(ingredients);
+    for (const auto& name : names) {
+        bool found = false;
+        for (const auto& summary : all)
+            if (summary.name == name) {
+                ingredients.push_back(readIngredient(db, summary.id));
+                found = true;
+            }
+        if (!found) throw InputError(file, "ingredient '" + name + "'", "no such ingredient");
+    }
+    return ingredients;
 }
 
-std::string exportSpectra(Database& db, const std::vector<std::string>& names, FileFormat format) {
+std::vector<NamedSpectrum> spectraByName(Database& db, const std::vector<std::string>& names) {
     const std::string file = db.file().string();
     std::vector<NamedSpectrum> spectra;
     const auto add = [&](const StoredSpectrum& s) {
@@ -314,13 +312,33 @@ std::string exportSpectra(Database& db, const std::vector<std::string>& names, F
     };
     if (names.empty()) {
         for (const auto& s : namedSpectra(db)) add(s);
-    } else {
-        for (const auto& name : names) {
-            const auto s = findNamedSpectrum(db, name);
-            if (!s) throw InputError(file, "spectrum '" + name + "'", "no such spectrum");
-            add(*s);
-        }
+        return spectra;
     }
+    for (const auto& name : names) {
+        const auto s = findNamedSpectrum(db, name);
+        if (!s) throw InputError(file, "spectrum '" + name + "'", "no such spectrum");
+        add(*s);
+    }
+    return spectra;
+}
+
+Measurement measurementByName(Database& db, std::string_view name) {
+    auto m = findMeasurement(db, name);
+    if (!m)
+        throw InputError(db.file().string(), "measurement '" + std::string(name) + "'",
+                         "no such measurement");
+    return std::move(*m);
+}
+
+std::string exportIngredients(Database& db, const std::vector<std::string>& names, FileFormat format) {
+    if (format != FileFormat::Json && format != FileFormat::Csv)
+        throw InputError("<argument>", "--format", "ingredients are exported as JSON or CSV");
+    const auto ingredients = ingredientsByName(db, names);
+    return format == FileFormat::Json ? ingredientsToJson(ingredients) : ingredientsToCsv(ingredients);
+}
+
+std::string exportSpectra(Database& db, const std::vector<std::string>& names, FileFormat format) {
+    const auto spectra = spectraByName(db, names);
     if (format == FileFormat::Json) return spectraToJson(spectra);
     if (format == FileFormat::Csv) return spectraToCsv(spectra);
     if (format == FileFormat::Cgats) return spectraToCgats(spectra);
@@ -328,12 +346,9 @@ std::string exportSpectra(Database& db, const std::vector<std::string>& names, F
 }
 
 std::string exportMeasurement(Database& db, std::string_view name, FileFormat format) {
-    const auto m = findMeasurement(db, name);
-    if (!m)
-        throw InputError(db.file().string(), "measurement '" + std::string(name) + "'",
-                         "no such measurement");
-    if (format == FileFormat::Json) return measurementToJson(*m);
-    if (format == FileFormat::Csv) return measurementToCsv(*m);
+    const Measurement m = measurementByName(db, name);
+    if (format == FileFormat::Json) return measurementToJson(m);
+    if (format == FileFormat::Csv) return measurementToCsv(m);
     throw InputError("<argument>", "--format", "measurements are exported as JSON or CSV");
 }
 

@@ -39,7 +39,35 @@ std::vector<std::string> claimedIds(const Plugin& plugin) {
         ids.push_back("measurement " + offer->format().id);
     for (const auto* offer : plugin.spectraImporters()) ids.push_back("spectra " + offer->format().id);
     for (const auto* offer : plugin.exporters()) ids.push_back("export " + offer->format().id);
+    for (const auto* offer : plugin.measurementExporters())
+        ids.push_back("measurement export " + offer->format().id);
+    for (const auto* offer : plugin.spectraExporters()) ids.push_back("spectra export " + offer->format().id);
+    for (const auto* offer : plugin.ingredientExporters())
+        ids.push_back("ingredients export " + offer->format().id);
     return ids;
+}
+
+// The content exporter for a file and --format (registry.h).
+template <typename Exporter, typename Offers>
+const Exporter* chooseContentExporter(const std::vector<LoadedPlugin>& plugins, Offers offers,
+                                      const std::filesystem::path& file,
+                                      const std::optional<std::string>& format) {
+    std::vector<const Exporter*> all;
+    for (const auto& loaded : plugins)
+        for (const Exporter* offer : offers(*loaded.plugin)) all.push_back(offer);
+    if (format) {
+        for (const Exporter* offer : all)
+            if (offer->format().id == *format) return offer;
+        const std::string extension = "." + lowerAscii(*format);
+        for (const Exporter* offer : all) {
+            const auto& extensions = offer->format().extensions;
+            if (std::find(extensions.begin(), extensions.end(), extension) != extensions.end()) return offer;
+        }
+        return nullptr;
+    }
+    for (const Exporter* offer : all)
+        if (claimsExtension(offer->format(), file)) return offer;
+    return nullptr;
 }
 
 struct Head {
@@ -272,15 +300,39 @@ const AppearanceExporter* Registry::exporterFor(const std::filesystem::path& fil
     return nullptr;
 }
 
+const MeasurementExporter* Registry::measurementExporterFor(const std::filesystem::path& file,
+                                                            const std::optional<std::string>& format) const {
+    return chooseContentExporter<MeasurementExporter>(
+        m_plugins, [](const Plugin& p) { return p.measurementExporters(); }, file, format);
+}
+
+const SpectraExporter* Registry::spectraExporterFor(const std::filesystem::path& file,
+                                                    const std::optional<std::string>& format) const {
+    return chooseContentExporter<SpectraExporter>(
+        m_plugins, [](const Plugin& p) { return p.spectraExporters(); }, file, format);
+}
+
+const IngredientExporter* Registry::ingredientExporterFor(const std::filesystem::path& file,
+                                                          const std::optional<std::string>& format) const {
+    return chooseContentExporter<IngredientExporter>(
+        m_plugins, [](const Plugin& p) { return p.ingredientExporters(); }, file, format);
+}
+
+namespace {
+
+template <typename Offer> bool offers(const std::vector<const Offer*>& list, const void* offer) {
+    return std::find(list.begin(), list.end(), offer) != list.end();
+}
+
+}  // namespace
+
 const LoadedPlugin* Registry::ownerOf(const void* offer) const {
     for (const auto& loaded : m_plugins) {
         const Plugin& p = *loaded.plugin;
-        for (const auto* o : p.measurementImporters())
-            if (o == offer) return &loaded;
-        for (const auto* o : p.spectraImporters())
-            if (o == offer) return &loaded;
-        for (const auto* o : p.exporters())
-            if (o == offer) return &loaded;
+        if (offers(p.measurementImporters(), offer) || offers(p.spectraImporters(), offer) ||
+            offers(p.exporters(), offer) || offers(p.measurementExporters(), offer) ||
+            offers(p.spectraExporters(), offer) || offers(p.ingredientExporters(), offer))
+            return &loaded;
     }
     return nullptr;
 }

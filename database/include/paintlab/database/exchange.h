@@ -69,10 +69,17 @@ ImportResult storeSpectra(Database& db, const std::vector<NamedSpectrum>& spectr
 // it: for a fit to a file. Throws InputError naming the file.
 Measurement readMeasurementFile(const std::filesystem::path& file, const ImportOptions& options = {});
 
-// Ingredients by exact name (any kind; empty names = every ingredient), as
-// JSON or CSV text. Throws InputError naming the database for a name it does not hold.
+// Ingredients by exact name (any kind; empty names = every ingredient).
+// Throws InputError naming the database for a name it does not hold.
+std::vector<Ingredient> ingredientsByName(Database& db, const std::vector<std::string>& names);
+// Named spectra by name (empty names = all); InputError as above.
+std::vector<NamedSpectrum> spectraByName(Database& db, const std::vector<std::string>& names);
+// One measurement by name; InputError naming the database if there is none.
+Measurement measurementByName(Database& db, std::string_view name);
+
+// ingredientsByName as JSON or CSV text.
 std::string exportIngredients(Database& db, const std::vector<std::string>& names, FileFormat format);
-// Named spectra (empty names = all), as JSON, CSV or CGATS.
+// spectraByName as JSON, CSV or CGATS.
 std::string exportSpectra(Database& db, const std::vector<std::string>& names, FileFormat format);
 // One measurement, as JSON or CSV.
 std::string exportMeasurement(Database& db, std::string_view name, FileFormat format);

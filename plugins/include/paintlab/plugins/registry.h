@@ -85,6 +85,15 @@ public:
     // The exporter whose id is format_id, else the first claiming the file's extension.
     const AppearanceExporter* exporterFor(const std::filesystem::path& file,
                                           const std::optional<std::string>& format_id = {}) const;
+    // The exporter of database content for `db export`: the one whose id is
+    // `format`, else the one claiming ".<format>" (`--format csv`), else (no
+    // format) the first claiming the file's extension; nullptr when none does.
+    const MeasurementExporter* measurementExporterFor(const std::filesystem::path& file,
+                                                      const std::optional<std::string>& format = {}) const;
+    const SpectraExporter* spectraExporterFor(const std::filesystem::path& file,
+                                              const std::optional<std::string>& format = {}) const;
+    const IngredientExporter* ingredientExporterFor(const std::filesystem::path& file,
+                                                    const std::optional<std::string>& format = {}) const;
     // The plugin that offers an object (for "built in or not").
     const LoadedPlugin* ownerOf(const void* offer) const;
 
