@@ -81,10 +81,12 @@ bool isDatabaseFormatName(const std::string& name) {
 // The importer of a plugin (not the built-in formats, which db::importFile
 // reads as before) that the registry picks for the file, or none: by
 // --format when it names no database format, else by extension and content,
-// among the importers of the --kind given (measurement or spectra) or of
-// both kinds. A file that cannot be read is left to db::importFile's message.
+// among the importers of the --kind given (measurement, spectra or
+// ingredients) or of all kinds. A file that cannot be read is left to db::importFile's message.
 plugins::ImporterChoice pluginImporter(const ExchangeOptions& options) {
-    if (!options.kind.empty() && options.kind != "measurement" && options.kind != "spectra") return {};
+    if (!options.kind.empty() && options.kind != "measurement" && options.kind != "spectra" &&
+        options.kind != "ingredients")
+        return {};
     if (!options.format.empty() && isDatabaseFormatName(options.format)) return {};
     std::error_code error;
     if (options.format.empty() && !std::filesystem::is_regular_file(options.file, error)) return {};
@@ -96,15 +98,18 @@ plugins::ImporterChoice pluginImporter(const ExchangeOptions& options) {
         choice.measurement = registry.measurementImporterFor(options.file, id);
     else if (options.kind == "spectra")
         choice.spectra = registry.spectraImporterFor(options.file, id);
+    else if (options.kind == "ingredients")
+        choice.ingredients = registry.ingredientImporterFor(options.file, id);
     else
         choice = registry.importerFor(options.file, id);
     if (id && !choice.found())
         throw InputError("<argument>", "--format",
                          "unknown format '" + options.format +
                              "' (csv, json, cgats, html, or a plugin's format: paintlab-cli plugins)");
-    choice.plugin = choice.measurement != nullptr ? registry.ownerOf(choice.measurement)
-                    : choice.spectra != nullptr   ? registry.ownerOf(choice.spectra)
-                                                  : nullptr;
+    choice.plugin = choice.measurement != nullptr   ? registry.ownerOf(choice.measurement)
+                    : choice.spectra != nullptr     ? registry.ownerOf(choice.spectra)
+                    : choice.ingredients != nullptr ? registry.ownerOf(choice.ingredients)
+                                                    : nullptr;
     if (choice.plugin == nullptr || choice.plugin->builtIn()) return {};
     return choice;
 }
@@ -125,6 +130,8 @@ db::ImportResult importThroughPlugin(db::Database& database, const plugins::Impo
     const plugins::ReadOptions read = readOptions(options, import);
     if (choice.spectra != nullptr)
         return db::storeSpectra(database, choice.spectra->read(options.file, read), options.file);
+    if (choice.ingredients != nullptr)
+        return db::storeIngredients(database, choice.ingredients->read(options.file, read), options.file);
     const db::Measurement m = choice.measurement->read(options.file, read);
     try {
         db::createMeasurement(database, m);

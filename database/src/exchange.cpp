@@ -89,27 +89,7 @@ ImportResult importIngredients(Database& db, const std::string& text, FileFormat
                              std::string(fileFormatName(format)));
     const auto ingredients =
         format == FileFormat::Json ? parseIngredientsJson(text, source) : parseIngredientsCsv(text, source);
-    if (ingredients.empty()) throw InputError(source, "ingredients", "the file holds no ingredient");
-    ImportResult result;
-    result.kind = ContentKind::Ingredients;
-    detail::Transaction transaction(db.impl().connection, detail::Transaction::Mode::Write);
-    for (std::size_t i = 0; i < ingredients.size(); ++i) {
-        const Ingredient& ingredient = ingredients[i];
-        const std::string record =
-            (format == FileFormat::Json ? "ingredients[" + std::to_string(i) + "] " : "") +
-            std::string(ingredientKindName(ingredient.kind())) + " '" + ingredient.name + "'";
-        for (std::size_t j = 0; j < i; ++j)
-            if (ingredients[j].name == ingredient.name && ingredients[j].kind() == ingredient.kind())
-                throw InputError(source, record, "this kind and name appear twice in the file");
-        try {
-            createIngredient(db, ingredient);
-        } catch (const InputError& e) {
-            rethrowForRecord(e, source, record);
-        }
-        result.names.push_back(ingredient.name);
-    }
-    transaction.commit();
-    return result;
+    return storeIngredients(db, ingredients, source, format == FileFormat::Json);
 }
 
 ImportResult importSpectra(Database& db, const std::string& text, FileFormat format,
@@ -240,6 +220,31 @@ ContentKind parseContentKind(std::string_view name) {
     throw InputError("<argument>", "--kind",
                      "unknown kind '" + std::string(name) +
                          "' (ingredients, spectra, measurement or recipe)");
+}
+
+ImportResult storeIngredients(Database& db, const std::vector<Ingredient>& ingredients,
+                              const std::string& source, bool indexed) {
+    if (ingredients.empty()) throw InputError(source, "ingredients", "the file holds no ingredient");
+    ImportResult result;
+    result.kind = ContentKind::Ingredients;
+    detail::Transaction transaction(db.impl().connection, detail::Transaction::Mode::Write);
+    for (std::size_t i = 0; i < ingredients.size(); ++i) {
+        const Ingredient& ingredient = ingredients[i];
+        const std::string record = (indexed ? "ingredients[" + std::to_string(i) + "] " : "") +
+                                   std::string(ingredientKindName(ingredient.kind())) + " '" +
+                                   ingredient.name + "'";
+        for (std::size_t j = 0; j < i; ++j)
+            if (ingredients[j].name == ingredient.name && ingredients[j].kind() == ingredient.kind())
+                throw InputError(source, record, "this kind and name appear twice in the file");
+        try {
+            createIngredient(db, ingredient);
+        } catch (const InputError& e) {
+            rethrowForRecord(e, source, record);
+        }
+        result.names.push_back(ingredient.name);
+    }
+    transaction.commit();
+    return result;
 }
 
 ImportResult storeSpectra(Database& db, const std::vector<NamedSpectrum>& spectra,

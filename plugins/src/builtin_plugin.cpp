@@ -33,6 +33,11 @@ FormatInfo measurementFormat(bool csv) {
     return {"measurement-json", "PaintLab measurement JSON (multi-angle or BRDF)", {".json"}};
 }
 
+FormatInfo ingredientFormat(bool csv) {
+    if (csv) return {"ingredients-csv", "ingredients CSV (one record per spectrum sample)", {".csv"}};
+    return {"ingredients-json", "PaintLab ingredients JSON", {".json"}};
+}
+
 FormatInfo spectraFormat(db::FileFormat format) {
     switch (format) {
     case db::FileFormat::Json:
@@ -101,6 +106,28 @@ private:
     db::FileFormat m_format;
 };
 
+class IngredientFileImporter final : public IngredientImporter {
+public:
+    explicit IngredientFileImporter(bool csv) : m_csv(csv) {}
+    FormatInfo format() const override { return ingredientFormat(m_csv); }
+    double probe(std::string_view head, std::uintmax_t /*size*/) const override {
+        if (!m_csv) return head.find("\"paintlab-ingredients\"") != std::string_view::npos ? 0.9 : 0.0;
+        const std::string_view line = firstLine(head);
+        return line.find("kind") != std::string_view::npos && line.find("spectrum") != std::string_view::npos
+                   ? 0.8
+                   : 0.0;
+    }
+    std::vector<db::Ingredient> read(const std::filesystem::path& file,
+                                     const ReadOptions& /*options*/) const override {
+        const std::string text = jsonio::readBoundedTextFile(file, kMaxTextBytes);
+        return m_csv ? db::parseIngredientsCsv(text, file.string())
+                     : db::parseIngredientsJson(text, file.string());
+    }
+
+private:
+    bool m_csv;
+};
+
 class BrdfTableExporter final : public AppearanceExporter {
 public:
     explicit BrdfTableExporter(bool csv) : m_csv(csv) {}
@@ -148,10 +175,7 @@ private:
 class IngredientFileExporter final : public IngredientExporter {
 public:
     explicit IngredientFileExporter(bool csv) : m_csv(csv) {}
-    FormatInfo format() const override {
-        if (m_csv) return {"ingredients-csv", "ingredients CSV (one record per spectrum sample)", {".csv"}};
-        return {"ingredients-json", "PaintLab ingredients JSON", {".json"}};
-    }
+    FormatInfo format() const override { return ingredientFormat(m_csv); }
     std::string text(const std::vector<db::Ingredient>& ingredients) const override {
         return m_csv ? db::ingredientsToCsv(ingredients) : db::ingredientsToJson(ingredients);
     }
@@ -169,6 +193,9 @@ public:
     }
     std::vector<const SpectraImporter*> spectraImporters() const override {
         return {&m_spectra_json, &m_spectra_csv, &m_spectra_cgats};
+    }
+    std::vector<const IngredientImporter*> ingredientImporters() const override {
+        return {&m_ingredients_json, &m_ingredients_csv};
     }
     std::vector<const AppearanceExporter*> exporters() const override {
         return {&m_table_json, &m_table_csv};
@@ -189,6 +216,8 @@ private:
     SpectraFileImporter m_spectra_json{db::FileFormat::Json};
     SpectraFileImporter m_spectra_csv{db::FileFormat::Csv};
     SpectraFileImporter m_spectra_cgats{db::FileFormat::Cgats};
+    IngredientFileImporter m_ingredients_json{false};
+    IngredientFileImporter m_ingredients_csv{true};
     BrdfTableExporter m_table_json{false};
     BrdfTableExporter m_table_csv{true};
     MeasurementFileExporter m_measurement_out_json{false};

@@ -2,7 +2,9 @@
 // has never heard of, so the tests can show `db export` and `db import`
 // choosing them from the registry: a measurement exporter (.tsv: geometry
 // and CIELAB per line), an ingredient exporter (.names: one name per line)
-// and a spectra importer (.tsv: "name<TAB>wavelength:value ..." per line).
+// a spectra importer (.tsv: "name<TAB>wavelength:value ..." per line) and an
+// ingredient importer (.ingr: PaintLab's ingredient JSON under another name).
+#include "paintlab/database/ingredient_json.h"
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/io/number_format.h"
 #include "paintlab/plugins/plugin.h"
@@ -77,11 +79,29 @@ public:
     }
 };
 
+class IngredientsIngr final : public plugins::IngredientImporter {
+public:
+    plugins::FormatInfo format() const override {
+        return {"ingredients-ingr", "ingredient JSON named .ingr (test)", {".ingr"}};
+    }
+    double probe(std::string_view /*head*/, std::uintmax_t /*size*/) const override { return 0.0; }
+    std::vector<db::Ingredient> read(const std::filesystem::path& file,
+                                     const plugins::ReadOptions& /*options*/) const override {
+        std::ifstream in(file);
+        std::stringstream text;
+        text << in.rdbuf();
+        return db::parseIngredientsJson(text.str(), file.string());
+    }
+};
+
 class TsvPlugin final : public plugins::Plugin {
 public:
     std::string name() const override { return "tsv-test"; }
     std::string version() const override { return "0.1"; }
     std::vector<const plugins::SpectraImporter*> spectraImporters() const override { return {&m_spectra}; }
+    std::vector<const plugins::IngredientImporter*> ingredientImporters() const override {
+        return {&m_ingredients};
+    }
     std::vector<const plugins::MeasurementExporter*> measurementExporters() const override {
         return {&m_measurement};
     }
@@ -93,6 +113,7 @@ private:
     SpectraTsv m_spectra;
     MeasurementTsv m_measurement;
     IngredientNames m_names;
+    IngredientsIngr m_ingredients;
 };
 
 }  // namespace

@@ -60,6 +60,12 @@ struct ImportResult {
 // format, bad record), DatabaseError naming the database when SQLite fails.
 ImportResult importFile(Database& db, const std::filesystem::path& file, const ImportOptions& options = {});
 
+// Stores ingredients read elsewhere (a plugin's importer) in one transaction,
+// as importFile does; records are named "ingredients[i] kind 'name'" when
+// `indexed`, else "kind 'name'". InputError naming source and the record
+// (an empty list, a kind and name twice, a taken name); nothing stored then.
+ImportResult storeIngredients(Database& db, const std::vector<Ingredient>& ingredients,
+                              const std::string& source, bool indexed = true);
 // Stores spectra read elsewhere (a plugin's importer) in one transaction, as
 // importFile does: InputError naming source and the spectrum (an empty list,
 // a taken name), and nothing stored.

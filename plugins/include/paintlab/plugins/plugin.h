@@ -32,7 +32,7 @@
 
 namespace paintlab::plugins {
 
-// 2: exporters of database content (measurements, spectra, ingredients).
+// 2: exporters of database content (measurements, spectra, ingredients), ingredient importers.
 inline constexpr int kApiVersion = 2;
 
 // How many leading bytes of a file a probe sees.
@@ -74,6 +74,16 @@ public:
     virtual double probe(std::string_view head, std::uintmax_t size) const = 0;
     virtual std::vector<db::NamedSpectrum> read(const std::filesystem::path& file,
                                                 const ReadOptions& options) const = 0;
+};
+
+// Reads ingredients (binders, pigments, flakes, substrates with their data) from a file.
+class IngredientImporter {
+public:
+    virtual ~IngredientImporter() = default;
+    virtual FormatInfo format() const = 0;
+    virtual double probe(std::string_view head, std::uintmax_t size) const = 0;
+    virtual std::vector<db::Ingredient> read(const std::filesystem::path& file,
+                                             const ReadOptions& options) const = 0;
 };
 
 struct ExportOptions {
@@ -126,6 +136,7 @@ public:
     virtual std::string version() const = 0;  // the plugin's own version, "1.0.0"
     virtual std::vector<const MeasurementImporter*> measurementImporters() const { return {}; }
     virtual std::vector<const SpectraImporter*> spectraImporters() const { return {}; }
+    virtual std::vector<const IngredientImporter*> ingredientImporters() const { return {}; }
     virtual std::vector<const AppearanceExporter*> exporters() const { return {}; }
     virtual std::vector<const MeasurementExporter*> measurementExporters() const { return {}; }
     virtual std::vector<const SpectraExporter*> spectraExporters() const { return {}; }
