@@ -78,37 +78,61 @@ bool isDatabaseFormatName(const std::string& name) {
     }
 }
 
-// The measurement importer of a plugin (not the built-in formats, which
-// db::importFile reads as before) that the registry picks for the file, or
-// nullptr: by --format when it names no database format, else by extension
-// and content. A file that cannot be read is left to db::importFile's message.
-const plugins::MeasurementImporter* pluginImporter(const ExchangeOptions& options) {
-    if (!options.kind.empty() && options.kind != "measurement") return nullptr;
-    if (!options.format.empty() && isDatabaseFormatName(options.format)) return nullptr;
+// The importer of a plugin (not the built-in formats, which db::importFile
+// reads as before) that the registry picks for the file, or none: by
+// --format when it names no database format, else by extension and content,
+// among the importers of the --kind given (measurement, spectra or
+// ingredients) or of all kinds. A file that cannot be read is left to db::importFile's message.
+plugins::ImporterChoice pluginImporter(const ExchangeOptions& options) {
+    if (!options.kind.empty() && options.kind != "measurement" && options.kind != "spectra" &&
+        options.kind != "ingredients")
+        return {};
+    if (!options.format.empty() && isDatabaseFormatName(options.format)) return {};
     std::error_code error;
-    if (options.format.empty() && !std::filesystem::is_regular_file(options.file, error)) return nullptr;
+    if (options.format.empty() && !std::filesystem::is_regular_file(options.file, error)) return {};
     const plugins::Registry& registry = plugins::Registry::global();
     const std::optional<std::string> id =
         options.format.empty() ? std::nullopt : std::optional<std::string>(options.format);
-    const plugins::MeasurementImporter* importer = registry.measurementImporterFor(options.file, id);
-    if (id && importer == nullptr)
+    plugins::ImporterChoice choice;
+    if (options.kind == "measurement")
+        choice.measurement = registry.measurementImporterFor(options.file, id);
+    else if (options.kind == "spectra")
+        choice.spectra = registry.spectraImporterFor(options.file, id);
+    else if (options.kind == "ingredients")
+        choice.ingredients = registry.ingredientImporterFor(options.file, id);
+    else
+        choice = registry.importerFor(options.file, id);
+    if (id && !choice.found())
         throw InputError("<argument>", "--format",
                          "unknown format '" + options.format +
                              "' (csv, json, cgats, html, or a plugin's format: paintlab-cli plugins)");
-    const plugins::LoadedPlugin* owner = importer != nullptr ? registry.ownerOf(importer) : nullptr;
-    return owner != nullptr && !owner->builtIn() ? importer : nullptr;
+    choice.plugin = choice.measurement != nullptr   ? registry.ownerOf(choice.measurement)
+                    : choice.spectra != nullptr     ? registry.ownerOf(choice.spectra)
+                    : choice.ingredients != nullptr ? registry.ownerOf(choice.ingredients)
+                                                    : nullptr;
+    if (choice.plugin == nullptr || choice.plugin->builtIn()) return {};
+    return choice;
 }
 
-// Reads the whole file through the plugin, then stores it in one transaction.
-db::ImportResult importThroughPlugin(db::Database& database, const plugins::MeasurementImporter& importer,
-                                     const ExchangeOptions& options, const db::ImportOptions& import) {
+plugins::ReadOptions readOptions(const ExchangeOptions& options, const db::ImportOptions& import) {
     if (options.samples && *options.samples == 0)
         throw InputError("<argument>", "--samples", "must be at least 1");
     plugins::ReadOptions read;
     read.description = import.measurement;
     read.max_samples = options.samples.value_or(0);
     read.cgats = import.cgats;
-    const db::Measurement m = importer.read(options.file, read);
+    return read;
+}
+
+// Reads the whole file through the plugin, then stores it in one transaction.
+db::ImportResult importThroughPlugin(db::Database& database, const plugins::ImporterChoice& choice,
+                                     const ExchangeOptions& options, const db::ImportOptions& import) {
+    const plugins::ReadOptions read = readOptions(options, import);
+    if (choice.spectra != nullptr)
+        return db::storeSpectra(database, choice.spectra->read(options.file, read), options.file);
+    if (choice.ingredients != nullptr)
+        return db::storeIngredients(database, choice.ingredients->read(options.file, read), options.file);
+    const db::Measurement m = choice.measurement->read(options.file, read);
     try {
         db::createMeasurement(database, m);
     } catch (const InputError& e) {
@@ -123,8 +147,8 @@ db::ImportResult importThroughPlugin(db::Database& database, const plugins::Meas
 
 int runImport(const ExchangeOptions& options) {
     db::ImportOptions import;
-    const plugins::MeasurementImporter* plugin = pluginImporter(options);
-    if (!options.format.empty() && plugin == nullptr) import.format = db::parseFileFormat(options.format);
+    const plugins::ImporterChoice plugin = pluginImporter(options);
+    if (!options.format.empty() && !plugin.found()) import.format = db::parseFileFormat(options.format);
     if (!options.kind.empty()) import.kind = db::parseContentKind(options.kind);
     import.cgats.quantity = options.quantity;
     import.cgats.unit = options.unit;
@@ -140,8 +164,8 @@ int runImport(const ExchangeOptions& options) {
     import.author = defaultAuthor(options.author);
     import.note = options.note;
     db::Database database = openCliDatabase(options.db_file, false);
-    const auto result = plugin != nullptr ? importThroughPlugin(database, *plugin, options, import)
-                                          : db::importFile(database, options.file, import);
+    const auto result = plugin.found() ? importThroughPlugin(database, plugin, options, import)
+                                       : db::importFile(database, options.file, import);
     for (const auto& missing : result.unlinked)
         std::cerr << "warning: " << options.file << ": " << missing
                   << ": not in the database; saved with the recipe's own data, unlinked\n";
@@ -168,10 +192,32 @@ int runImport(const ExchangeOptions& options) {
     return 0;
 }
 
+// The error when no exporter of the kind takes --format or the --out extension: what the registry offers.
+template <typename Offers> InputError noExporter(const ExchangeOptions& options, const std::string& kind,
+                                                 const std::vector<plugins::LoadedPlugin>& loaded,
+                                                 Offers offers) {
+    std::string list;
+    for (const auto& plugin : loaded)
+        for (const auto* offer : ((*plugin.plugin).*offers)()) {
+            const plugins::FormatInfo info = offer->format();
+            if (!list.empty()) list.append(", ");
+            list.append(info.id).append(" (");
+            for (std::size_t i = 0; i < info.extensions.size(); ++i)
+                list.append(i > 0 ? " " : "").append(info.extensions[i]);
+            list.append(")");
+        }
+    if (!options.format.empty())
+        return {"<argument>", "--format",
+                "no format '" + options.format + "' for " + kind + "; " + kind + " are exported as " + list};
+    return {options.file, "",
+            "cannot tell the format from the extension '" +
+                std::filesystem::path(options.file).extension().string() + "': " + kind +
+                " are exported as " + list + "; give --format"};
+}
+
 int runExport(const ExchangeOptions& options) {
     if (options.names.empty() == !options.all)
         throw InputError("<argument>", "NAME/--all", "give the names to export or --all, not both");
-    const db::FileFormat format = outputFormat(options);
     std::string kind = options.kind.empty() ? "ingredients" : options.kind;
     db::Database database = openCliDatabase(options.db_file, false);
     std::vector<std::string> names = options.names;
@@ -185,19 +231,36 @@ int runExport(const ExchangeOptions& options) {
             throw InputError(database.file().string(), "--kind " + kind, "no ingredient of this kind");
         kind = "ingredients";
     }
+    const plugins::Registry& registry = plugins::Registry::global();
+    const std::optional<std::string> format =
+        options.format.empty() ? std::nullopt : std::optional<std::string>(options.format);
     std::string text;
     switch (db::parseContentKind(kind)) {
-    case db::ContentKind::Ingredients:
-        text = db::exportIngredients(database, names, format);
+    case db::ContentKind::Ingredients: {
+        const auto* exporter = registry.ingredientExporterFor(options.file, format);
+        if (exporter == nullptr)
+            throw noExporter(options, kind, registry.plugins(), &plugins::Plugin::ingredientExporters);
+        text = exporter->text(db::ingredientsByName(database, names));
         break;
-    case db::ContentKind::Spectra:
-        text = db::exportSpectra(database, names, format);
+    }
+    case db::ContentKind::Spectra: {
+        const auto* exporter = registry.spectraExporterFor(options.file, format);
+        if (exporter == nullptr)
+            throw noExporter(options, kind, registry.plugins(), &plugins::Plugin::spectraExporters);
+        text = exporter->text(db::spectraByName(database, names));
         break;
-    case db::ContentKind::Measurement:
+    }
+    case db::ContentKind::Measurement: {
         if (options.names.size() != 1)
             throw InputError("<argument>", "NAME", "export one measurement at a time");
-        text = db::exportMeasurement(database, options.names.front(), format);
+        const db::Measurement m = db::measurementByName(database, options.names.front());
+        const auto* exporter = registry.measurementExporterFor(options.file, format);
+        if (exporter == nullptr)
+            throw noExporter(options, "measurements", registry.plugins(),
+                             &plugins::Plugin::measurementExporters);
+        text = exporter->text(m);
         break;
+    }
     case db::ContentKind::Recipe:
         throw InputError("<argument>", "--kind",
                          "recipes are exported with `db recipe-export NAME --out FILE.json`");
@@ -329,12 +392,15 @@ void addImportOptions(CLI::App& command, ExchangeOptions& o) {
                        "csv, json, cgats or a plugin's format id such as merl-binary (default: from the "
                        "extension and content; paintlab-cli plugins lists them)");
     command.add_option("--quantity", o.quantity, "CGATS spectra: what the values are (default reflectance)");
-    command.add_option("--unit", o.unit, "CGATS spectra: unit of the values (1 or %)");
+    command.add_option("--unit", o.unit,
+                       "CGATS spectra and multi-angle CGATS: unit of the spectral values (1 or %)");
     command.add_option("--source", o.source, "Source of the data (instrument, reference)");
     command.add_option("--name", o.name, "Measurement CSV: its name (default: the file stem)");
     command.add_option("--instrument", o.instrument, "Measurement CSV: the instrument");
     command.add_option("--geometry", o.geometry, "Measurement CSV: the geometry description");
-    command.add_option("--sample", o.sample, "Measurement CSV: the panel measured");
+    command.add_option(
+        "--sample", o.sample,
+        "Measurement CSV: the panel measured (a multi-angle CGATS file of several panels: the one to read)");
     command.add_option("--measured-at", o.measured_at, "Measurement CSV: date (ISO 8601)");
     command.add_option("--illuminant", o.illuminant, "Measurement CSV: D65, D50 or A (default D65)");
     command.add_option("--observer", o.observer, "Measurement CSV: 2deg or 10deg (default 10deg)");

@@ -24,7 +24,9 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <charconv>
 #include <chrono>
 #include <csignal>
@@ -129,7 +131,16 @@ NamedMeasurement readDbMeasurement(db::Database& database, const std::string& na
 }
 
 bool looksLikeFile(const std::string& text) {
-    return fs::exists(text) || text.ends_with(".csv") || text.ends_with(".json") || text.ends_with(".binary");
+    if (fs::exists(text)) return true;
+    // A name ending in an extension some measurement importer claims (the registry's, not a list here).
+    std::string extension = fs::path(text).extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (const auto& loaded : plugins::Registry::global().plugins())
+        for (const auto* offer : loaded.plugin->measurementImporters()) {
+            const auto extensions = offer->format().extensions;
+            if (std::find(extensions.begin(), extensions.end(), extension) != extensions.end()) return true;
+        }
+    return false;
 }
 
 std::string defaultAuthor() {

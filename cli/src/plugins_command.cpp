@@ -55,10 +55,19 @@ int runPlugins(bool json) {
                  {"file", loaded.file.string()},
                  {"measurement_importers", offersJson(loaded.plugin->measurementImporters())},
                  {"spectra_importers", offersJson(loaded.plugin->spectraImporters())},
-                 {"exporters", offersJson(loaded.plugin->exporters())}});
+                 {"ingredient_importers", offersJson(loaded.plugin->ingredientImporters())},
+                 {"exporters", offersJson(loaded.plugin->exporters())},
+                 {"measurement_exporters", offersJson(loaded.plugin->measurementExporters())},
+                 {"spectra_exporters", offersJson(loaded.plugin->spectraExporters())},
+                 {"ingredient_exporters", offersJson(loaded.plugin->ingredientExporters())}});
         out["refused"] = ordered_json::array();
-        for (const auto& refusal : registry.refusals())
-            out["refused"].push_back({{"file", refusal.file.string()}, {"reason", refusal.reason}});
+        for (const auto& refusal : registry.refusals()) {
+            ordered_json entry{{"file", refusal.file.string()}, {"reason", refusal.reason}};
+            // What the plugin claims, from its metadata sidecar (read without loading it).
+            if (refusal.metadata)
+                entry["metadata"] = ordered_json::parse(plugins::pluginMetadataJson(*refusal.metadata));
+            out["refused"].push_back(std::move(entry));
+        }
         std::cout << out.dump(2) << '\n';
         return 0;
     }
@@ -70,11 +79,21 @@ int runPlugins(bool json) {
                   << (loaded.builtIn() ? std::string("built in") : loaded.file.string()) << ")\n";
         printOffers("import measurement", loaded.plugin->measurementImporters());
         printOffers("import spectra", loaded.plugin->spectraImporters());
+        printOffers("import ingredients", loaded.plugin->ingredientImporters());
         printOffers("export", loaded.plugin->exporters());
+        printOffers("export measurement", loaded.plugin->measurementExporters());
+        printOffers("export spectra", loaded.plugin->spectraExporters());
+        printOffers("export ingredients", loaded.plugin->ingredientExporters());
     }
     std::cout << "Refused (" << registry.refusals().size() << "):\n";
-    for (const auto& refusal : registry.refusals())
+    for (const auto& refusal : registry.refusals()) {
         std::cout << "  " << refusal.file.string() << ": " << refusal.reason << '\n';
+        if (!refusal.metadata) continue;
+        std::cout << "    claims (metadata): " << refusal.metadata->name << ' ' << refusal.metadata->version;
+        for (const auto& claim : refusal.metadata->formats)
+            std::cout << "; " << claim.kind << ' ' << claim.id;
+        std::cout << '\n';
+    }
     return 0;
 }
 

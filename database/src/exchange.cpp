@@ -89,27 +89,7 @@ ImportResult importIngredients(Database& db, const std::string& text, FileFormat
                              std::string(fileFormatName(format)));
     const auto ingredients =
         format == FileFormat::Json ? parseIngredientsJson(text, source) : parseIngredientsCsv(text, source);
-    if (ingredients.empty()) throw InputError(source, "ingredients", "the file holds no ingredient");
-    ImportResult result;
-    result.kind = ContentKind::Ingredients;
-    detail::Transaction transaction(db.impl().connection, detail::Transaction::Mode::Write);
-    for (std::size_t i = 0; i < ingredients.size(); ++i) {
-        const Ingredient& ingredient = ingredients[i];
-        const std::string record =
-            (format == FileFormat::Json ? "ingredients[" + std::to_string(i) + "] " : "") +
-            std::string(ingredientKindName(ingredient.kind())) + " '" + ingredient.name + "'";
-        for (std::size_t j = 0; j < i; ++j)
-            if (ingredients[j].name == ingredient.name && ingredients[j].kind() == ingredient.kind())
-                throw InputError(source, record, "this kind and name appear twice in the file");
-        try {
-            createIngredient(db, ingredient);
-        } catch (const InputError& e) {
-            rethrowForRecord(e, source, record);
-        }
-        result.names.push_back(ingredient.name);
-    }
-    transaction.commit();
-    return result;
+    return storeIngredients(db, ingredients, source, format == FileFormat::Json);
 }
 
 ImportResult importSpectra(Database& db, const std::string& text, FileFormat format,
@@ -125,20 +105,7 @@ ImportResult importSpectra(Database& db, const std::string& text, FileFormat for
         throw InputError(source, "",
                          "spectra are imported from JSON, CSV or CGATS, not " +
                              std::string(fileFormatName(format)));
-    if (spectra.empty()) throw InputError(source, "spectra", "the file holds no spectrum");
-    ImportResult result;
-    result.kind = ContentKind::Spectra;
-    detail::Transaction transaction(db.impl().connection, detail::Transaction::Mode::Write);
-    for (const auto& s : spectra) {
-        try {
-            addNamedSpectrum(db, s.name, s.quantity, s.spectrum, s.info);
-        } catch (const InputError& e) {
-            rethrowForRecord(e, source, "spectrum '" + s.name + "'");
-        }
-        result.names.push_back(s.name);
-    }
-    transaction.commit();
-    return result;
+    return storeSpectra(db, spectra, source);
 }
 
 Measurement parseMeasurementFile(const std::filesystem::path& file, const std::string& text,
@@ -255,6 +222,49 @@ ContentKind parseContentKind(std::string_view name) {
                          "' (ingredients, spectra, measurement or recipe)");
 }
 
+ImportResult storeIngredients(Database& db, const std::vector<Ingredient>& ingredients,
+                              const std::string& source, bool indexed) {
+    if (ingredients.empty()) throw InputError(source, "ingredients", "the file holds no ingredient");
+    ImportResult result;
+    result.kind = ContentKind::Ingredients;
+    detail::Transaction transaction(db.impl().connection, detail::Transaction::Mode::Write);
+    for (std::size_t i = 0; i < ingredients.size(); ++i) {
+        const Ingredient& ingredient = ingredients[i];
+        const std::string record = (indexed ? "ingredients[" + std::to_string(i) + "] " : "") +
+                                   std::string(ingredientKindName(ingredient.kind())) + " '" +
+                                   ingredient.name + "'";
+        for (std::size_t j = 0; j < i; ++j)
+            if (ingredients[j].name == ingredient.name && ingredients[j].kind() == ingredient.kind())
+                throw InputError(source, record, "this kind and name appear twice in the file");
+        try {
+            createIngredient(db, ingredient);
+        } catch (const InputError& e) {
+            rethrowForRecord(e, source, record);
+        }
+        result.names.push_back(ingredient.name);
+    }
+    transaction.commit();
+    return result;
+}
+
+ImportResult storeSpectra(Database& db, const std::vector<NamedSpectrum>& spectra,
+                          const std::string& source) {
+    if (spectra.empty()) throw InputError(source, "spectra", "the file holds no spectrum");
+    ImportResult result;
+    result.kind = ContentKind::Spectra;
+    detail::Transaction transaction(db.impl().connection, detail::Transaction::Mode::Write);
+    for (const auto& s : spectra) {
+        try {
+            addNamedSpectrum(db, s.name, s.quantity, s.spectrum, s.info);
+        } catch (const InputError& e) {
+            rethrowForRecord(e, source, "spectrum '" + s.name + "'");
+        }
+        result.names.push_back(s.name);
+    }
+    transaction.commit();
+    return result;
+}
+
 Measurement readMeasurementFile(const std::filesystem::path& file, const ImportOptions& options) {
     const FileFormat format = options.format ? *options.format : formatOfFile(file);
     const std::string text = jsonio::readBoundedTextFile(file, kMaxImportBytes);
@@ -279,29 +289,27 @@ ImportResult importFile(Database& db, const std::filesystem::path& file, const I
     return {};
 }
 
-std::string exportIngredients(Database& db, const std::vector<std::string>& names, FileFormat format) {
+std::vector<Ingredient> ingredientsByName(Database& db, const std::vector<std::string>& names) {
     const std::string file = db.file().string();
-    if (format != FileFormat::Json && format != FileFormat::Csv)
-        throw InputError("<argument>", "--format", "ingredients are exported as JSON or CSV");
     std::vector<Ingredient> ingredients;
     const auto all = searchIngredients(db);
     if (names.empty()) {
         for (const auto& summary : all) ingredients.push_back(readIngredient(db, summary.id));
-    } else {
-        for (const auto& name : names) {
-            bool found = false;
-            for (const auto& summary : all)
-                if (summary.name == name) {
-                    ingredients.push_back(readIngredient(db, summary.id));
-                    found = true;
-                }
-            if (!found) throw InputError(file, "ingredient '" + name + "'", "no such ingredient");
-        }
+        return ingredients;
     }
-    return format == FileFormat::Json ? ingredientsToJson(ingredients) : ingredientsToCsv(ingredients);
+    for (const auto& name : names) {
+        bool found = false;
+        for (const auto& summary : all)
+            if (summary.name == name) {
+                ingredients.push_back(readIngredient(db, summary.id));
+                found = true;
+            }
+        if (!found) throw InputError(file, "ingredient '" + name + "'", "no such ingredient");
+    }
+    return ingredients;
 }
 
-std::string exportSpectra(Database& db, const std::vector<std::string>& names, FileFormat format) {
+std::vector<NamedSpectrum> spectraByName(Database& db, const std::vector<std::string>& names) {
     const std::string file = db.file().string();
     std::vector<NamedSpectrum> spectra;
     const auto add = [&](const StoredSpectrum& s) {
@@ -309,13 +317,33 @@ std::string exportSpectra(Database& db, const std::vector<std::string>& names, F
     };
     if (names.empty()) {
         for (const auto& s : namedSpectra(db)) add(s);
-    } else {
-        for (const auto& name : names) {
-            const auto s = findNamedSpectrum(db, name);
-            if (!s) throw InputError(file, "spectrum '" + name + "'", "no such spectrum");
-            add(*s);
-        }
+        return spectra;
     }
+    for (const auto& name : names) {
+        const auto s = findNamedSpectrum(db, name);
+        if (!s) throw InputError(file, "spectrum '" + name + "'", "no such spectrum");
+        add(*s);
+    }
+    return spectra;
+}
+
+Measurement measurementByName(Database& db, std::string_view name) {
+    auto m = findMeasurement(db, name);
+    if (!m)
+        throw InputError(db.file().string(), "measurement '" + std::string(name) + "'",
+                         "no such measurement");
+    return std::move(*m);
+}
+
+std::string exportIngredients(Database& db, const std::vector<std::string>& names, FileFormat format) {
+    if (format != FileFormat::Json && format != FileFormat::Csv)
+        throw InputError("<argument>", "--format", "ingredients are exported as JSON or CSV");
+    const auto ingredients = ingredientsByName(db, names);
+    return format == FileFormat::Json ? ingredientsToJson(ingredients) : ingredientsToCsv(ingredients);
+}
+
+std::string exportSpectra(Database& db, const std::vector<std::string>& names, FileFormat format) {
+    const auto spectra = spectraByName(db, names);
     if (format == FileFormat::Json) return spectraToJson(spectra);
     if (format == FileFormat::Csv) return spectraToCsv(spectra);
     if (format == FileFormat::Cgats) return spectraToCgats(spectra);
@@ -323,12 +351,9 @@ std::string exportSpectra(Database& db, const std::vector<std::string>& names, F
 }
 
 std::string exportMeasurement(Database& db, std::string_view name, FileFormat format) {
-    const auto m = findMeasurement(db, name);
-    if (!m)
-        throw InputError(db.file().string(), "measurement '" + std::string(name) + "'",
-                         "no such measurement");
-    if (format == FileFormat::Json) return measurementToJson(*m);
-    if (format == FileFormat::Csv) return measurementToCsv(*m);
+    const Measurement m = measurementByName(db, name);
+    if (format == FileFormat::Json) return measurementToJson(m);
+    if (format == FileFormat::Csv) return measurementToCsv(m);
     throw InputError("<argument>", "--format", "measurements are exported as JSON or CSV");
 }
 

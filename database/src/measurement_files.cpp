@@ -152,20 +152,6 @@ std::optional<double> wavelengthColumn(const std::string& column) {
     return value;
 }
 
-// "45as15", "45as-15": illumination and aspecular angle, in degrees.
-bool parseGeometry(const std::string& text, double& illumination, double& aspecular) {
-    const auto as = text.find("as");
-    if (as == std::string::npos || as == 0) return false;
-    const auto number = [](std::string_view part, double& out) {
-        if (!part.empty() && part.front() == '+') part.remove_prefix(1);
-        const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), out);
-        return !part.empty() && error == std::errc() && end == part.data() + part.size() &&
-               std::isfinite(out);
-    };
-    return number(std::string_view(text).substr(0, as), illumination) &&
-           number(std::string_view(text).substr(as + 2), aspecular);
-}
-
 std::string firstColumn(const CsvTable& table, std::initializer_list<std::string_view> names) {
     for (const auto name : names)
         if (table.column(name)) return std::string(name);
@@ -248,11 +234,18 @@ Measurement parseMeasurementCsv(std::string_view text, const std::string& source
         for (const auto& record : table.records()) {
             MultiAngleReading reading;
             if (by_geometry && !table.field(record, "geometry").empty()) {
-                if (!parseGeometry(table.field(record, "geometry"), reading.illumination_deg,
-                                   reading.aspecular_deg))
+                const std::string& name = table.field(record, "geometry");
+                const auto geometry = parseMultiAngleGeometry(name);
+                if (!geometry)
                     throw InputError(source, CsvTable::where(record, "geometry"),
-                                     "'" + table.field(record, "geometry") +
-                                         "' is not a geometry like 45as15 or 45as-15");
+                                     "'" + name + "' is not a geometry like 45as15 or 45as-15");
+                if (geometry->azimuth_deg != 0.0)
+                    throw InputError(source, CsvTable::where(record, "geometry"),
+                                     "'" + name +
+                                         "' is out of the plane of incidence; a multi-angle measurement "
+                                         "holds in-plane geometries only");
+                reading.illumination_deg = geometry->illumination_deg;
+                reading.aspecular_deg = geometry->aspecular_deg;
             } else {
                 reading.aspecular_deg = table.requiredNumber(record, "aspecular_deg");
                 reading.illumination_deg = table.number(record, "illumination_deg").value_or(45.0);

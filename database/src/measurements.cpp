@@ -11,6 +11,8 @@
 #include "paintlab/engine/fast_model/brdf_colour.h"
 #include "paintlab/engine/io/number_format.h"
 
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <span>
 
@@ -100,6 +102,66 @@ void requireReflectance(const MultiAngleReading& r, std::size_t wavelengths, con
 }
 
 }  // namespace
+
+namespace {
+
+// A signed decimal number as geometry names write it: "-15", "+15", "_45",
+// "minus15" (the last two for software that keeps '-' out of identifiers).
+std::optional<double> geometryNumber(std::string_view text) {
+    bool negative = false;
+    if (text.starts_with("minus")) {
+        negative = true;
+        text.remove_prefix(5);
+    } else if (!text.empty() && (text.front() == '-' || text.front() == '_' || text.front() == '+')) {
+        negative = text.front() != '+';
+        text.remove_prefix(1);
+    }
+    double value = 0.0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (text.empty() || text.front() == '-' || error != std::errc() || end != text.data() + text.size() ||
+        !std::isfinite(value))
+        return std::nullopt;
+    return negative ? -value : value;
+}
+
+}  // namespace
+
+std::optional<MultiAngleGeometry> parseMultiAngleGeometry(std::string_view name) {
+    std::string text;
+    for (std::size_t i = 0; i < name.size(); ++i) {
+        const auto c = static_cast<unsigned char>(name[i]);
+        if (c == 0xC2 && i + 1 < name.size() && static_cast<unsigned char>(name[i + 1]) == 0xB0) {
+            ++i;  // the degree sign in UTF-8
+            continue;
+        }
+        if (std::isspace(c) != 0) continue;
+        text.push_back(static_cast<char>(std::tolower(c)));
+    }
+    std::string_view rest = text;
+    if (rest.starts_with("r")) rest.remove_prefix(1);  // X-Rite's "r" (reflectance) prefix
+    const auto as = rest.find("as");
+    if (as == std::string_view::npos || as == 0) return std::nullopt;
+    MultiAngleGeometry g;
+    const auto illumination = geometryNumber(rest.substr(0, as));
+    if (!illumination || *illumination < 0.0) return std::nullopt;
+    g.illumination_deg = *illumination;
+    rest.remove_prefix(as + 2);
+    const auto az = rest.find("az");
+    const auto aspecular = geometryNumber(rest.substr(0, az));
+    if (!aspecular) return std::nullopt;
+    g.aspecular_deg = *aspecular;
+    if (az != std::string_view::npos) {
+        const auto azimuth = geometryNumber(rest.substr(az + 2));
+        if (!azimuth) return std::nullopt;
+        g.azimuth_deg = *azimuth;
+    }
+    return g;
+}
+
+std::string multiAngleGeometryName(double illumination_deg, double aspecular_deg) {
+    return formatNumber(illumination_deg, io::NumberFormat::Shortest) + "as" +
+           formatNumber(aspecular_deg, io::NumberFormat::Shortest);
+}
 
 Illuminant measurementIlluminant(const Measurement& m) {
     if (m.illuminant == "D50") return Illuminant::D50;

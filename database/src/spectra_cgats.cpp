@@ -15,7 +15,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -34,32 +33,19 @@ std::string upper(std::string_view text) {
     return out;
 }
 
-std::optional<double> finiteNumber(std::string_view text) {
-    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front())) != 0)
-        text.remove_prefix(1);
-    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())) != 0) text.remove_suffix(1);
-    if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-    double value = 0.0;
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (text.empty() || error != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
-        return std::nullopt;
-    return value;
-}
+}  // namespace
 
-// The wavelength of a spectral column name, if it is one.
-std::optional<double> spectralWavelength(std::string_view column) {
+std::optional<double> cgatsSpectralWavelength(std::string_view column) {
     const std::string name = upper(column);
     for (const std::string_view prefix :
          {"SPECTRAL_NM_", "SPECTRAL_NM", "SPECTRAL_", "SPEC_", "NM_", "NM", "R_", "R"})
         if (name.starts_with(prefix)) {
-            const auto value = finiteNumber(std::string_view(name).substr(prefix.size()));
+            const auto value = io::parseFiniteNumber(std::string_view(name).substr(prefix.size()));
             if (value && *value > 0.0) return value;
             return std::nullopt;
         }
     return std::nullopt;
 }
-
-}  // namespace
 
 std::vector<NamedSpectrum> parseSpectraCgats(std::string_view text, const std::string& source,
                                              const CgatsOptions& options) {
@@ -73,7 +59,7 @@ std::vector<NamedSpectrum> parseSpectraCgats(std::string_view text, const std::s
         const std::string& column = names[static_cast<std::size_t>(c)];
         if (upper(column) == "SAMPLE_NAME") name_column = c;
         if (upper(column) == "SAMPLE_ID") id_column = c;
-        if (const auto wavelength = spectralWavelength(column)) spectral.emplace_back(c, *wavelength);
+        if (const auto wavelength = cgatsSpectralWavelength(column)) spectral.emplace_back(c, *wavelength);
     }
     if (spectral.empty())
         throw InputError(source, "DATA_FORMAT",
@@ -122,7 +108,7 @@ std::vector<NamedSpectrum> parseSpectraCgats(std::string_view text, const std::s
         std::vector<double> values;
         for (const auto& [column, wavelength] : spectral) {
             const std::string& text_value = cell(column);
-            const auto value = finiteNumber(text_value);
+            const auto value = io::parseFiniteNumber(text_value);
             if (!value)
                 throw InputError(source, label + "." + names[static_cast<std::size_t>(column)],
                                  text_value.empty() ? std::string("missing (truncated file?)")

@@ -4,12 +4,15 @@
 
 #include "paintlab/engine/error.h"
 
+#include "json_reader.h"
+
 #include <dlfcn.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <set>
 #include <system_error>
 
@@ -37,8 +40,37 @@ std::vector<std::string> claimedIds(const Plugin& plugin) {
     for (const auto* offer : plugin.measurementImporters())
         ids.push_back("measurement " + offer->format().id);
     for (const auto* offer : plugin.spectraImporters()) ids.push_back("spectra " + offer->format().id);
+    for (const auto* offer : plugin.ingredientImporters()) ids.push_back("ingredients " + offer->format().id);
     for (const auto* offer : plugin.exporters()) ids.push_back("export " + offer->format().id);
+    for (const auto* offer : plugin.measurementExporters())
+        ids.push_back("measurement export " + offer->format().id);
+    for (const auto* offer : plugin.spectraExporters()) ids.push_back("spectra export " + offer->format().id);
+    for (const auto* offer : plugin.ingredientExporters())
+        ids.push_back("ingredients export " + offer->format().id);
     return ids;
+}
+
+// The content exporter for a file and --format (registry.h).
+template <typename Exporter, typename Offers>
+const Exporter* chooseContentExporter(const std::vector<LoadedPlugin>& plugins, Offers offers,
+                                      const std::filesystem::path& file,
+                                      const std::optional<std::string>& format) {
+    std::vector<const Exporter*> all;
+    for (const auto& loaded : plugins)
+        for (const Exporter* offer : offers(*loaded.plugin)) all.push_back(offer);
+    if (format) {
+        for (const Exporter* offer : all)
+            if (offer->format().id == *format) return offer;
+        const std::string extension = "." + lowerAscii(*format);
+        for (const Exporter* offer : all) {
+            const auto& extensions = offer->format().extensions;
+            if (std::find(extensions.begin(), extensions.end(), extension) != extensions.end()) return offer;
+        }
+        return nullptr;
+    }
+    for (const Exporter* offer : all)
+        if (claimsExtension(offer->format(), file)) return offer;
+    return nullptr;
 }
 
 struct Head {
@@ -59,37 +91,47 @@ Head readHead(const std::filesystem::path& file) {
     return head;
 }
 
-// The importer chosen by id, extension and probe (registry.h).
-template <typename Importer, typename Offers>
-const Importer* chooseImporter(const std::vector<LoadedPlugin>& plugins, Offers offers,
-                               const std::filesystem::path& file,
-                               const std::optional<std::string>& format_id) {
-    std::vector<const Importer*> all;
-    for (const auto& loaded : plugins)
-        for (const Importer* offer : offers(*loaded.plugin)) all.push_back(offer);
+// An importer of either kind with what the choice needs.
+struct Offer {
+    const void* offer = nullptr;
+    FormatInfo info;
+    std::function<double(std::string_view, std::uintmax_t)> probe;
+};
+
+template <typename Importer>
+void addOffers(std::vector<Offer>& all, const std::vector<const Importer*>& offers) {
+    for (const Importer* offer : offers)
+        all.push_back({offer, offer->format(), [offer](std::string_view head, std::uintmax_t size) {
+                           return offer->probe(head, size);
+                       }});
+}
+
+// The offer chosen by id, extension and probe (registry.h), nullptr if none.
+const void* chooseOffer(const std::vector<Offer>& all, const std::filesystem::path& file,
+                        const std::optional<std::string>& format_id) {
     if (format_id) {
-        for (const Importer* offer : all)
-            if (offer->format().id == *format_id) return offer;
+        for (const Offer& offer : all)
+            if (offer.info.id == *format_id) return offer.offer;
         return nullptr;
     }
     const Head head = readHead(file);
-    const Importer* best = nullptr;
+    const void* best = nullptr;
     double best_confidence = -1.0;  // a claimed extension wins even when no probe recognises the content:
                                     // the importer then says what is wrong with the file
-    for (const Importer* offer : all) {
-        if (!claimsExtension(offer->format(), file)) continue;
-        const double confidence = offer->probe(head.bytes, head.size);
+    for (const Offer& offer : all) {
+        if (!claimsExtension(offer.info, file)) continue;
+        const double confidence = offer.probe(head.bytes, head.size);
         if (confidence > best_confidence) {
-            best = offer;
+            best = offer.offer;
             best_confidence = confidence;
         }
     }
     if (best != nullptr) return best;
     best_confidence = 0.5;  // without the extension, only a confident probe
-    for (const Importer* offer : all) {
-        const double confidence = offer->probe(head.bytes, head.size);
+    for (const Offer& offer : all) {
+        const double confidence = offer.probe(head.bytes, head.size);
         if (confidence > best_confidence) {
-            best = offer;
+            best = offer.offer;
             best_confidence = confidence;
         }
     }
@@ -97,6 +139,75 @@ const Importer* chooseImporter(const std::vector<LoadedPlugin>& plugins, Offers 
 }
 
 }  // namespace
+
+std::filesystem::path metadataFileOf(const std::filesystem::path& library) {
+    std::filesystem::path file = library;
+    return file.replace_extension(".json");
+}
+
+std::optional<PluginMetadata> readPluginMetadata(const std::filesystem::path& library) {
+    const std::filesystem::path file = metadataFileOf(library);
+    std::error_code error;
+    if (!std::filesystem::exists(file, error)) return std::nullopt;
+    const std::string source = file.string();
+    const nlohmann::json document =
+        jsonio::parseUntrustedJson(jsonio::readBoundedTextFile(file, std::size_t{1} << 20), source);
+    if (!document.is_object()) throw InputError(source, "", "plugin metadata is a JSON object");
+    jsonio::ObjectReader fields(document, "", source);
+    PluginMetadata m;
+    m.name = fields.string("name", true);
+    m.version = fields.string("version", true);
+    m.api_version = fields.integerIn("api_version", 0, 1000000);
+    const nlohmann::json& formats = fields.require("formats", "an array");
+    if (!formats.is_array()) fields.fail("formats", "must be an array");
+    for (std::size_t i = 0; i < formats.size(); ++i) {
+        const std::string at = fields.elementPath("formats", i);
+        if (!formats[i].is_object()) throw InputError(source, at, "must be an object");
+        jsonio::ObjectReader claim(formats[i], at, source);
+        FormatClaim c;
+        c.kind = claim.string("kind", true);
+        c.id = claim.string("id", true);
+        const nlohmann::json& extensions = claim.require("extensions", "an array");
+        if (!extensions.is_array()) claim.fail("extensions", "must be an array of strings");
+        for (const auto& extension : extensions) {
+            if (!extension.is_string()) claim.fail("extensions", "must be an array of strings");
+            c.extensions.push_back(extension.get<std::string>());
+        }
+        claim.finish();
+        m.formats.push_back(std::move(c));
+    }
+    fields.finish();
+    return m;
+}
+
+PluginMetadata metadataOf(const Plugin& plugin, int api_version) {
+    PluginMetadata m{plugin.name(), plugin.version(), api_version, {}};
+    const auto add = [&](const char* kind, const auto& offers) {
+        for (const auto* offer : offers) {
+            const FormatInfo info = offer->format();
+            m.formats.push_back({kind, info.id, info.extensions});
+        }
+    };
+    add("measurement import", plugin.measurementImporters());
+    add("spectra import", plugin.spectraImporters());
+    add("ingredients import", plugin.ingredientImporters());
+    add("appearance export", plugin.exporters());
+    add("measurement export", plugin.measurementExporters());
+    add("spectra export", plugin.spectraExporters());
+    add("ingredients export", plugin.ingredientExporters());
+    return m;
+}
+
+std::string pluginMetadataJson(const PluginMetadata& metadata) {
+    nlohmann::ordered_json formats = nlohmann::ordered_json::array();
+    for (const auto& c : metadata.formats)
+        formats.push_back({{"kind", c.kind}, {"id", c.id}, {"extensions", c.extensions}});
+    const nlohmann::ordered_json out{{"name", metadata.name},
+                                     {"version", metadata.version},
+                                     {"api_version", metadata.api_version},
+                                     {"formats", formats}};
+    return out.dump(2) + "\n";
+}
 
 Registry::Registry() { add(makeBuiltInPlugin(), {}, kApiVersion); }
 
@@ -153,12 +264,23 @@ void Registry::loadFolder(const std::filesystem::path& folder) {
 }
 
 bool Registry::loadFile(const std::filesystem::path& file) {
+    std::optional<PluginMetadata> metadata;
     const auto refuse = [&](const std::string& reason) {
-        m_refusals.push_back({file, reason});
+        m_refusals.push_back({file, reason, metadata});
         return false;
     };
     for (const auto& loaded : m_plugins)
         if (loaded.file == file) return true;
+    // The sidecar first: a plugin for another API version is refused without running its code.
+    try {
+        metadata = readPluginMetadata(file);
+    } catch (const InputError& e) {
+        return refuse(std::string("unreadable metadata: ") + e.what());
+    }
+    if (metadata && metadata->api_version != kApiVersion)
+        return refuse("built for plugin API version " + std::to_string(metadata->api_version) + " (" +
+                      metadataFileOf(file).filename().string() + "), this PaintLab has " +
+                      std::to_string(kApiVersion) + "; not loaded");
     // RTLD_LOCAL: each plugin keeps its own copy of the engine and database code to itself.
     void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (handle == nullptr) {
@@ -187,25 +309,22 @@ bool Registry::loadFile(const std::filesystem::path& file) {
 
 bool Registry::add(std::unique_ptr<Plugin> plugin, const std::filesystem::path& file, int api_version) {
     const auto ids = claimedIds(*plugin);
+    // A plugin refused here was loaded: its claims come from the object itself.
+    const auto refuse = [&](const std::string& reason) {
+        m_refusals.push_back({file, reason, metadataOf(*plugin, api_version)});
+        return false;
+    };
     for (std::size_t i = 0; i < ids.size(); ++i)
         for (std::size_t j = 0; j < i; ++j)
-            if (ids[i] == ids[j]) {
-                m_refusals.push_back({file, "offers the format " + ids[i] + " twice"});
-                return false;
-            }
+            if (ids[i] == ids[j]) return refuse("offers the format " + ids[i] + " twice");
     for (const auto& loaded : m_plugins) {
-        if (loaded.name == plugin->name()) {
-            m_refusals.push_back({file, "a plugin named '" + loaded.name + "' is already loaded from " +
-                                            (loaded.builtIn() ? "PaintLab itself" : loaded.file.string())});
-            return false;
-        }
+        if (loaded.name == plugin->name())
+            return refuse("a plugin named '" + loaded.name + "' is already loaded from " +
+                          (loaded.builtIn() ? "PaintLab itself" : loaded.file.string()));
         for (const auto& id : claimedIds(*loaded.plugin))
-            if (std::find(ids.begin(), ids.end(), id) != ids.end()) {
-                m_refusals.push_back(
-                    {file, "claims the format " + id + ", which plugin '" + loaded.name + "' (" +
-                               (loaded.builtIn() ? "built in" : loaded.file.string()) + ") already offers"});
-                return false;
-            }
+            if (std::find(ids.begin(), ids.end(), id) != ids.end())
+                return refuse("claims the format " + id + ", which plugin '" + loaded.name + "' (" +
+                              (loaded.builtIn() ? "built in" : loaded.file.string()) + ") already offers");
     }
     LoadedPlugin loaded;
     loaded.name = plugin->name();
@@ -220,14 +339,47 @@ bool Registry::add(std::unique_ptr<Plugin> plugin, const std::filesystem::path& 
 const MeasurementImporter*
 Registry::measurementImporterFor(const std::filesystem::path& file,
                                  const std::optional<std::string>& format_id) const {
-    return chooseImporter<MeasurementImporter>(
-        m_plugins, [](const Plugin& p) { return p.measurementImporters(); }, file, format_id);
+    std::vector<Offer> all;
+    for (const auto& loaded : m_plugins) addOffers(all, loaded.plugin->measurementImporters());
+    return static_cast<const MeasurementImporter*>(chooseOffer(all, file, format_id));
 }
 
 const SpectraImporter* Registry::spectraImporterFor(const std::filesystem::path& file,
                                                     const std::optional<std::string>& format_id) const {
-    return chooseImporter<SpectraImporter>(
-        m_plugins, [](const Plugin& p) { return p.spectraImporters(); }, file, format_id);
+    std::vector<Offer> all;
+    for (const auto& loaded : m_plugins) addOffers(all, loaded.plugin->spectraImporters());
+    return static_cast<const SpectraImporter*>(chooseOffer(all, file, format_id));
+}
+
+const IngredientImporter* Registry::ingredientImporterFor(const std::filesystem::path& file,
+                                                          const std::optional<std::string>& format_id) const {
+    std::vector<Offer> all;
+    for (const auto& loaded : m_plugins) addOffers(all, loaded.plugin->ingredientImporters());
+    return static_cast<const IngredientImporter*>(chooseOffer(all, file, format_id));
+}
+
+ImporterChoice Registry::importerFor(const std::filesystem::path& file,
+                                     const std::optional<std::string>& format_id) const {
+    std::vector<Offer> all;
+    for (const auto& loaded : m_plugins) addOffers(all, loaded.plugin->measurementImporters());
+    const std::size_t measurement_offers = all.size();
+    for (const auto& loaded : m_plugins) addOffers(all, loaded.plugin->spectraImporters());
+    const std::size_t spectra_offers = all.size();
+    for (const auto& loaded : m_plugins) addOffers(all, loaded.plugin->ingredientImporters());
+    const void* chosen = chooseOffer(all, file, format_id);
+    ImporterChoice choice;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        if (all[i].offer != chosen || chosen == nullptr) continue;
+        if (i < measurement_offers)
+            choice.measurement = static_cast<const MeasurementImporter*>(chosen);
+        else if (i < spectra_offers)
+            choice.spectra = static_cast<const SpectraImporter*>(chosen);
+        else
+            choice.ingredients = static_cast<const IngredientImporter*>(chosen);
+        choice.plugin = ownerOf(chosen);
+        break;
+    }
+    return choice;
 }
 
 const AppearanceExporter* Registry::exporterFor(const std::filesystem::path& file,
@@ -239,15 +391,40 @@ const AppearanceExporter* Registry::exporterFor(const std::filesystem::path& fil
     return nullptr;
 }
 
+const MeasurementExporter* Registry::measurementExporterFor(const std::filesystem::path& file,
+                                                            const std::optional<std::string>& format) const {
+    return chooseContentExporter<MeasurementExporter>(
+        m_plugins, [](const Plugin& p) { return p.measurementExporters(); }, file, format);
+}
+
+const SpectraExporter* Registry::spectraExporterFor(const std::filesystem::path& file,
+                                                    const std::optional<std::string>& format) const {
+    return chooseContentExporter<SpectraExporter>(
+        m_plugins, [](const Plugin& p) { return p.spectraExporters(); }, file, format);
+}
+
+const IngredientExporter* Registry::ingredientExporterFor(const std::filesystem::path& file,
+                                                          const std::optional<std::string>& format) const {
+    return chooseContentExporter<IngredientExporter>(
+        m_plugins, [](const Plugin& p) { return p.ingredientExporters(); }, file, format);
+}
+
+namespace {
+
+template <typename Offer> bool offers(const std::vector<const Offer*>& list, const void* offer) {
+    return std::find(list.begin(), list.end(), offer) != list.end();
+}
+
+}  // namespace
+
 const LoadedPlugin* Registry::ownerOf(const void* offer) const {
     for (const auto& loaded : m_plugins) {
         const Plugin& p = *loaded.plugin;
-        for (const auto* o : p.measurementImporters())
-            if (o == offer) return &loaded;
-        for (const auto* o : p.spectraImporters())
-            if (o == offer) return &loaded;
-        for (const auto* o : p.exporters())
-            if (o == offer) return &loaded;
+        if (offers(p.measurementImporters(), offer) || offers(p.spectraImporters(), offer) ||
+            offers(p.ingredientImporters(), offer) || offers(p.exporters(), offer) ||
+            offers(p.measurementExporters(), offer) || offers(p.spectraExporters(), offer) ||
+            offers(p.ingredientExporters(), offer))
+            return &loaded;
     }
     return nullptr;
 }

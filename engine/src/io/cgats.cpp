@@ -9,6 +9,7 @@
 #include <lcms2.h>
 
 #include <cctype>
+#include <charconv>
 #include <memory>
 #include <type_traits>
 
@@ -45,6 +46,28 @@ struct It8Deleter {
     void operator()(void* handle) const { cmsIT8Free(handle); }
 };
 
+// A NUMBER_OF_SETS or NUMBER_OF_FIELDS that the text cannot hold (every
+// value takes a character and a separator) is refused before lcms2 reads it,
+// with the keyword named: lcms2 would report a mismatch on some later line.
+void checkCounts(std::string_view text, const std::string& source) {
+    for (const std::string_view key : {"NUMBER_OF_SETS", "NUMBER_OF_FIELDS"}) {
+        std::size_t at = text.find(key);
+        while (at != std::string_view::npos && at > 0 && text[at - 1] != '\n' && text[at - 1] != '\r')
+            at = text.find(key, at + 1);
+        if (at == std::string_view::npos) continue;
+        std::string_view rest = text.substr(at + key.size());
+        while (!rest.empty() && (rest.front() == ' ' || rest.front() == '\t')) rest.remove_prefix(1);
+        const std::string_view token = rest.substr(0, rest.find_first_of(" \t\r\n"));
+        double value = 0.0;
+        const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+        if (error == std::errc() && end == token.data() + token.size() &&
+            value > static_cast<double>(text.size()) / 2.0)
+            throw InputError(source, std::string(key),
+                             "'" + std::string(token) + "' is more than a file of " +
+                                 std::to_string(text.size()) + " bytes can hold");
+    }
+}
+
 }  // namespace
 
 std::string CgatsTable::property(std::string_view key) const {
@@ -66,6 +89,7 @@ CgatsTable parseCgats(std::string_view text, const std::string& source) {
     if (!context) throw Error("liblcms2: cannot create a context");
     cmsSetLogErrorHandlerTHR(context.get(), logHandler);
     if (text.size() > 0xffffffffU) throw InputError(source, "", "too large for a CGATS file");
+    checkCounts(text, source);
     const std::unique_ptr<void, It8Deleter> it8(
         cmsIT8LoadFromMem(context.get(), text.data(), static_cast<cmsUInt32Number>(text.size())));
     if (!it8)

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <charconv>
 #include <clocale>  // with glibc also POSIX newlocale, uselocale
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
 
@@ -62,6 +64,18 @@ std::string formatText(const char* format, ...) {
     va_end(args);
     uselocale(previous);
     return out;
+}
+
+std::optional<double> parseFiniteNumber(std::string_view text) {
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front())) != 0)
+        text.remove_prefix(1);
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())) != 0) text.remove_suffix(1);
+    if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+    double value = 0.0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (text.empty() || error != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
+        return std::nullopt;
+    return value;
 }
 
 }  // namespace paintlab::io

@@ -60,14 +60,32 @@ struct ImportResult {
 // format, bad record), DatabaseError naming the database when SQLite fails.
 ImportResult importFile(Database& db, const std::filesystem::path& file, const ImportOptions& options = {});
 
+// Stores ingredients read elsewhere (a plugin's importer) in one transaction,
+// as importFile does; records are named "ingredients[i] kind 'name'" when
+// `indexed`, else "kind 'name'". InputError naming source and the record
+// (an empty list, a kind and name twice, a taken name); nothing stored then.
+ImportResult storeIngredients(Database& db, const std::vector<Ingredient>& ingredients,
+                              const std::string& source, bool indexed = true);
+// Stores spectra read elsewhere (a plugin's importer) in one transaction, as
+// importFile does: InputError naming source and the spectrum (an empty list,
+// a taken name), and nothing stored.
+ImportResult storeSpectra(Database& db, const std::vector<NamedSpectrum>& spectra, const std::string& source);
+
 // A measurement file (JSON or CSV, as importFile reads it) without storing
 // it: for a fit to a file. Throws InputError naming the file.
 Measurement readMeasurementFile(const std::filesystem::path& file, const ImportOptions& options = {});
 
-// Ingredients by exact name (any kind; empty names = every ingredient), as
-// JSON or CSV text. Throws InputError naming the database for a name it does not hold.
+// Ingredients by exact name (any kind; empty names = every ingredient).
+// Throws InputError naming the database for a name it does not hold.
+std::vector<Ingredient> ingredientsByName(Database& db, const std::vector<std::string>& names);
+// Named spectra by name (empty names = all); InputError as above.
+std::vector<NamedSpectrum> spectraByName(Database& db, const std::vector<std::string>& names);
+// One measurement by name; InputError naming the database if there is none.
+Measurement measurementByName(Database& db, std::string_view name);
+
+// ingredientsByName as JSON or CSV text.
 std::string exportIngredients(Database& db, const std::vector<std::string>& names, FileFormat format);
-// Named spectra (empty names = all), as JSON, CSV or CGATS.
+// spectraByName as JSON, CSV or CGATS.
 std::string exportSpectra(Database& db, const std::vector<std::string>& names, FileFormat format);
 // One measurement, as JSON or CSV.
 std::string exportMeasurement(Database& db, std::string_view name, FileFormat format);

@@ -43,6 +43,22 @@ struct MultiAngleReading {
     friend bool operator==(const MultiAngleReading&, const MultiAngleReading&) = default;
 };
 
+// A multi-angle geometry by its instrument name: "45as15", "45as-15", with
+// the spellings instruments and their software use ("r45as15", "45asMinus15",
+// "r15as_45", "45as25az90"; case and a degree sign ignored). Illumination in
+// the plane of incidence at illumination_deg from the normal, the detector
+// aspecular_deg from the specular direction (MultiAngleReading), azimuth_deg
+// the detector's rotation out of that plane (0: in the plane).
+struct MultiAngleGeometry {
+    double illumination_deg = 45.0;
+    double aspecular_deg = 0.0;
+    double azimuth_deg = 0.0;
+};
+// nullopt when the text is not a geometry name (never throws).
+std::optional<MultiAngleGeometry> parseMultiAngleGeometry(std::string_view name);
+// "45as-15", "15as80" (shortest numbers).
+std::string multiAngleGeometryName(double illumination_deg, double aspecular_deg);
+
 struct BrdfSample {
     double theta_i_deg = 0.0;  // light direction: polar angle from the normal, 0 to 90
     double phi_i_deg = 0.0;    // its azimuth

@@ -21,6 +21,7 @@
 #include "paintlab/database/ingredients.h"
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -51,6 +52,11 @@ std::vector<NamedSpectrum> parseSpectraJson(std::string_view text, const std::st
 std::vector<NamedSpectrum> parseSpectraCsv(std::string_view text, const std::string& source);
 std::vector<NamedSpectrum> parseSpectraCgats(std::string_view text, const std::string& source,
                                              const CgatsOptions& options = {});
+
+// The wavelength (nm) of a CGATS spectral column name (SPECTRAL_NM380,
+// SPECTRAL_NM_380, SPECTRAL_380, SPEC_380, NM380, R380, ...; any case), or
+// nullopt if the name is not one. Never throws.
+std::optional<double> cgatsSpectralWavelength(std::string_view column);
 
 std::string spectraToJson(const std::vector<NamedSpectrum>& spectra);
 std::string spectraToCsv(const std::vector<NamedSpectrum>& spectra);

@@ -12,8 +12,8 @@
 // interface version may cross the boundary. kApiVersion changes whenever a
 // class, a struct or a database/engine type below changes layout.
 //
-// A plugin offers measurement importers, spectra importers and exporters of
-// a recipe's appearance. Each names its format with an id unique among the
+// A plugin offers measurement importers, spectra importers, exporters of
+// a recipe's appearance and exporters of database content. Each names its format with an id unique among the
 // loaded plugins ("merl-binary"); a second plugin claiming an id is refused.
 // Errors in a user's file throw InputError naming the file and the field.
 // No Qt type: the CLI and the GUI use the same plugins.
@@ -32,7 +32,8 @@
 
 namespace paintlab::plugins {
 
-inline constexpr int kApiVersion = 1;
+// 2: exporters of database content (measurements, spectra, ingredients), ingredient importers.
+inline constexpr int kApiVersion = 2;
 
 // How many leading bytes of a file a probe sees.
 inline constexpr std::size_t kProbeBytes = 4096;
@@ -75,6 +76,16 @@ public:
                                                 const ReadOptions& options) const = 0;
 };
 
+// Reads ingredients (binders, pigments, flakes, substrates with their data) from a file.
+class IngredientImporter {
+public:
+    virtual ~IngredientImporter() = default;
+    virtual FormatInfo format() const = 0;
+    virtual double probe(std::string_view head, std::uintmax_t size) const = 0;
+    virtual std::vector<db::Ingredient> read(const std::filesystem::path& file,
+                                             const ReadOptions& options) const = 0;
+};
+
 struct ExportOptions {
     std::string recipe_path;    // where the recipe came from, for the file's provenance
     std::string settings_json;  // the fast model's settings as a JSON object ("{}" if none)
@@ -92,6 +103,31 @@ public:
                        const ExportOptions& options) const = 0;
 };
 
+// Writers of database content, what `db export` writes: the text (or bytes)
+// of a file holding one measurement, named spectra or ingredients. Each
+// throws InputError(<format id>, field, ...) for content its format cannot
+// hold (two spectra on different grids in one CGATS table, a quote in a name).
+class MeasurementExporter {
+public:
+    virtual ~MeasurementExporter() = default;
+    virtual FormatInfo format() const = 0;
+    virtual std::string text(const db::Measurement& measurement) const = 0;
+};
+
+class SpectraExporter {
+public:
+    virtual ~SpectraExporter() = default;
+    virtual FormatInfo format() const = 0;
+    virtual std::string text(const std::vector<db::NamedSpectrum>& spectra) const = 0;
+};
+
+class IngredientExporter {
+public:
+    virtual ~IngredientExporter() = default;
+    virtual FormatInfo format() const = 0;
+    virtual std::string text(const std::vector<db::Ingredient>& ingredients) const = 0;
+};
+
 // What a plugin's library hands over; the pointers it returns live as long as it.
 class Plugin {
 public:
@@ -100,7 +136,11 @@ public:
     virtual std::string version() const = 0;  // the plugin's own version, "1.0.0"
     virtual std::vector<const MeasurementImporter*> measurementImporters() const { return {}; }
     virtual std::vector<const SpectraImporter*> spectraImporters() const { return {}; }
+    virtual std::vector<const IngredientImporter*> ingredientImporters() const { return {}; }
     virtual std::vector<const AppearanceExporter*> exporters() const { return {}; }
+    virtual std::vector<const MeasurementExporter*> measurementExporters() const { return {}; }
+    virtual std::vector<const SpectraExporter*> spectraExporters() const { return {}; }
+    virtual std::vector<const IngredientExporter*> ingredientExporters() const { return {}; }
 };
 
 }  // namespace paintlab::plugins

@@ -30,9 +30,50 @@ struct LoadedPlugin {
     bool builtIn() const { return file.empty(); }
 };
 
+// What a plugin says about itself in the sidecar libpaintlab-plugin-NAME.json
+// beside its library (after Qt's plugin metadata), readable without loading
+// the library: a plugin built for another API version is refused without
+// running its code, and a refused plugin's claims can still be listed. The
+// build writes each sidecar from the loaded plugin (paintlab-plugin-metadata).
+struct FormatClaim {
+    std::string kind;  // "measurement import", "spectra export", "appearance export", ...
+    std::string id;
+    std::vector<std::string> extensions;
+    friend bool operator==(const FormatClaim&, const FormatClaim&) = default;
+};
+
+struct PluginMetadata {
+    std::string name;
+    std::string version;
+    int api_version = 0;
+    std::vector<FormatClaim> formats;
+    friend bool operator==(const PluginMetadata&, const PluginMetadata&) = default;
+};
+
+// The sidecar's path: the library's with ".json" for ".so".
+std::filesystem::path metadataFileOf(const std::filesystem::path& library);
+// The sidecar of a library; nullopt when there is none. Throws InputError
+// naming the sidecar and the field when it is not valid metadata.
+std::optional<PluginMetadata> readPluginMetadata(const std::filesystem::path& library);
+// What a loaded plugin's sidecar says (every offer, in the plugin's order).
+PluginMetadata metadataOf(const Plugin& plugin, int api_version);
+// As the sidecar holds it: { "name", "version", "api_version", "formats": [ { "kind", "id", "extensions" } ]
+// }.
+std::string pluginMetadataJson(const PluginMetadata& metadata);
+
 struct Refusal {
     std::filesystem::path file;
     std::string reason;
+    std::optional<PluginMetadata> metadata;  // the sidecar's claims, when it has one
+};
+
+// An importer of any kind: at most one of the three is set.
+struct ImporterChoice {
+    const MeasurementImporter* measurement = nullptr;
+    const SpectraImporter* spectra = nullptr;
+    const IngredientImporter* ingredients = nullptr;
+    const LoadedPlugin* plugin = nullptr;  // the plugin offering it
+    bool found() const { return measurement != nullptr || spectra != nullptr || ingredients != nullptr; }
 };
 
 class Registry {
@@ -68,9 +109,26 @@ public:
                                                       const std::optional<std::string>& format_id = {}) const;
     const SpectraImporter* spectraImporterFor(const std::filesystem::path& file,
                                               const std::optional<std::string>& format_id = {}) const;
+    const IngredientImporter* ingredientImporterFor(const std::filesystem::path& file,
+                                                    const std::optional<std::string>& format_id = {}) const;
+    // For a file of unknown kind (`db import FILE`): the measurement, spectra or
+    // ingredient importer chosen as above among the importers of all kinds, so that a
+    // content both kinds claim by extension (CGATS: spectra, or a multi-angle
+    // measurement) goes to the most confident probe.
+    ImporterChoice importerFor(const std::filesystem::path& file,
+                               const std::optional<std::string>& format_id = {}) const;
     // The exporter whose id is format_id, else the first claiming the file's extension.
     const AppearanceExporter* exporterFor(const std::filesystem::path& file,
                                           const std::optional<std::string>& format_id = {}) const;
+    // The exporter of database content for `db export`: the one whose id is
+    // `format`, else the one claiming ".<format>" (`--format csv`), else (no
+    // format) the first claiming the file's extension; nullptr when none does.
+    const MeasurementExporter* measurementExporterFor(const std::filesystem::path& file,
+                                                      const std::optional<std::string>& format = {}) const;
+    const SpectraExporter* spectraExporterFor(const std::filesystem::path& file,
+                                              const std::optional<std::string>& format = {}) const;
+    const IngredientExporter* ingredientExporterFor(const std::filesystem::path& file,
+                                                    const std::optional<std::string>& format = {}) const;
     // The plugin that offers an object (for "built in or not").
     const LoadedPlugin* ownerOf(const void* offer) const;
 

@@ -3,7 +3,9 @@
 // stream's locale): one function for messages, files and tables, with the
 // precision named by the caller.
 
+#include <optional>
 #include <string>
+#include <string_view>
 
 namespace paintlab::io {
 
@@ -20,6 +22,11 @@ enum class NumberFormat {
 };
 
 std::string formatNumber(double value, NumberFormat format = NumberFormat::Message);
+
+// The other way: a finite number written in any of these forms (std::from_chars;
+// surrounding white space and a leading '+' allowed), nullopt for anything
+// else: empty text, trailing characters, nan, inf, out of range. Never throws.
+std::optional<double> parseFiniteNumber(std::string_view text);
 
 // Fixed decimals (printf "%.*f") for text people read (production sheets);
 // decimals is clamped to [0, 17].
