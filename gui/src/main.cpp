@@ -86,24 +86,23 @@ int main(int argc, char** argv) {
     const bool restored = !parser.isSet(screenshot) && window.offerRecoveredDraft();
     if (parser.isSet(recipe) && !restored) window.selectRecipe(parser.value(recipe));
     if (parser.isSet(screenshot)) {
+        // The shot waits for the recipe's image (traced and relit) when one is
+        // selected, then for the plots' data (their worker) and their latest
+        // drawings (plot render thread). Without a recipe (a fresh database
+        // shows the first-start hint) there is no image to wait for.
         const QString file = parser.value(screenshot);
-        QObject::connect(
-            window.scheduler(), &paintlab::gui::RenderScheduler::becameIdle, &window, [&window, file]() {
-                if (window.renderDock()->image().isNull()) return;  // still tracing
-                // The plots' data (their worker) first, then their latest drawings
-                // (plot render thread) into their widgets.
-                auto* wait = new QTimer(&window);
-                QObject::connect(wait, &QTimer::timeout, &window, [&window, file, wait]() {
-                    if (window.plotsDock()->computing()) return;
-                    wait->stop();
-                    paintlab::gui::PlotRenderThread::instance().settle();
-                    const int code =
-                        paintlab::gui::saveImageAtomically(window.grab().toImage(), file) ? 0 : 1;
-                    if (code != 0) std::fprintf(stderr, "paintlab: cannot write %s\n", qPrintable(file));
-                    QApplication::exit(code);
-                });
-                wait->start(50);
-            });
+        auto* poll = new QTimer(&window);
+        QObject::connect(poll, &QTimer::timeout, &window, [&window, file, poll]() {
+            if (!window.scheduler()->idle()) return;
+            if (window.document()->hasRecipe() && window.renderDock()->image().isNull()) return;
+            if (window.plotsDock()->computing()) return;
+            poll->stop();
+            paintlab::gui::PlotRenderThread::instance().settle();
+            const int code = paintlab::gui::saveImageAtomically(window.grab().toImage(), file) ? 0 : 1;
+            if (code != 0) std::fprintf(stderr, "paintlab: cannot write %s\n", qPrintable(file));
+            QApplication::exit(code);
+        });
+        poll->start(50);
     }
     return QApplication::exec();
 }
