@@ -366,11 +366,13 @@ FastModelSettings withNarrowFlakes(const Recipe& recipe, FastModelSettings setti
     if (settings.flake_nodes_times_spread_deg > 0.0) {
         const int nodes =
             4 * static_cast<int>(std::ceil(settings.flake_nodes_times_spread_deg / spread / 4.0));
-        settings.nodes = std::max(settings.nodes, std::min(nodes, kMaxNodes));
+        settings.nodes = std::max(settings.nodes, std::min({nodes, settings.flake_max_nodes, kMaxNodes}));
     }
     if (settings.flake_orders_times_spread_deg > 0.0) {
         const double orders = std::ceil(settings.flake_orders_times_spread_deg / spread);
-        settings.orders = std::max(settings.orders, static_cast<int>(std::min(orders, 2.0 * kMaxNodes)));
+        settings.orders =
+            std::max(settings.orders,
+                     static_cast<int>(std::min(orders, static_cast<double>(settings.flake_max_orders))));
     }
     return settings;
 }

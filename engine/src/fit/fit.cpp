@@ -23,6 +23,10 @@ namespace {
 // of its bound range (in the optimiser's u).
 constexpr double kDistinct = 0.05;
 
+constexpr double kPolishCostFactor = 4.0;
+constexpr int kSearchFlakeMaxNodes = 24;
+constexpr int kSearchFlakeMaxOrders = 16;
+
 struct Candidate {
     std::vector<double> u;
     double cost = std::numeric_limits<double>::infinity();
@@ -138,7 +142,13 @@ FitResult fitRecipe(const FitProblem& problem, const FitProgressCallback& progre
     const PreparedProblem prepared = prepareProblem(problem);
     const FitSettings& s = problem.settings;
     const std::size_t n = prepared.dims.size();
-    const FastModelSettings search = fitSettings(s.search_preset);
+    // The scatter and the searches only rank and find basins: narrow flakes
+    // on a grid of at most 24 nodes and 16 orders there (a start at a 1.5°
+    // spread would otherwise cost ~50 ordinary evaluations); the polish and
+    // the report run on the grid that resolves them (layered_brdf.h).
+    FastModelSettings search = fitSettings(s.search_preset);
+    search.flake_max_nodes = std::max(search.nodes, kSearchFlakeMaxNodes);
+    search.flake_max_orders = std::max(search.orders, kSearchFlakeMaxOrders);
     const FastModelSettings polish = fitSettings(s.polish_preset);
     FitCounters counters;
     FitResult result;
@@ -193,10 +203,16 @@ FitResult fitRecipe(const FitProblem& problem, const FitProgressCallback& progre
     if (!std::isfinite(candidates.front().cost))
         throw Error("fit: no start could be evaluated (every trial recipe failed validation)");
 
-    // Polish the best distinct minima.
+    // Polish the best distinct minima, but not one whose search cost is far
+    // above the best's (more than kPolishCostFactor x it plus 10 alternative
+    // margins): it cannot become an alternative, and polishing it cost the
+    // pearl's fit two thirds of its time. The factor leaves room for the
+    // search preset's own model error, which the polish removes.
+    const double polish_limit = kPolishCostFactor * candidates.front().cost + 10.0 * s.alternative_cost_abs;
     std::vector<Candidate> polished;
     for (const Candidate& c : candidates) {
         if (static_cast<int>(polished.size()) >= s.polish_count || !std::isfinite(c.cost)) break;
+        if (!polished.empty() && c.cost > polish_limit) break;
         const bool distinct = std::all_of(polished.begin(), polished.end(),
                                           [&](const Candidate& p) { return distance(p.u, c.u) > kDistinct; });
         if (distinct) polished.push_back(c);

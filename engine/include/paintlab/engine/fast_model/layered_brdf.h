@@ -69,6 +69,10 @@ struct FastModelSettings {
     // (capped at kMaxNodes; 0: never). settings() reports what ran.
     double flake_nodes_times_spread_deg = 0.0;
     double flake_orders_times_spread_deg = 0.0;
+    // At most this many nodes and orders for narrow flakes (a search that
+    // only ranks candidates can take the capped grid's error for its speed).
+    int flake_max_nodes = kMaxNodes;
+    int flake_max_orders = 2 * kMaxNodes;
 };
 
 enum class Preset { Preview, Standard, Reference };

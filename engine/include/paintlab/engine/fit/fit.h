@@ -56,8 +56,9 @@ struct FitSettings {
     int searches = 3;
     Preset search_preset = Preset::Preview;
     Preset polish_preset = Preset::Standard;  // also the report's preset
-    int polish_count = 2;                     // best distinct search minima polished
-    int search_iterations = 8;                // Ceres iterations per start
+    int polish_count = 2;                     // best distinct search minima polished (those whose
+                           // search cost is within 4x the best's + 10 x alternative_cost_abs)
+    int search_iterations = 8;  // Ceres iterations per start
     int polish_iterations = 10;
     // Search on a log scale the parameters whose bounds are > 0 and span more
     // than a factor 10 (concentrations, thicknesses).
