@@ -101,10 +101,11 @@ fit::FreeParameter parseFree(const std::string& text, std::size_t index) {
 std::string parameterListing(const Recipe& recipe) {
     std::string out = "Addressable parameters of '" + recipe.name +
                       "' (--free PATH[=LO:HI]; default bounds "
-                      "are the allowed range):\n";
+                      "in brackets: the allowed range, or what the fit resolves):\n";
     for (const auto& p : fit::listParameterPaths(recipe)) {
+        const fit::FitBounds bounds = fit::defaultFitBounds(p);
         out += "  " + p.path + "  = " + io::formatNumber(p.value) + " " + std::string(p.decl->unit) + "  [" +
-               io::formatNumber(p.min) + ", " + io::formatNumber(p.max) + "]" +
+               io::formatNumber(bounds.lower) + ", " + io::formatNumber(bounds.upper) + "]" +
                (p.log_scale_suited ? "  (log scale)" : "") + "\n      " + p.label + "\n";
     }
     return out;

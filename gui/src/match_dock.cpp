@@ -385,6 +385,7 @@ void MatchDock::fillParameters() {
         auto* name = new QTableWidgetItem(field);
         name->setData(kPathRole, path);
         name->setFlags(Qt::ItemIsEnabled | Qt::ItemIsUserCheckable | Qt::ItemIsSelectable);
+        const fit::FitBounds bounds = fit::defaultFitBounds(p);
         name->setToolTip(
             tr("%1\n%2\nunit %3, allowed %4 to %5")
                 .arg(label, path,
@@ -397,10 +398,10 @@ void MatchDock::fillParameters() {
         now->setFlags(Qt::ItemIsEnabled);
         m_parameters->setItem(row, kColumnNow, now);
         auto* lower = new QTableWidgetItem(old != kept.end() ? old->second.lower : QString());
-        lower->setToolTip(tr("Lower bound (empty: %1)").arg(number(p.min)));
+        lower->setToolTip(tr("Lower bound (empty: %1)").arg(number(bounds.lower)));
         m_parameters->setItem(row, kColumnLower, lower);
         auto* upper = new QTableWidgetItem(old != kept.end() ? old->second.upper : QString());
-        upper->setToolTip(tr("Upper bound (empty: %1)").arg(number(p.max)));
+        upper->setToolTip(tr("Upper bound (empty: %1)").arg(number(bounds.upper)));
         m_parameters->setItem(row, kColumnUpper, upper);
     }
 }

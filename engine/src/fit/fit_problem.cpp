@@ -36,17 +36,18 @@ void checkSettings(const FitSettings& s) {
         fail("correlation_threshold", "must be in (0, 1]");
 }
 
-// The default lower bound: the allowed minimum, but for a flake orientation
-// spread the narrowest one the fit's presets resolve (the fast model is not
-// converged below it; layered_brdf.h).
-double defaultLower(const ParameterPath& info, const FitSettings& s) {
-    if (info.decl->key != "orientation_spread_deg") return info.min;
-    const double resolved = std::max(narrowestResolvedFlakeSpreadDeg(fitSettings(s.search_preset)),
-                                     narrowestResolvedFlakeSpreadDeg(fitSettings(s.polish_preset)));
-    return std::clamp(std::ceil(resolved * 10.0) / 10.0, info.min, info.max);
-}
-
 }  // namespace
+
+FitBounds defaultFitBounds(const ParameterPath& parameter, const FitSettings& settings) {
+    FitBounds out{parameter.min, parameter.max};
+    if (parameter.decl->key == "orientation_spread_deg") {
+        const double resolved =
+            std::max(narrowestResolvedFlakeSpreadDeg(fitSettings(settings.search_preset)),
+                     narrowestResolvedFlakeSpreadDeg(fitSettings(settings.polish_preset)));
+        out.lower = std::clamp(std::ceil(resolved * 10.0) / 10.0, parameter.min, parameter.max);
+    }
+    return out;
+}
 
 double FreeDimension::toValue(double u) const {
     return log ? lower * std::pow(upper / lower, u) : lower + u * (upper - lower);
@@ -73,8 +74,9 @@ PreparedProblem prepareProblem(const FitProblem& problem) {
         FreeDimension d;
         d.info = describeParameter(problem.recipe, f.path);  // InputError naming the path
         if (!seen.insert(f.path).second) throw InputError("<argument>", f.path, "freed twice");
-        d.lower = f.lower.value_or(defaultLower(d.info, problem.settings));
-        d.upper = f.upper.value_or(d.info.max);
+        const FitBounds defaults = defaultFitBounds(d.info, problem.settings);
+        d.lower = f.lower.value_or(defaults.lower);
+        d.upper = f.upper.value_or(defaults.upper);
         const ParameterDecl& decl = *d.info.decl;
         const std::string allowed = "allowed " + formatNumber(decl.min) + " to " + formatNumber(decl.max);
         for (const double bound : {d.lower, d.upper})

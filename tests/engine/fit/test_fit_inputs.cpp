@@ -60,6 +60,25 @@ TEST(FitParameterPaths, ListsTheDemoPearlsNumericFields) {
     }
 }
 
+// The default bounds are the allowed range but for a flake spread, whose
+// lower bound is what both fit presets resolve: above the allowed 0 deg and
+// at least the narrowest spread the fast model's rule resolves at standard.
+TEST(FitParameterPaths, DefaultBoundsStartFlakeSpreadsWhereTheFitResolvesThem) {
+    const Recipe pearl = test::demoRecipe("pearlescent-two-layer");
+    for (const auto& p : fit::listParameterPaths(pearl)) {
+        const fit::FitBounds bounds = fit::defaultFitBounds(p);
+        EXPECT_DOUBLE_EQ(bounds.upper, p.max) << p.path;
+        if (p.decl->key != "orientation_spread_deg") {
+            EXPECT_DOUBLE_EQ(bounds.lower, p.min) << p.path;
+            continue;
+        }
+        EXPECT_GT(bounds.lower, p.min) << p.path;
+        EXPECT_GE(bounds.lower, narrowestResolvedFlakeSpreadDeg(fit::fitSettings(Preset::Standard)))
+            << p.path;
+        EXPECT_LT(bounds.lower, 3.0) << p.path;  // the real silver fit landed at 4.3 deg: it must stay open
+    }
+}
+
 TEST(FitParameterPaths, SetAndGetRoundTrip) {
     Recipe r = test::demoRecipe("pearlescent-two-layer");
     fit::setParameterValue(r, "layers[1].components[1].volume_fraction", 0.02);

@@ -26,6 +26,7 @@
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/fit/observations.h"
+#include "paintlab/engine/fit/parameter_paths.h"
 #include "paintlab/engine/recipe.h"
 
 #include <cstddef>
@@ -183,6 +184,17 @@ struct FitResult {
 // for about 1.3x the time of a preview BRDF.
 inline constexpr double kFitMaxStartTau = 1.0 / 256.0;
 FastModelSettings fitSettings(Preset preset);
+
+// The bounds a free parameter gets when the user gives none: its allowed
+// range (ParameterPath::min, max), except that a flake orientation spread
+// starts at the narrowest spread both of the fit's presets resolve (~1.2 deg;
+// below it the fast model is not converged, layered_brdf.h). The CLI's
+// `fit --help` listing and the Match dock show these.
+struct FitBounds {
+    double lower = 0.0;
+    double upper = 0.0;
+};
+FitBounds defaultFitBounds(const ParameterPath& parameter, const FitSettings& settings = {});
 
 // Throws InputError naming the field for every bad input: a template that
 // does not validate, a path that does not exist or is not numeric, bounds
