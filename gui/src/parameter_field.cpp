@@ -1,6 +1,7 @@
 #include "parameter_field.h"
 
 #include "recipe_parameters.h"
+#include "wheel_scrolls_form.h"
 
 #include "paintlab/engine/io/number_format.h"
 
@@ -21,6 +22,7 @@ ParameterField::ParameterField(const ParameterDecl& decl, QWidget* parent)
     if (!unit.unit.empty()) setSuffix(" " + QString::fromStdString(unit.unit));
     // Its size for the longest value it will usually show, not for its range's.
     setMinimumWidth(fontMetrics().horizontalAdvance(QStringLiteral("0.000000 ") + suffix()) + 30);
+    letWheelScrollTheForm(this);
     connect(lineEdit(), &QLineEdit::textEdited, this,
             [this](const QString& text) { m_typed = withoutSuffix(text); });
 }

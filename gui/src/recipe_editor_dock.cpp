@@ -5,6 +5,7 @@
 #include "parameter_field.h"
 #include "recipe_structure_panel.h"
 #include "set_parameter_command.h"
+#include "wheel_scrolls_form.h"
 
 #include "paintlab/engine/io/number_format.h"
 
@@ -172,6 +173,7 @@ void RecipeEditorDock::rebuild() {
                                       QString::fromStdString(displayText(d, d.typicalMax))));
         row.slider = new QSlider(Qt::Horizontal, m_form);
         row.slider->setRange(0, kSliderSteps);
+        letWheelScrollTheForm(row.slider);
         row.slider->setObjectName(row.spin->objectName() + "_slider");
         row.message = new QLabel(m_form);
         row.message->setObjectName(row.spin->objectName() + "_message");

@@ -30,6 +30,7 @@
 #include <QComboBox>
 #include <QDir>
 #include <QDockWidget>
+#include <QDoubleSpinBox>
 #include <QFile>
 #include <QLineEdit>
 #include <QMessageBox>
@@ -41,6 +42,7 @@
 #include <QTest>
 #include <QTreeView>
 #include <QUndoStack>
+#include <QWheelEvent>
 
 #include <nlohmann/json.hpp>
 
@@ -81,6 +83,7 @@ private slots:
     void exportThenImportIngredients();
     void badImportNamesTheFileAndRecordAndStoresNothing();
     void addingAnIngredientToALayerIsUndoable();
+    void wheelOverAnUnfocusedFieldLeavesItsValue();
     void diffOfTwoVersionsListsTheChangedParameter();
     void revertCreatesANewVersionEqualToTheOld();
     void diffMatchesComponentsByNameAndSummarisesSpectra();
@@ -317,6 +320,43 @@ void DocksTest::addingAnIngredientToALayerIsUndoable() {
     QVERIFY(m_window->document()->recipe() == before);
     QTRY_COMPARE_WITH_TIMEOUT(m_window->editorDock()->findChildren<QSlider*>().size(), sliders_before,
                               kWaitMs);
+}
+
+// Scrolling the recipe editor with the wheel must not change the fields that
+// pass under the pointer (wheel_scrolls_form.h); a focused field still steps.
+void DocksTest::wheelOverAnUnfocusedFieldLeavesItsValue() {
+    QVERIFY(m_window->selectRecipe(kPearl));
+    QSlider* slider = m_window->editorDock()->sliderFor("thickness_um");
+    QVERIFY(slider != nullptr);
+    auto* field = m_window->editorDock()->findChild<QDoubleSpinBox*>(QStringLiteral("thickness_um"));
+    QVERIFY(field != nullptr);
+    const paintlab::Recipe before = m_window->document()->recipe();
+    const double shown = field->value();
+    const int position = slider->value();
+    const auto wheel = [](QWidget* target) {
+        const QPointF at(target->width() / 2.0, target->height() / 2.0);
+        QWheelEvent event(at, target->mapToGlobal(at), QPoint(), QPoint(0, -120), Qt::NoButton,
+                          Qt::NoModifier, Qt::NoScrollPhase, false);
+        QApplication::sendEvent(target, &event);
+    };
+    m_window->activateWindow();
+    QVERIFY(QTest::qWaitForWindowActive(m_window.get()));
+    m_window->editorDock()->setFocus();
+    wheel(field);
+    wheel(slider);
+    QCOMPARE(field->value(), shown);
+    QCOMPARE(slider->value(), position);
+    QVERIFY(!field->hasFocus() && !slider->hasFocus());  // the wheel gives no focus either
+    QVERIFY(m_window->document()->recipe() == before);
+    // With focus (a click or Tab) the wheel steps the field as before.
+    field->setFocus();
+    QTRY_VERIFY_WITH_TIMEOUT(field->hasFocus(), kWaitMs);
+    wheel(field);
+    QVERIFY(field->value() != shown);
+    m_window->editorDock()->setFocus();  // commits the stepped value: one undo step
+    QTRY_VERIFY_WITH_TIMEOUT(!(m_window->document()->recipe() == before), kWaitMs);
+    m_window->document()->undoStack()->undo();
+    QVERIFY(m_window->document()->recipe() == before);
 }
 
 void DocksTest::diffOfTwoVersionsListsTheChangedParameter() {
