@@ -83,13 +83,16 @@ TEST(NarrowFlakes, WithoutTheRuleTheStandardGridFails) {
 }
 
 TEST(NarrowFlakes, PreviewStaysWithinItsLooserBudget) {
-    // Preview trades accuracy for time; ΔE00 1.5 is still a close match at a
-    // glance and far below the fixed grid's error (tens at 3°).
-    for (const double spread : {3.0, 5.0}) {
+    // Preview is what a slider drag shows before the workstation refines to
+    // standard, and what the fit searches with: it must stay within one
+    // just-noticeable difference (ΔE00 1), the fixed grid's error being tens
+    // at 3°. Narrow flakes are preview's hardest case: ~0.9 at 3°, ~0.3 at
+    // 5°, ~0.09 at the demo's 12° (printed; docs/VALIDATION.md).
+    for (const double spread : {3.0, 5.0, 12.0}) {
         const double e = worstDeltaE(withSpread("silver-metallic", spread),
                                      fewBands(presetSettings(Preset::Preview)), fineGrid(Preset::Preview));
         std::printf("preview at %.0f°: worst ΔE00 %.3f\n", spread, e);
-        EXPECT_LT(e, 1.5) << spread;
+        EXPECT_LT(e, 1.0) << spread;
     }
 }
 
