@@ -84,10 +84,10 @@ TEST(NarrowFlakes, WithoutTheRuleTheStandardGridFails) {
 
 TEST(NarrowFlakes, PreviewStaysWithinItsLooserBudget) {
     // Preview is what a slider drag shows before the workstation refines to
-    // standard, and what the fit searches with: it must stay within one
-    // just-noticeable difference (ΔE00 1), the fixed grid's error being tens
-    // at 3°. Narrow flakes are preview's hardest case: ~0.9 at 3°, ~0.3 at
-    // 5°, ~0.09 at the demo's 12° (printed; docs/VALIDATION.md).
+    // standard (the fit's search uses a coarser grid still, fit.cpp, only to rank starts): it must stay
+    // within one just-noticeable difference (ΔE00 1), the fixed grid's error being tens at 3°. Narrow flakes
+    // are preview's hardest case: ~0.9 at 3°, ~0.3 at 5°, ~0.09 at the demo's 12° (printed;
+    // docs/VALIDATION.md).
     for (const double spread : {3.0, 5.0, 12.0}) {
         const double e = worstDeltaE(withSpread("silver-metallic", spread),
                                      fewBands(presetSettings(Preset::Preview)), fineGrid(Preset::Preview));
