@@ -408,6 +408,8 @@ BENCHMARK(BM_McExplicitBudget)
     ->Args({5, 4, 8})  // with 25: /5/20/8 and /5/200/8 are registered once, above
     ->ArgsProduct({{25}, {4, 20, 200}, {8}})
     ->ArgsProduct({{26, 27}, {20, 200}, {8}})
+    // Silver (issue 30): one tile, the first-flake walks, no roulette by promise.
+    ->ArgsProduct({{6, 17, 18}, {200}, {8}})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);
