@@ -115,7 +115,7 @@ public:
     // polygons cannot intersect either) is moved to a new lateral position
     // (its depth and normal stay, so the depth profile and the
     // orientation distribution are kept); InputError if a flake finds no free
-    // place in 1000 draws (the concentration is too high for flat flakes).
+    // place in 100,000 draws (the concentration is too high for flat flakes).
     // `stop`, if given, is polled between flake kinds and by Embree's BVH
     // build (most of the time): once it is true the constructor throws
     // Error "cancelled" within a fraction of the build. polygon_sides: the

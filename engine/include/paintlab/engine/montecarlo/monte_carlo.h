@@ -106,7 +106,12 @@ struct McSettings {
     bool explicit_flakes = false;
     int tile_flakes = 20000;       // flakes per tile aimed at (sets the tile's side, >= 2 diameters)
     int max_tile_flakes = 200000;  // per kind and layer
-    // A flake that intersects one already placed is moved elsewhere (flake_tile.h).
+    // A flake that intersects one already placed is moved elsewhere
+    // (flake_tile.h), as real flakes do not interpenetrate; InputError when a
+    // layer is too crowded for it. Off by default: on the silver metallic it
+    // moves f by a few percent at the mid and far geometries and raises the
+    // flop's error per CPU second, whose paths between stacked flakes it
+    // keeps (docs/PERFORMANCE.md, issue 30).
     bool reject_overlaps = false;
     // Regular polygons of the disk's area with this many sides, or 0 for exact disks (flake_tile.h).
     int flake_polygon_sides = 16;
