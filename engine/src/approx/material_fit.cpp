@@ -1,0 +1,246 @@
+// The glTF material fitted to a spectral BRDF (approx/material_fit.h).
+
+#include "paintlab/engine/approx/material_fit.h"
+
+#include "paintlab/engine/colour/band_weights.h"
+#include "paintlab/engine/colour/cie_tables.h"
+#include "paintlab/engine/colour/ciede2000.h"
+#include "paintlab/engine/error.h"
+#include "paintlab/engine/fast_model/layered_brdf.h"
+#include "paintlab/engine/multiangle.h"
+#include "paintlab/engine/recipe.h"
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <variant>
+
+namespace paintlab::approx {
+
+namespace {
+
+constexpr int kMainParameters = 9;  // base colour (3), metallic, roughness, specular, specular colour (3)
+constexpr int kFilmParameters = 2;  // iridescence factor, thickness (nm)
+constexpr double kMinRoughness = 0.03;
+constexpr double kMaxSpecularColor = 10.0;  // f0 up to 0.4 at ior 1.5
+constexpr double kMinThicknessNm = 100.0;
+constexpr double kMaxThicknessNm = 1200.0;
+
+struct Target {
+    std::vector<std::pair<Direction, Direction>> pairs;
+    std::vector<std::array<double, 3>> log_value;  // ln(1 + max(f, 0) cos_i) per channel
+};
+
+double logValue(double f, double cos_i) { return std::log1p(std::max(f, 0.0) * cos_i); }
+
+GltfMaterial materialOf(const double* main, const double* film, const MaterialFitOptions& options) {
+    GltfMaterial m;
+    m.base_color = {main[0], main[1], main[2]};
+    m.metallic = main[3];
+    m.roughness = main[4];
+    m.specular = main[5];
+    m.specular_color = {main[6], main[7], main[8]};
+    m.clearcoat = options.clearcoat;
+    m.clearcoat_roughness = 0.0;
+    m.iridescence_ior = options.iridescence_ior;
+    if (options.iridescence) {
+        m.iridescence = film[0];
+        m.iridescence_thickness_nm = film[1];
+    }
+    return m;
+}
+
+struct LogResiduals {
+    const Target* target = nullptr;
+    MaterialFitOptions options;
+    bool operator()(const double* main, const double* film, double* residuals) const {
+        const GltfMaterial m = materialOf(main, film, options);
+        for (std::size_t k = 0; k < target->pairs.size(); ++k) {
+            const auto& [wi, wo] = target->pairs[k];
+            const Rgb f = evalGltf(m, wi, wo);
+            const auto& t = target->log_value[k];
+            residuals[3 * k + 0] = logValue(f.r, wi.z) - t[0];
+            residuals[3 * k + 1] = logValue(f.g, wi.z) - t[1];
+            residuals[3 * k + 2] = logValue(f.b, wi.z) - t[2];
+        }
+        return true;
+    }
+};
+
+struct Start {
+    std::array<double, kMainParameters> main{};
+    std::array<double, kFilmParameters> film{0.0, 400.0};
+    double cost = std::numeric_limits<double>::infinity();
+};
+
+void solve(const Target& target, const MaterialFitOptions& options, bool fit_film, Start& s) {
+    ceres::Problem problem;
+    auto* cost = new ceres::NumericDiffCostFunction<LogResiduals, ceres::CENTRAL, ceres::DYNAMIC,
+                                                    kMainParameters, kFilmParameters>(
+        new LogResiduals{&target, options}, ceres::TAKE_OWNERSHIP, static_cast<int>(3 * target.pairs.size()));
+    problem.AddResidualBlock(cost, nullptr, s.main.data(), s.film.data());
+    const std::array<double, kMainParameters> lower{0, 0, 0, 0, kMinRoughness, 0, 0, 0, 0};
+    const std::array<double, kMainParameters> upper{
+        1, 1, 1, 1, 1, 1, kMaxSpecularColor, kMaxSpecularColor, kMaxSpecularColor};
+    for (int j = 0; j < kMainParameters; ++j) {
+        problem.SetParameterLowerBound(s.main.data(), j, lower[static_cast<std::size_t>(j)]);
+        problem.SetParameterUpperBound(s.main.data(), j, upper[static_cast<std::size_t>(j)]);
+    }
+    problem.SetParameterLowerBound(s.film.data(), 0, 0.0);
+    problem.SetParameterUpperBound(s.film.data(), 0, 1.0);
+    problem.SetParameterLowerBound(s.film.data(), 1, kMinThicknessNm);
+    problem.SetParameterUpperBound(s.film.data(), 1, kMaxThicknessNm);
+    if (!fit_film) problem.SetParameterBlockConstant(s.film.data());
+    ceres::Solver::Options o;
+    o.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+    o.linear_solver_type = ceres::DENSE_QR;
+    o.max_num_iterations = options.max_iterations;
+    o.function_tolerance = 1e-8;
+    o.parameter_tolerance = 1e-8;
+    o.logging_type = ceres::SILENT;
+    o.num_threads = 1;
+    ceres::Solver::Summary summary;
+    ceres::Solve(o, &problem, &summary);
+    s.cost = std::isfinite(summary.final_cost) ? summary.final_cost : std::numeric_limits<double>::infinity();
+}
+
+Target tabulate(const SpectralBrdf& brdf) {
+    if (brdf.wavelengthsNm().size() < 2)
+        throw InputError("<argument>", "brdf", "a BRDF with at least 2 wavelengths is needed for its colour");
+    const BandColourWeights weights = bandColourWeights(brdf.wavelengthsNm());
+    Target t;
+    t.pairs = gltfFitDirections();
+    std::vector<double> spectrum(brdf.wavelengthsNm().size());
+    for (const auto& [wi, wo] : t.pairs) {
+        brdf.eval(wi, wo, spectrum);
+        const Rgb f = weightedLinearSrgb(weights, spectrum);
+        t.log_value.push_back({logValue(f.r, wi.z), logValue(f.g, wi.z), logValue(f.b, wi.z)});
+    }
+    return t;
+}
+
+}  // namespace
+
+std::vector<std::pair<Direction, Direction>> gltfFitDirections() {
+    std::vector<std::pair<Direction, Direction>> pairs;
+    constexpr std::array<double, 6> kThetaDeg{5.0, 20.0, 35.0, 50.0, 65.0, 80.0};
+    for (double theta_i : kThetaDeg)
+        for (double theta_o : kThetaDeg)
+            for (int k = 0; k <= 6; ++k)
+                pairs.emplace_back(directionFromAnglesDeg(theta_i, 0.0),
+                                   directionFromAnglesDeg(theta_o, 30.0 * k));
+    for (int aspecular = -40; aspecular <= 130; aspecular += 5) {
+        const MultiAngleGeometry g = multiAngleGeometry(aspecular);
+        pairs.emplace_back(g.wi, g.wo);
+    }
+    return pairs;
+}
+
+std::vector<GeometryDeltaE>
+multiAngleDeltaE(const SpectralBrdf& reference,
+                 const std::function<Rgb(const Direction& wi, const Direction& wo)>& approximation) {
+    // sRGB's conditions, so that the approximation's colour needs no adaptation.
+    const MultiAngleReport report = multiAngleColours(reference, Illuminant::D65, Observer::Cie1931_2deg);
+    const Xyz white = whitePoint(Illuminant::D65, Observer::Cie1931_2deg);
+    std::vector<GeometryDeltaE> out;
+    for (const MultiAngleColour& c : report.colours) {
+        const MultiAngleGeometry g = multiAngleGeometry(c.aspecular_deg);
+        const Rgb f = approximation(g.wi, g.wo);
+        constexpr double kPi = std::numbers::pi;
+        GeometryDeltaE d;
+        d.aspecular_deg = c.aspecular_deg;
+        d.reference = c.lab;
+        d.approximation = xyzToLab(linearSrgbToXyz({kPi * f.r, kPi * f.g, kPi * f.b}), white);
+        d.delta_e00 = ciede2000(d.reference, d.approximation);
+        out.push_back(d);
+    }
+    return out;
+}
+
+MaterialFit fitGltfMaterial(const SpectralBrdf& brdf, const MaterialFitOptions& options) {
+    const auto begin = std::chrono::steady_clock::now();
+    const Target target = tabulate(brdf);
+    // The starting colour: the reflectance factor seen along the normal (45as45).
+    const MultiAngleGeometry normal = multiAngleGeometry(45.0);
+    const BandColourWeights weights = bandColourWeights(brdf.wavelengthsNm());
+    const Rgb seen = weightedLinearSrgb(weights, brdf.eval(normal.wi, normal.wo));
+    const auto startColour = [](double f) { return std::clamp(std::numbers::pi * f, 0.02, 0.98); };
+
+    MaterialFit fit;
+    Start best;
+    for (double roughness : {0.15, 0.35, 0.7})
+        for (double metallic : {0.05, 0.6}) {
+            Start s;
+            s.main = {startColour(seen.r),
+                      startColour(seen.g),
+                      startColour(seen.b),
+                      metallic,
+                      roughness,
+                      0.5,
+                      1.0,
+                      1.0,
+                      1.0};
+            solve(target, options, false, s);
+            ++fit.starts;
+            if (s.cost < best.cost) best = s;
+        }
+    if (options.iridescence) {
+        // The film's colour cycles with its thickness: a start every 100 nm.
+        const Start plain = best;
+        for (double thickness = 150.0; thickness <= 1050.0; thickness += 100.0) {
+            Start s = plain;
+            s.film = {0.8, thickness};
+            solve(target, options, true, s);
+            ++fit.starts;
+            if (s.cost < best.cost) best = s;
+        }
+    }
+    fit.material = materialOf(best.main.data(), best.film.data(), options);
+    fit.rms_log_residual = std::sqrt(2.0 * best.cost / static_cast<double>(3 * target.pairs.size()));
+    fit.geometries = multiAngleDeltaE(
+        brdf, [&fit](const Direction& wi, const Direction& wo) { return evalGltf(fit.material, wi, wo); });
+    for (const GeometryDeltaE& g : fit.geometries) {
+        fit.max_delta_e00 = std::max(fit.max_delta_e00, g.delta_e00);
+        fit.mean_delta_e00 += g.delta_e00 / static_cast<double>(fit.geometries.size());
+    }
+    fit.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    return fit;
+}
+
+MaterialFitOptions gltfFitOptions(const Recipe& recipe, const LayeredBrdf& brdf) {
+    MaterialFitOptions options;
+    for (const Layer& layer : recipe.layers)
+        for (const Component& component : layer.components)
+            if (const auto* flake = std::get_if<InterferenceFlake>(&component); flake != nullptr) {
+                if (!options.iridescence) options.iridescence_ior = flake->tio2_refractive_index(550.0);
+                options.iridescence = true;
+            }
+    // The clear coat's factor: its Schlick reflectance matched to the top
+    // interface's mirror reflectance (luminance), least squares over mu.
+    const BandColourWeights weights = bandColourWeights(brdf.wavelengthsNm());
+    const std::vector<double> ones(brdf.wavelengthsNm().size(), 1.0);
+    const double white_y = weightedXyz(weights, ones).Y;
+    double fr = 0.0;
+    double ff = 0.0;
+    for (int k = 1; k <= 20; ++k) {
+        const double mu = 0.05 * k;
+        const double y = weightedXyz(weights, brdf.specularReflectance(mu)).Y / white_y;
+        const double m = 1.0 - mu;
+        const double schlick = 0.04 + 0.96 * m * m * m * m * m;
+        fr += schlick * y;
+        ff += schlick * schlick;
+    }
+    options.clearcoat = std::clamp(fr / ff, 0.0, 1.0);
+    return options;
+}
+
+MaterialFit fitGltfMaterial(const Recipe& recipe, const LayeredBrdf& brdf) {
+    return fitGltfMaterial(brdf, gltfFitOptions(recipe, brdf));
+}
+
+}  // namespace paintlab::approx
