@@ -10,7 +10,8 @@
 #include "paintlab/engine/multiangle.h"
 #include "paintlab/engine/recipe.h"
 
-#include <ceres/ceres.h>
+#include <unsupported/Eigen/NonLinearOptimization>
+#include <unsupported/Eigen/NumericalDiff>
 
 #include <algorithm>
 #include <array>
@@ -55,58 +56,89 @@ GltfMaterial materialOf(const double* main, const double* film, const MaterialFi
     return m;
 }
 
-struct LogResiduals {
-    const Target* target = nullptr;
-    MaterialFitOptions options;
-    bool operator()(const double* main, const double* film, double* residuals) const {
-        const GltfMaterial m = materialOf(main, film, options);
-        for (std::size_t k = 0; k < target->pairs.size(); ++k) {
-            const auto& [wi, wo] = target->pairs[k];
-            const Rgb f = evalGltf(m, wi, wo);
-            const auto& t = target->log_value[k];
-            residuals[3 * k + 0] = logValue(f.r, wi.z) - t[0];
-            residuals[3 * k + 1] = logValue(f.g, wi.z) - t[1];
-            residuals[3 * k + 2] = logValue(f.b, wi.z) - t[2];
-        }
-        return true;
-    }
-};
-
 struct Start {
     std::array<double, kMainParameters> main{};
     std::array<double, kFilmParameters> film{0.0, 400.0};
     double cost = std::numeric_limits<double>::infinity();
 };
 
-void solve(const Target& target, const MaterialFitOptions& options, bool fit_film, Start& s) {
-    ceres::Problem problem;
-    auto* cost = new ceres::NumericDiffCostFunction<LogResiduals, ceres::CENTRAL, ceres::DYNAMIC,
-                                                    kMainParameters, kFilmParameters>(
-        new LogResiduals{&target, options}, ceres::TAKE_OWNERSHIP, static_cast<int>(3 * target.pairs.size()));
-    problem.AddResidualBlock(cost, nullptr, s.main.data(), s.film.data());
-    const std::array<double, kMainParameters> lower{0, 0, 0, 0, kMinRoughness, 0, 0, 0, 0};
-    const std::array<double, kMainParameters> upper{
-        1, 1, 1, 1, 1, 1, kMaxSpecularColor, kMaxSpecularColor, kMaxSpecularColor};
-    for (int j = 0; j < kMainParameters; ++j) {
-        problem.SetParameterLowerBound(s.main.data(), j, lower[static_cast<std::size_t>(j)]);
-        problem.SetParameterUpperBound(s.main.data(), j, upper[static_cast<std::size_t>(j)]);
+// The bounds of the main parameters, then of the film's.
+constexpr std::array<double, kMainParameters + kFilmParameters> kLower{0, 0, 0, 0, kMinRoughness,  0,
+                                                                       0, 0, 0, 0, kMinThicknessNm};
+constexpr std::array<double, kMainParameters + kFilmParameters> kUpper{
+    1, 1, 1, 1, 1, 1, kMaxSpecularColor, kMaxSpecularColor, kMaxSpecularColor, 1, kMaxThicknessNm};
+
+// Bounds by a change of variable, x = lo + (hi - lo)(1 + sin u) / 2: the
+// optimiser sees no bound and x never leaves [lo, hi].
+double bounded(double u, std::size_t j) {
+    return kLower[j] + (kUpper[j] - kLower[j]) * 0.5 * (1.0 + std::sin(u));
+}
+double unbounded(double x, std::size_t j) {
+    const double t = 2.0 * (x - kLower[j]) / (kUpper[j] - kLower[j]) - 1.0;
+    return std::asin(std::clamp(t, -1.0, 1.0));
+}
+
+// The residuals for Eigen's Levenberg-Marquardt (the functor interface of
+// unsupported/Eigen/NonLinearOptimization).
+struct LogResiduals {
+    using Scalar = double;
+    enum { InputsAtCompileTime = Eigen::Dynamic, ValuesAtCompileTime = Eigen::Dynamic };
+    using InputType = Eigen::VectorXd;
+    using ValueType = Eigen::VectorXd;
+    using JacobianType = Eigen::MatrixXd;
+
+    const Target* target = nullptr;
+    MaterialFitOptions options;
+    Start fixed;  // the film, when it is not fitted
+    int free = kMainParameters;
+
+    int inputs() const { return free; }
+    int values() const { return static_cast<int>(3 * target->pairs.size()); }
+    Start decode(const Eigen::VectorXd& u) const {
+        Start s = fixed;
+        for (std::size_t j = 0; j < static_cast<std::size_t>(free); ++j) {
+            const double x = bounded(u[static_cast<Eigen::Index>(j)], j);
+            if (j < kMainParameters)
+                s.main[j] = x;
+            else
+                s.film[j - kMainParameters] = x;
+        }
+        return s;
     }
-    problem.SetParameterLowerBound(s.film.data(), 0, 0.0);
-    problem.SetParameterUpperBound(s.film.data(), 0, 1.0);
-    problem.SetParameterLowerBound(s.film.data(), 1, kMinThicknessNm);
-    problem.SetParameterUpperBound(s.film.data(), 1, kMaxThicknessNm);
-    if (!fit_film) problem.SetParameterBlockConstant(s.film.data());
-    ceres::Solver::Options o;
-    o.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-    o.linear_solver_type = ceres::DENSE_QR;
-    o.max_num_iterations = options.max_iterations;
-    o.function_tolerance = 1e-8;
-    o.parameter_tolerance = 1e-8;
-    o.logging_type = ceres::SILENT;
-    o.num_threads = 1;
-    ceres::Solver::Summary summary;
-    ceres::Solve(o, &problem, &summary);
-    s.cost = std::isfinite(summary.final_cost) ? summary.final_cost : std::numeric_limits<double>::infinity();
+    int operator()(const Eigen::VectorXd& u, Eigen::VectorXd& residuals) const {
+        const Start s = decode(u);
+        const GltfMaterial m = materialOf(s.main.data(), s.film.data(), options);
+        for (std::size_t k = 0; k < target->pairs.size(); ++k) {
+            const auto& [wi, wo] = target->pairs[k];
+            const Rgb f = evalGltf(m, wi, wo);
+            const auto& t = target->log_value[k];
+            const auto row = static_cast<Eigen::Index>(3 * k);
+            residuals[row + 0] = logValue(f.r, wi.z) - t[0];
+            residuals[row + 1] = logValue(f.g, wi.z) - t[1];
+            residuals[row + 2] = logValue(f.b, wi.z) - t[2];
+        }
+        return 0;
+    }
+};
+
+// One Levenberg-Marquardt solve from s (central differences); updates s.
+void solve(const Target& target, const MaterialFitOptions& options, bool fit_film, Start& s) {
+    LogResiduals functor{&target, options, s, fit_film ? kMainParameters + kFilmParameters : kMainParameters};
+    Eigen::VectorXd u(functor.free);
+    for (std::size_t j = 0; j < static_cast<std::size_t>(functor.free); ++j)
+        u[static_cast<Eigen::Index>(j)] =
+            unbounded(j < kMainParameters ? s.main[j] : s.film[j - kMainParameters], j);
+    Eigen::NumericalDiff<LogResiduals, Eigen::Central> numeric(functor);
+    Eigen::LevenbergMarquardt<Eigen::NumericalDiff<LogResiduals, Eigen::Central>> lm(numeric);
+    lm.parameters.maxfev = static_cast<Eigen::Index>(options.max_iterations) * (2 * functor.free + 1);
+    lm.parameters.ftol = 1e-8;
+    lm.parameters.xtol = 1e-8;
+    lm.minimize(u);
+    Eigen::VectorXd residuals(functor.values());
+    functor(u, residuals);
+    s = functor.decode(u);
+    const double cost = 0.5 * residuals.squaredNorm();
+    s.cost = std::isfinite(cost) ? cost : std::numeric_limits<double>::infinity();
 }
 
 Target tabulate(const SpectralBrdf& brdf) {

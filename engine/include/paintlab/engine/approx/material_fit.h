@@ -2,7 +2,8 @@
 // A recipe's fast-model BRDF approximated by the glTF 2.0 material
 // (approx/gltf_material.h), for renderers that take glTF or a shading model
 // close to it (OpenPBR, plugins/materialx): the parameters fitted by bounded
-// least squares (Ceres, Levenberg-Marquardt) to the BRDF in linear sRGB, and
+// least squares (Levenberg-Marquardt, Eigen's header-only module: the
+// export plugins must not load Ceres, tests/cli/light_commands.sh) to the BRDF in linear sRGB, and
 // what is left, as CIEDE2000 at the six multi-angle geometries.
 //
 // The fit (docs/ARCHITECTURE.md, "Renderer approximations"):
