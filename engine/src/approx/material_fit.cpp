@@ -37,7 +37,12 @@ struct Target {
     std::vector<std::array<double, 3>> log_value;  // ln(1 + max(f, 0) cos_i) per channel
 };
 
-double logValue(double f, double cos_i) { return std::log1p(std::max(f, 0.0) * cos_i); }
+// The floor of the log residual, 1/sr (a reflectance factor of 0.03, L* 20):
+// ln(1 + f cos) of the recipe fit hardly sees a dark flop (L* 5 and 30 differ
+// by 0.05 in it), which is where a metallic's approximation goes wrong first.
+constexpr double kLogFloor = 0.01;
+
+double logValue(double f, double cos_i) { return std::log(kLogFloor + std::max(f, 0.0) * cos_i); }
 
 GltfMaterial materialOf(const double* main, const double* film, const MaterialFitOptions& options) {
     GltfMaterial m;
@@ -205,18 +210,17 @@ MaterialFit fitGltfMaterial(const SpectralBrdf& brdf, const MaterialFitOptions& 
 
     MaterialFit fit;
     Start best;
+    // Two kinds of lobe from three widths: a metal's (coloured by the base
+    // colour) and a dielectric's (coloured by the specular colour).
+    struct Lobe {
+        double metallic, specular, specular_color;
+    };
     for (double roughness : {0.15, 0.35, 0.7})
-        for (double metallic : {0.05, 0.6}) {
+        for (const Lobe lobe : {Lobe{0.6, 0.5, 1.0}, Lobe{0.02, 0.9, 5.0}}) {
             Start s;
-            s.main = {startColour(seen.r),
-                      startColour(seen.g),
-                      startColour(seen.b),
-                      metallic,
-                      roughness,
-                      0.5,
-                      1.0,
-                      1.0,
-                      1.0};
+            s.main = {startColour(seen.r), startColour(seen.g), startColour(seen.b),
+                      lobe.metallic,       roughness,           lobe.specular,
+                      lobe.specular_color, lobe.specular_color, lobe.specular_color};
             solve(target, options, false, s);
             ++fit.starts;
             if (s.cost < best.cost) best = s;

@@ -56,9 +56,11 @@ TEST(MaterialFit, ClearCoatedSolidIsNearlyAGltfMaterial) {
     // A Lambertian panel (albedo 0.5) under a 1.5-index clear coat: what the
     // glTF clear coat over a diffuse base describes, but for the coat's
     // refraction and its Fresnel transmission on the way in (glTF weights the
-    // base by 1 - F(N.V) only). Measured: 0.4 ΔE00 at most (45as-15 and 45as110,
-    // nearest grazing); 1 (the threshold of a visible difference) leaves room
-    // for the preview preset's table error.
+    // base by 1 - F(N.V) only, so it misses the darkening at grazing
+    // incidence, which the fit's log residual weighs). Measured 0.9 ΔE00 at
+    // most (0.4 at 45as-15 and 45as110); 1.5 leaves room for the preview
+    // preset's tables, and a wrong coat or base (a factor 0.9 on the
+    // albedo) is 3 or more.
     const Recipe recipe = parseRecipeJson(R"({"schema_version": 1, "name": "clear over grey",
       "layers": [{"name": "clear", "thickness_um": 30,
                   "binder": {"name": "clear", "refractive_index": 1.5}, "components": []}],
@@ -68,7 +70,7 @@ TEST(MaterialFit, ClearCoatedSolidIsNearlyAGltfMaterial) {
     // The mirror term of n = 1.5 is Fresnel's, 0.04 at normal incidence, which
     // Schlick's 0.04 + 0.96 (1 - mu)^5 follows within a few percent.
     EXPECT_NEAR(fit.material.clearcoat, 1.0, 0.05);
-    EXPECT_LT(fit.max_delta_e00, 1.0);
+    EXPECT_LT(fit.max_delta_e00, 1.5);
     EXPECT_LT(fit.material.specular, 0.05);  // no lobe: the panel is Lambertian under a smooth coat
 }
 

@@ -11,12 +11,14 @@
 //     65, 80} degrees with phi_o - phi_i in {0, 30, ..., 180} (252 pairs),
 //     plus the plane of incidence at 45° illumination, aspecular -40..130° in
 //     5° steps (35 pairs, the multi-angle geometries among them);
-//   - residual per pair and channel: ln(1 + f_gltf cos_i) - ln(1 + f cos_i)
-//     (the recipe fit's log residual; a target channel below 0, a colour
+//   - residual per pair and channel: ln(0.01 + f_gltf cos_i) - ln(0.01 + f cos_i)
+//     (the recipe fit's log residual with a floor of 0.01 1/sr instead of 1,
+//     so that a dark flop counts; a target channel below 0, a colour
 //     outside the sRGB gamut, counts as 0);
 //   - free: base colour, metallic, roughness, specular, specular colour, and
 //     for a recipe with interference flakes iridescence factor and thickness
-//     (film index: the flakes' TiO2 at 550 nm); several starts, the best kept;
+//     (film index: the flakes' TiO2 at 550 nm); 6 starts (3 roughnesses, a
+//     metal's or a dielectric's lobe), then 10 film thicknesses; the best kept;
 //   - fixed: ior 1.5 (redundant with the specular colour); the clear coat
 //     stands for the smooth top interface's mirror term, which eval() of both
 //     BRDFs excludes: roughness 0, factor the least-squares match of its
