@@ -249,15 +249,4 @@ std::string glbBytes(const GltfAsset& asset) {
     return out;
 }
 
-std::string deltaEReport(const approx::MaterialFit& fit, std::string_view model) {
-    std::string line = std::string(model) + " approximation, ΔE00 against the fast model:";
-    for (const approx::GeometryDeltaE& g : fit.geometries)
-        line.append(" ")
-            .append(aspecularName(g.aspecular_deg))
-            .append(" ")
-            .append(io::formatFixed(g.delta_e00, 2));
-    return line + "; max " + io::formatFixed(fit.max_delta_e00, 2) + " (fit " +
-           io::formatFixed(fit.seconds, 2) + " s)";
-}
-
 }  // namespace paintlab::plugins::gltf

@@ -51,7 +51,4 @@ std::string glbBytes(const GltfAsset& asset);
 // RFC 4648 base64 with padding.
 std::string base64(std::string_view bytes);
 
-// One line: the ΔE00 at each geometry, the largest, the fit's time.
-std::string deltaEReport(const approx::MaterialFit& fit, std::string_view model);
-
 }  // namespace paintlab::plugins::gltf

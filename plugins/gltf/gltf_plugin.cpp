@@ -34,7 +34,7 @@ public:
             makeAsset(mesh, fit, {recipe.name, options.recipe_path, options.settings_json, options.object});
         const std::string bytes = m_binary ? glbBytes(asset) : gltfText(asset);
         writeExportFile(file, bytes);
-        return deltaEReport(fit, "glTF");
+        return approx::deltaESummary(fit, "glTF");
     }
 
 private:

@@ -7,6 +7,7 @@
 #include "paintlab/engine/colour/ciede2000.h"
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/fast_model/layered_brdf.h"
+#include "paintlab/engine/io/number_format.h"
 #include "paintlab/engine/multiangle.h"
 #include "paintlab/engine/recipe.h"
 
@@ -246,6 +247,20 @@ MaterialFit fitGltfMaterial(const SpectralBrdf& brdf, const MaterialFitOptions& 
     }
     fit.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
     return fit;
+}
+
+std::string deltaESummary(const MaterialFit& fit, std::string_view model) {
+    std::string line = std::string(model) + " approximation, ΔE00 against the fast model:";
+    for (const GeometryDeltaE& g : fit.geometries)
+        line.append(" 45as")
+            .append(io::formatNumber(g.aspecular_deg))
+            .append(" ")
+            .append(io::formatFixed(g.delta_e00, 2));
+    return line.append("; max ")
+        .append(io::formatFixed(fit.max_delta_e00, 2))
+        .append(" (fit ")
+        .append(io::formatFixed(fit.seconds, 2))
+        .append(" s)");
 }
 
 MaterialFitOptions gltfFitOptions(const Recipe& recipe, const LayeredBrdf& brdf) {
