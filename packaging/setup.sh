@@ -23,8 +23,8 @@ jobs=$(nproc 2>/dev/null || echo 2)
 # Every Debian package the project needs, now and for the issues planned
 # (shared/ARCHITECTURE.md, shared/notes/debian12-stack.md).
 packages=(
-  # toolchain and test tools
-  build-essential cmake pkg-config git python3 clang-format clang-tidy
+  # toolchain and test tools (nodejs: the Khronos glTF validator of the export test)
+  build-essential cmake pkg-config git python3 clang-format clang-tidy nodejs
   libgtest-dev libgmock-dev libbenchmark-dev
   # the Debian package: man pages from --help, its check (dpkg-dev, for dpkg-shlibdeps, comes with build-essential)
   help2man lintian
@@ -132,7 +132,35 @@ make_package() {
   say "  install it with:  apt install $deb"
 }
 
+# The Khronos glTF validator for the export test (tests/plugins/gltf_validate.sh):
+# npm's gltf-validator at the version pinned in tools/gltf_validator/package-lock.json,
+# installed into build/release/npm (never into the source tree). Idempotent: nothing
+# is fetched when that lock is already installed. Without node the test is skipped.
+install_gltf_validator() {
+  local dir="$root/build/release/npm" src="$root/tools/gltf_validator"
+  if ! command -v node >/dev/null 2>&1; then
+    say "no node: the glTF validator test will be skipped (apt-get install nodejs npm)"
+    return
+  fi
+  if [[ -f $dir/node_modules/gltf-validator/package.json ]] && cmp -s "$src/package-lock.json" "$dir/package-lock.json"; then
+    say "glTF validator already installed ($dir)"
+    return
+  fi
+  # Debian's nodejs comes without npm (NodeSource's bundles it: then Debian's npm would conflict).
+  if ! command -v npm >/dev/null 2>&1; then
+    say "apt-get install npm (for the glTF validator)"
+    as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends npm \
+      || die "apt-get install npm (the glTF validator is installed with it)"
+  fi
+  say "glTF validator: npm ci in $dir (tools/gltf_validator/package-lock.json)"
+  mkdir -p "$dir"
+  cp "$src/package.json" "$src/package-lock.json" "$dir/"
+  (cd "$dir" && npm ci --no-audit --no-fund --ignore-scripts >/dev/null) \
+    || die "npm ci of the glTF validator in $dir (is the npm registry reachable?)"
+}
+
 run_tests() {
+  install_gltf_validator
   say "tests: Release build (including clang-format and clang-tidy)"
   (cd "$root/build/release" && ctest --output-on-failure -j "$jobs") || die "tests (Release)"
   say "all tests passed"

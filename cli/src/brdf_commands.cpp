@@ -15,6 +15,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -36,6 +37,7 @@ struct BrdfOptions {
     std::string wi;
     std::string wo;
     double step_deg = 5.0;
+    std::string object = "sphere";
     bool json = false;
 };
 
@@ -90,6 +92,12 @@ const plugins::AppearanceExporter* pluginExporter(const std::string& out) {
 }
 
 int runBrdf(const BrdfOptions& o) {
+    if (std::find(plugins::kExportObjects.begin(), plugins::kExportObjects.end(), o.object) ==
+        plugins::kExportObjects.end()) {
+        std::string message = "'" + o.object + "' is not an object; one of";
+        for (std::string_view name : plugins::kExportObjects) message.append(" ").append(name);
+        throw InputError("<argument>", "--object", message);
+    }
     if (const plugins::AppearanceExporter* exporter = pluginExporter(o.out)) {
         const Recipe recipe = loadRecipeFile(o.recipe);
         const LayeredBrdf brdf =
@@ -98,7 +106,9 @@ int runBrdf(const BrdfOptions& o) {
         options.recipe_path = o.recipe;
         options.settings_json = settingsJson(brdf, o.preset).dump();
         options.step_deg = o.step_deg;
-        exporter->write(recipe, brdf, o.out, options);
+        options.object = o.object;
+        const std::string report = exporter->write(recipe, brdf, o.out, options);
+        if (!report.empty()) std::cerr << report << (report.back() == '\n' ? "" : "\n");
         std::cerr << "wrote " << o.out << " (" << exporter->format().id << ", " << brdf.wavelengthsNm().size()
                   << " bands, " << brdf.computeSeconds() << " s)\n";
         return 0;
@@ -191,9 +201,14 @@ void addBrdfCommands(CLI::App& app, CommandAction& action) {
     CLI::App* brdf = app.add_subcommand("brdf", "Tabulate the paint's spectral BRDF (fast model)");
     addCommon(brdf, *o);
     brdf->add_option("--out", o->out,
-                     "Output file, .json or .csv, or a plugin's format such as .binary (MERL; "
-                     "paintlab-cli plugins lists them) (default: JSON on stdout)");
+                     "Output file, .json or .csv, or a plugin's format such as .binary (MERL) or .gltf/.glb "
+                     "(a painted object with a fitted glTF material; paintlab-cli plugins lists them) "
+                     "(default: JSON on stdout)");
     brdf->add_option("--step", o->step_deg, "Angular step of the table in degrees")->capture_default_str();
+    brdf->add_option("--object", o->object,
+                     "The painted object of a scene format (.gltf, .glb): sphere, panel or car (the demo "
+                     "scenes' car body)")
+        ->capture_default_str();
     brdf->callback([o, &action] { action = [o] { return runBrdf(*o); }; });
 
     CLI::App* eval = app.add_subcommand("eval", "Spectral BRDF value (1/sr) for one pair of directions");

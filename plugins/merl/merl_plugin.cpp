@@ -56,16 +56,11 @@ public:
                 "MERL BRDF binary: the fast model's BRDF in linear sRGB (mirror term excluded)",
                 {".binary"}};
     }
-    void write(const Recipe& /*recipe*/, const LayeredBrdf& brdf, const std::filesystem::path& file,
-               const ExportOptions& /*options*/) const override {
+    std::string write(const Recipe& /*recipe*/, const LayeredBrdf& brdf, const std::filesystem::path& file,
+                      const ExportOptions& /*options*/) const override {
         const std::string bytes = encode(tabulate(brdf));
-        try {
-            io::writeFileAtomically(file, bytes);
-        } catch (const InputError&) {
-            throw;
-        } catch (const std::exception& e) {
-            throw InputError(file.string(), "", e.what());
-        }
+        writeExportFile(file, bytes);
+        return {};
     }
 };
 

@@ -135,10 +135,11 @@ public:
         if (m_csv) return {"brdf-table-csv", "tabulated spectral BRDF, one row per direction pair", {".csv"}};
         return {"brdf-table-json", "tabulated spectral BRDF with settings and mirror reflectance", {".json"}};
     }
-    void write(const Recipe& /*recipe*/, const LayeredBrdf& brdf, const std::filesystem::path& file,
-               const ExportOptions& options) const override {
+    std::string write(const Recipe& /*recipe*/, const LayeredBrdf& brdf, const std::filesystem::path& file,
+                      const ExportOptions& options) const override {
         io::writeFileAtomically(
             file, brdfTableText(brdf, options.recipe_path, options.settings_json, options.step_deg, m_csv));
+        return {};
     }
 
 private:

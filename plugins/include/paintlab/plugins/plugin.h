@@ -20,11 +20,15 @@
 
 #include "paintlab/database/measurements.h"
 #include "paintlab/database/spectra_files.h"
+#include "paintlab/engine/error.h"
 #include "paintlab/engine/fast_model/layered_brdf.h"
+#include "paintlab/engine/io/atomic_file.h"
 #include "paintlab/engine/recipe.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -33,7 +37,8 @@
 namespace paintlab::plugins {
 
 // 2: exporters of database content (measurements, spectra, ingredients), ingredient importers.
-inline constexpr int kApiVersion = 2;
+// 3: ExportOptions::object; AppearanceExporter::write returns its report.
+inline constexpr int kApiVersion = 3;
 
 // How many leading bytes of a file a probe sees.
 inline constexpr std::size_t kProbeBytes = 4096;
@@ -86,10 +91,15 @@ public:
                                              const ReadOptions& options) const = 0;
 };
 
+// The painted objects an exporter of a scene format can write (ExportOptions::object):
+// a sphere, a flat panel, the demo scenes' car body (raymaps/scene_geometry.h).
+inline constexpr std::array<std::string_view, 3> kExportObjects{"sphere", "panel", "car"};
+
 struct ExportOptions {
-    std::string recipe_path;    // where the recipe came from, for the file's provenance
-    std::string settings_json;  // the fast model's settings as a JSON object ("{}" if none)
-    double step_deg = 5.0;      // tabulated formats with a free grid: the angular step
+    std::string recipe_path;        // where the recipe came from, for the file's provenance
+    std::string settings_json;      // the fast model's settings as a JSON object ("{}" if none)
+    double step_deg = 5.0;          // tabulated formats with a free grid: the angular step
+    std::string object = "sphere";  // formats holding a painted object (glTF): one of kExportObjects
 };
 
 // Writes a recipe's appearance, from its fast-model BRDF, to a file.
@@ -97,11 +107,26 @@ class AppearanceExporter {
 public:
     virtual ~AppearanceExporter() = default;
     virtual FormatInfo format() const = 0;
-    // Writes atomically (io/atomic_file.h). Throws InputError naming the file
-    // if it cannot be written, Error for anything else.
-    virtual void write(const Recipe& recipe, const LayeredBrdf& brdf, const std::filesystem::path& file,
-                       const ExportOptions& options) const = 0;
+    // Writes atomically (io/atomic_file.h) and returns what the user should
+    // read about the file, one line each ("" for nothing; an approximation
+    // says how far it is from the paint). Throws InputError naming the file
+    // if it cannot be written or an option (the field) is not allowed, Error
+    // for anything else.
+    virtual std::string write(const Recipe& recipe, const LayeredBrdf& brdf,
+                              const std::filesystem::path& file, const ExportOptions& options) const = 0;
 };
+
+// What an AppearanceExporter writes its file with: atomically
+// (io/atomic_file.h), any failure an InputError naming the file.
+inline void writeExportFile(const std::filesystem::path& file, std::string_view bytes) {
+    try {
+        io::writeFileAtomically(file, bytes);
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw InputError(file.string(), "", e.what());
+    }
+}
 
 // Writers of database content, what `db export` writes: the text (or bytes)
 // of a file holding one measurement, named spectra or ingredients. Each
