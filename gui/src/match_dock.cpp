@@ -4,6 +4,7 @@
 
 #include "cost_curve.h"
 #include "fit_runner.h"
+#include "format_dialog.h"
 #include "recipe_document.h"
 #include "split_sphere_view.h"
 
@@ -12,11 +13,11 @@
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/fit/parameter_paths.h"
 #include "paintlab/engine/io/number_format.h"
+#include "paintlab/plugins/exchange.h"
 #include "paintlab/plugins/registry.h"
 
 #include <QCheckBox>
 #include <QComboBox>
-#include <QFileDialog>
 #include <QFileInfo>
 #include <QFormLayout>
 #include <QHBoxLayout>
@@ -121,7 +122,8 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     auto* import = new QPushButton(tr("File..."));
     import->setObjectName("match_import");
     import->setToolTip(
-        tr("Read a measurement file (JSON, CSV, MERL .binary: what db import reads) without storing it"));
+        tr("Read a measurement file (any format db import reads) without storing it; it is stored with "
+           "an accepted fit"));
     measurement_row->addWidget(m_measurement, 1);
     measurement_row->addWidget(import);
     form->addRow(tr("Measured"), measurement_row);
@@ -326,16 +328,23 @@ const db::Measurement* MatchDock::chosen(const QComboBox* box) const {
 }
 
 void MatchDock::importFile() {
-    const QString file = QFileDialog::getOpenFileName(
-        this, tr("Measurement file"), QString(), tr("Measurements (*.json *.csv *.binary);;All files (*)"));
-    if (file.isEmpty()) return;
+    const auto chosen = chooseFileToOpen(
+        this, QStringLiteral("match_import_dialog"), tr("Measurement file"),
+        QStringLiteral("measurements/lastFolder"),
+        plugins::offeredFormats(plugins::Registry::global(), plugins::OfferKind::MeasurementImport));
+    if (chosen) readFile(chosen->path, chosen->format_id);
+}
+
+bool MatchDock::readFile(const QString& file, const std::optional<std::string>& format_id) {
     try {
         db::ImportOptions options;
         options.measurement.name = QFileInfo(file).completeBaseName().toStdString();
-        addFileMeasurement(plugins::readMeasurementFile(file.toStdString(), options));
+        addFileMeasurement(plugins::readMeasurementFile(file.toStdString(), options, 0, format_id));
         showMessage(tr("Read %1.").arg(QFileInfo(file).fileName()), false);
+        return true;
     } catch (const std::exception& e) {
         showMessage(QString::fromStdString(e.what()), true);
+        return false;
     }
 }
 

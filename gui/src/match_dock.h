@@ -21,6 +21,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 class QComboBox;
@@ -53,6 +54,10 @@ public:
     // A measurement read from a file (File dialog of the dock, or a test):
     // listed as "name (file)" and chosen.
     void addFileMeasurement(db::Measurement measurement);
+    // Reads a measurement file through the plugin registry (the importer of
+    // `format_id`, else by extension and content; File... calls it with the
+    // dialog's choice) and adds it; false, with the message in the dock, for a bad file.
+    bool readFile(const QString& file, const std::optional<std::string>& format_id = {});
     // Ticks a parameter by path with optional bounds (tests, scripts); false if the recipe has no such path.
     bool freeParameter(const QString& path, std::optional<double> lower = {},
                        std::optional<double> upper = {});
@@ -101,7 +106,6 @@ signals:
     void acceptRequested(const paintlab::Recipe& fitted, const QString& note);
     // The chosen measurement changed (nullopt: none or not multi-angle).
     void measuredChanged();
-    void importRequested();
 
 protected:
     void resizeEvent(QResizeEvent* event) override;
