@@ -20,6 +20,7 @@
 #include "spectra_plot.h"
 #include "split_sphere.h"
 #include "split_sphere_view.h"
+#include "workstation_fixture.h"
 
 #include "paintlab/database/database.h"
 #include "paintlab/database/measurements.h"
@@ -132,9 +133,7 @@ private:
 
 void MatchDockTest::initTestCase() {
     QVERIFY(m_dir.isValid());
-    qputenv("XDG_CACHE_HOME", (m_dir.path() + "/cache").toUtf8());
-    qputenv("XDG_CONFIG_HOME", (m_dir.path() + "/config").toUtf8());
-    qputenv("XDG_DATA_HOME", (m_dir.path() + "/data").toUtf8());
+    paintlab::test::isolateUserFolders(m_dir.path());
     paintlab::gui::rememberAuthor(QStringLiteral("GUI test"));
     m_db_file = m_dir.path() + "/lab.db";
     paintlab::gui::WorkstationOptions options;
