@@ -84,6 +84,7 @@ public:
     QLabel* status() const { return m_status; }
     QLabel* warnings() const { return m_warnings; }
     QPushButton* runButton() const { return m_run; }
+    QPushButton* cancelButton() const { return m_cancel; }
     QPushButton* acceptButton() const { return m_accept; }
     QComboBox* measurementBox() const { return m_measurement; }
     // The split view of a BRDF measurement against the fitted recipe (or
