@@ -4,6 +4,7 @@
 // Kept apart from main_window.cpp, which calls addExchangeMenuItems() once.
 
 #include "appearance_export.h"
+#include "author_setting.h"
 #include "database_worker.h"
 #include "format_dialog.h"
 #include "ingredient_dock.h"
@@ -135,11 +136,14 @@ void MainWindow::importIntoDatabase(const QString& path, const std::optional<std
     m_import_worker->setFile(m_db->file());
     statusBar()->showMessage(tr("Importing %1...").arg(path));
     const std::filesystem::path file = path.toStdString();
+    // A recipe file is saved as a version: by the remembered author, else the login name.
+    const QString remembered = rememberedAuthor();
+    const std::string author = (remembered.isEmpty() ? loginName() : remembered).toStdString();
     m_import_worker->run<db::ImportResult>(
-        [file, format_id](db::Database& db) {
+        [file, format_id, author](db::Database& db) {
             plugins::ImportRequest request;
             request.format_id = format_id;
-            request.options.author = "PaintLab workstation";
+            request.options.author = author;
             request.options.note = "imported from " + file.string();
             return plugins::importFile(db, file, request);
         },
