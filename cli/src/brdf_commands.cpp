@@ -8,6 +8,7 @@
 #include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/multiangle.h"
 #include "paintlab/engine/recipe_json.h"
+#include "paintlab/plugins/exchange.h"
 #include "paintlab/plugins/registry.h"
 
 #include <CLI/CLI.hpp>
@@ -70,15 +71,9 @@ Direction parseDirection(const std::string& text, const std::string& option) {
     return directionFromAnglesDeg(theta, phi);
 }
 
+// The fast model's settings as every output records them (plugins/exchange.h).
 ordered_json settingsJson(const LayeredBrdf& brdf, const std::string& preset) {
-    const auto& s = brdf.settings();
-    return {{"preset", preset},
-            {"nodes", s.nodes},
-            {"orders", s.orders},
-            {"bands", s.bands},
-            {"slices", s.slices},
-            {"max_start_tau", s.max_start_tau},
-            {"compute_seconds", brdf.computeSeconds()}};
+    return ordered_json::parse(plugins::fastModelSettingsJson(brdf, preset));
 }
 
 // A plugin's exporter (not the built-in BRDF table, written below as before)
@@ -104,7 +99,7 @@ int runBrdf(const BrdfOptions& o) {
             computeLayeredBrdf(recipe, presetSettings(presetFromName(o.preset)), terminalProgress());
         plugins::ExportOptions options;
         options.recipe_path = o.recipe;
-        options.settings_json = settingsJson(brdf, o.preset).dump();
+        options.settings_json = plugins::fastModelSettingsJson(brdf, o.preset);
         options.step_deg = o.step_deg;
         options.object = o.object;
         const std::string report = exporter->write(recipe, brdf, o.out, options);

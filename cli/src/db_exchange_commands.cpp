@@ -12,6 +12,7 @@
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/io/atomic_file.h"
 #include "paintlab/engine/recipe_json.h"
+#include "paintlab/plugins/exchange.h"
 #include "paintlab/plugins/registry.h"
 
 #include <nlohmann/json.hpp>
@@ -78,78 +79,21 @@ bool isDatabaseFormatName(const std::string& name) {
     }
 }
 
-// The importer of a plugin (not the built-in formats, which db::importFile
-// reads as before) that the registry picks for the file, or none: by
-// --format when it names no database format, else by extension and content,
-// among the importers of the --kind given (measurement, spectra or
-// ingredients) or of all kinds. A file that cannot be read is left to db::importFile's message.
-plugins::ImporterChoice pluginImporter(const ExchangeOptions& options) {
-    if (!options.kind.empty() && options.kind != "measurement" && options.kind != "spectra" &&
-        options.kind != "ingredients")
-        return {};
-    if (!options.format.empty() && isDatabaseFormatName(options.format)) return {};
-    std::error_code error;
-    if (options.format.empty() && !std::filesystem::is_regular_file(options.file, error)) return {};
-    const plugins::Registry& registry = plugins::Registry::global();
-    const std::optional<std::string> id =
-        options.format.empty() ? std::nullopt : std::optional<std::string>(options.format);
-    plugins::ImporterChoice choice;
-    if (options.kind == "measurement")
-        choice.measurement = registry.measurementImporterFor(options.file, id);
-    else if (options.kind == "spectra")
-        choice.spectra = registry.spectraImporterFor(options.file, id);
-    else if (options.kind == "ingredients")
-        choice.ingredients = registry.ingredientImporterFor(options.file, id);
-    else
-        choice = registry.importerFor(options.file, id);
-    if (id && !choice.found())
-        throw InputError("<argument>", "--format",
-                         "unknown format '" + options.format +
-                             "' (csv, json, cgats, html, or a plugin's format: paintlab-cli plugins)");
-    choice.plugin = choice.measurement != nullptr   ? registry.ownerOf(choice.measurement)
-                    : choice.spectra != nullptr     ? registry.ownerOf(choice.spectra)
-                    : choice.ingredients != nullptr ? registry.ownerOf(choice.ingredients)
-                                                    : nullptr;
-    if (choice.plugin == nullptr || choice.plugin->builtIn()) return {};
-    return choice;
-}
-
-plugins::ReadOptions readOptions(const ExchangeOptions& options, const db::ImportOptions& import) {
+int runImport(const ExchangeOptions& options) {
+    // The registry chooses the importer (plugins/exchange.h): --format is a
+    // database format name (csv, json, cgats) or an importer's id.
+    plugins::ImportRequest request;
+    db::ImportOptions& import = request.options;
+    if (!options.format.empty()) {
+        if (isDatabaseFormatName(options.format))
+            import.format = db::parseFileFormat(options.format);
+        else
+            request.format_id = options.format;
+    }
+    if (!options.kind.empty()) import.kind = db::parseContentKind(options.kind);
     if (options.samples && *options.samples == 0)
         throw InputError("<argument>", "--samples", "must be at least 1");
-    plugins::ReadOptions read;
-    read.description = import.measurement;
-    read.max_samples = options.samples.value_or(0);
-    read.cgats = import.cgats;
-    return read;
-}
-
-// Reads the whole file through the plugin, then stores it in one transaction.
-db::ImportResult importThroughPlugin(db::Database& database, const plugins::ImporterChoice& choice,
-                                     const ExchangeOptions& options, const db::ImportOptions& import) {
-    const plugins::ReadOptions read = readOptions(options, import);
-    if (choice.spectra != nullptr)
-        return db::storeSpectra(database, choice.spectra->read(options.file, read), options.file);
-    if (choice.ingredients != nullptr)
-        return db::storeIngredients(database, choice.ingredients->read(options.file, read), options.file);
-    const db::Measurement m = choice.measurement->read(options.file, read);
-    try {
-        db::createMeasurement(database, m);
-    } catch (const InputError& e) {
-        throw InputError(options.file, "measurement '" + m.name + "'",
-                         e.detail() + " (database " + e.source() + ")");
-    }
-    db::ImportResult result;
-    result.kind = db::ContentKind::Measurement;
-    result.names.push_back(m.name);
-    return result;
-}
-
-int runImport(const ExchangeOptions& options) {
-    db::ImportOptions import;
-    const plugins::ImporterChoice plugin = pluginImporter(options);
-    if (!options.format.empty() && !plugin.found()) import.format = db::parseFileFormat(options.format);
-    if (!options.kind.empty()) import.kind = db::parseContentKind(options.kind);
+    request.max_samples = options.samples.value_or(0);
     import.cgats.quantity = options.quantity;
     import.cgats.unit = options.unit;
     import.cgats.source = options.source;
@@ -164,8 +108,7 @@ int runImport(const ExchangeOptions& options) {
     import.author = defaultAuthor(options.author);
     import.note = options.note;
     db::Database database = openCliDatabase(options.db_file, false);
-    const auto result = plugin.found() ? importThroughPlugin(database, plugin, options, import)
-                                       : db::importFile(database, options.file, import);
+    const auto result = plugins::importFile(database, options.file, request);
     for (const auto& missing : result.unlinked)
         std::cerr << "warning: " << options.file << ": " << missing
                   << ": not in the database; saved with the recipe's own data, unlinked\n";
@@ -193,19 +136,9 @@ int runImport(const ExchangeOptions& options) {
 }
 
 // The error when no exporter of the kind takes --format or the --out extension: what the registry offers.
-template <typename Offers> InputError noExporter(const ExchangeOptions& options, const std::string& kind,
-                                                 const std::vector<plugins::LoadedPlugin>& loaded,
-                                                 Offers offers) {
-    std::string list;
-    for (const auto& plugin : loaded)
-        for (const auto* offer : ((*plugin.plugin).*offers)()) {
-            const plugins::FormatInfo info = offer->format();
-            if (!list.empty()) list.append(", ");
-            list.append(info.id).append(" (");
-            for (std::size_t i = 0; i < info.extensions.size(); ++i)
-                list.append(i > 0 ? " " : "").append(info.extensions[i]);
-            list.append(")");
-        }
+InputError noExporter(const ExchangeOptions& options, const std::string& kind, plugins::OfferKind offers) {
+    const std::string list =
+        plugins::describeFormats(plugins::offeredFormats(plugins::Registry::global(), offers));
     if (!options.format.empty())
         return {"<argument>", "--format",
                 "no format '" + options.format + "' for " + kind + "; " + kind + " are exported as " + list};
@@ -238,15 +171,13 @@ int runExport(const ExchangeOptions& options) {
     switch (db::parseContentKind(kind)) {
     case db::ContentKind::Ingredients: {
         const auto* exporter = registry.ingredientExporterFor(options.file, format);
-        if (exporter == nullptr)
-            throw noExporter(options, kind, registry.plugins(), &plugins::Plugin::ingredientExporters);
+        if (exporter == nullptr) throw noExporter(options, kind, plugins::OfferKind::IngredientExport);
         text = exporter->text(db::ingredientsByName(database, names));
         break;
     }
     case db::ContentKind::Spectra: {
         const auto* exporter = registry.spectraExporterFor(options.file, format);
-        if (exporter == nullptr)
-            throw noExporter(options, kind, registry.plugins(), &plugins::Plugin::spectraExporters);
+        if (exporter == nullptr) throw noExporter(options, kind, plugins::OfferKind::SpectraExport);
         text = exporter->text(db::spectraByName(database, names));
         break;
     }
@@ -256,8 +187,7 @@ int runExport(const ExchangeOptions& options) {
         const db::Measurement m = db::measurementByName(database, options.names.front());
         const auto* exporter = registry.measurementExporterFor(options.file, format);
         if (exporter == nullptr)
-            throw noExporter(options, "measurements", registry.plugins(),
-                             &plugins::Plugin::measurementExporters);
+            throw noExporter(options, "measurements", plugins::OfferKind::MeasurementExport);
         text = exporter->text(m);
         break;
     }

@@ -2,96 +2,48 @@
 
 #include "fit_runner.h"
 
-#include <QMetaObject>
-#include <QPointer>
-#include <QThread>
-
 #include <exception>
+#include <functional>
+#include <utility>
 
 namespace paintlab::gui {
 
-FitRunner::FitRunner(QObject* parent) : QObject(parent) {
+FitRunner::FitRunner(QObject* parent) : BackgroundJob(parent) {
     qRegisterMetaType<paintlab::fit::FitProgress>("paintlab::fit::FitProgress");
     qRegisterMetaType<std::shared_ptr<const paintlab::fit::FitResult>>(
         "std::shared_ptr<const paintlab::fit::FitResult>");
 }
 
-FitRunner::~FitRunner() {
-    cancel();
-    if (m_thread != nullptr) {
-        m_thread->wait();
-        delete m_thread;
-    }
-}
-
 bool FitRunner::start(fit::FitProblem problem) {
-    if (m_thread != nullptr) return false;
+    if (running()) return false;
     try {
         fit::validateFitProblem(problem);
     } catch (const std::exception& e) {
         emit failed(QString::fromStdString(e.what()));
         return true;
     }
-    m_cancel = std::make_shared<std::atomic<bool>>(false);
-    QPointer<FitRunner> self(this);
-    m_thread = QThread::create([self, cancel = m_cancel, problem = std::move(problem)]() {
+    return startJob([this, problem = std::move(problem)](const std::atomic<bool>& cancel) {
         // Progress is thinned to what the eye can follow: the cost curve and
         // bar need no more than ~20 updates a second.
-        auto last = std::make_shared<long>(-1);
-        const fit::FitProgressCallback progress = [self, cancel, last](const fit::FitProgress& p) {
-            if (p.evaluations - *last >= 4 || p.fraction >= 1.0) {
-                *last = p.evaluations;
-                QMetaObject::invokeMethod(
-                    self.data(),
-                    [self, p]() {
-                        if (self) emit self->progressed(p);
-                    },
-                    Qt::QueuedConnection);
+        long last = -1;
+        const fit::FitProgressCallback progress = [this, &cancel, &last](const fit::FitProgress& p) {
+            if (p.evaluations - last >= 4 || p.fraction >= 1.0) {
+                last = p.evaluations;
+                post([this, p]() { emit progressed(p); });
             }
-            return !cancel->load();
+            return !cancel.load();
         };
         std::function<void()> deliver;
         try {
             auto result = std::make_shared<const fit::FitResult>(fit::fitRecipe(problem, progress));
-            deliver = [self, result]() {
-                if (self) emit self->finished(result);
-            };
+            deliver = [this, result]() { emit finished(result); };
         } catch (const fit::FitCancelled&) {
-            deliver = [self]() {
-                if (self) emit self->cancelled();
-            };
+            deliver = [this]() { emit cancelled(); };
         } catch (const std::exception& e) {
-            deliver = [self, message = QString::fromStdString(e.what())]() {
-                if (self) emit self->failed(message);
-            };
+            deliver = [this, message = QString::fromStdString(e.what())]() { emit failed(message); };
         }
-        QMetaObject::invokeMethod(
-            self.data(),
-            [self, deliver]() {
-                if (!self) return;
-                self->threadDone();
-                deliver();
-            },
-            Qt::QueuedConnection);
+        return deliver;
     });
-    m_thread->start(QThread::LowPriority);
-    return true;
-}
-
-void FitRunner::cancel() {
-    if (m_cancel) m_cancel->store(true);
-}
-
-void FitRunner::wait() {
-    if (m_thread != nullptr) m_thread->wait();
-}
-
-void FitRunner::threadDone() {
-    if (m_thread == nullptr) return;
-    m_thread->wait();
-    delete m_thread;
-    m_thread = nullptr;
-    m_cancel.reset();
 }
 
 }  // namespace paintlab::gui

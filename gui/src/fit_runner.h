@@ -5,47 +5,31 @@
 // failed fit changes nothing; a finished one hands its result over once.
 // Destroying the runner cancels the fit and waits for its thread.
 
+#include "background_job.h"
+
 #include "paintlab/engine/fit/fit.h"
 
-#include <QObject>
 #include <QString>
 
-#include <atomic>
 #include <memory>
-
-class QThread;
 
 namespace paintlab::gui {
 
-class FitRunner : public QObject {
+class FitRunner : public BackgroundJob {
     Q_OBJECT
 public:
     explicit FitRunner(QObject* parent = nullptr);
-    ~FitRunner() override;
-    FitRunner(const FitRunner&) = delete;
-    FitRunner& operator=(const FitRunner&) = delete;
-    FitRunner(FitRunner&&) = delete;
-    FitRunner& operator=(FitRunner&&) = delete;
 
     // Starts the fit; false if one is running. The problem is validated on
     // the GUI thread first: a bad one emits failed() at once.
     bool start(fit::FitProblem problem);
-    void cancel();
-    bool running() const { return m_thread != nullptr; }
-    // Waits for the running fit's thread (tests, shutdown); its signal is still delivered.
-    void wait();
+    // cancel(), running(), wait(): BackgroundJob's.
 
 signals:
     void progressed(const paintlab::fit::FitProgress& progress);
     void finished(std::shared_ptr<const paintlab::fit::FitResult> result);
     void failed(const QString& message);
     void cancelled();
-
-private:
-    void threadDone();
-
-    QThread* m_thread = nullptr;
-    std::shared_ptr<std::atomic<bool>> m_cancel;
 };
 
 }  // namespace paintlab::gui

@@ -1,5 +1,7 @@
 #include "ingredient_dock.h"
 
+#include "format_dialog.h"
+
 #include "ingredient_list_model.h"
 #include "recipe_ingredient.h"
 #include "replace_recipe_command.h"
@@ -8,10 +10,9 @@
 #include "paintlab/database/exchange.h"
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/io/atomic_file.h"
+#include "paintlab/plugins/exchange.h"
 
 #include <QComboBox>
-#include <QFileDialog>
-#include <QFileInfo>
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QHeaderView>
@@ -21,7 +22,6 @@
 #include <QPlainTextEdit>
 #include <QPushButton>
 #include <QScrollArea>
-#include <QSettings>
 #include <QSignalBlocker>
 #include <QSplitter>
 #include <QTableWidget>
@@ -473,14 +473,15 @@ bool IngredientDock::addToLayer(int layer) {
     }
 }
 
-void IngredientDock::importFile(const QString& path) {
+void IngredientDock::importFile(const QString& path, const std::optional<std::string>& format_id) {
     const std::filesystem::path file = path.toStdString();
     m_status->setText(tr("Importing %1...").arg(path));
     m_worker.run<db::ImportResult>(
-        [file](db::Database& db) {
-            db::ImportOptions options;
-            options.kind = db::ContentKind::Ingredients;
-            return db::importFile(db, file, options);
+        [file, format_id](db::Database& db) {
+            plugins::ImportRequest request;
+            request.options.kind = db::ContentKind::Ingredients;
+            request.format_id = format_id;
+            return plugins::importFile(db, file, request);
         },
         [this, path](const db::ImportResult& result) {
             refresh();
@@ -498,7 +499,7 @@ void IngredientDock::importFile(const QString& path) {
         });
 }
 
-void IngredientDock::exportFile(const QString& path) {
+void IngredientDock::exportFile(const QString& path, const std::optional<std::string>& format_id) {
     std::vector<std::string> names;
     names.reserve(m_model->ingredients().size());
     for (const db::IngredientSummary& s : m_model->ingredients()) names.push_back(s.name);
@@ -508,21 +509,24 @@ void IngredientDock::exportFile(const QString& path) {
         emit exportFinished(false, message);
         return;
     }
-    db::FileFormat format = db::FileFormat::Json;
-    try {
-        format = db::formatOfFile(path.toStdString());
-        if (format != db::FileFormat::Json && format != db::FileFormat::Csv)
-            throw InputError(path.toStdString(), "", "ingredients are exported as .json or .csv");
-    } catch (const std::exception& e) {
-        showError(tr("Cannot export"), QString::fromUtf8(e.what()));
-        emit exportFinished(false, QString::fromUtf8(e.what()));
+    // The exporter as `db export` chooses it: by the format chosen, else by the extension.
+    const std::filesystem::path file = path.toStdString();
+    const plugins::Registry& registry = plugins::Registry::global();
+    const plugins::IngredientExporter* exporter = registry.ingredientExporterFor(file, format_id);
+    if (exporter == nullptr) {
+        const QString message =
+            tr("%1: cannot tell the format from the extension '%2': ingredients are exported as %3")
+                .arg(path, QString::fromStdString(file.extension().string()),
+                     QString::fromStdString(plugins::describeFormats(
+                         plugins::offeredFormats(registry, plugins::OfferKind::IngredientExport))));
+        showError(tr("Cannot export"), message);
+        emit exportFinished(false, message);
         return;
     }
-    const std::filesystem::path file = path.toStdString();
     m_status->setText(tr("Exporting to %1...").arg(path));
     m_worker.run<int>(
-        [names, format, file](db::Database& db) {
-            io::writeFileAtomically(file, db::exportIngredients(db, names, format));
+        [names, exporter, file](db::Database& db) {
+            io::writeFileAtomically(file, exporter->text(db::ingredientsByName(db, names)));
             return static_cast<int>(names.size());
         },
         [this, path](int count) {
@@ -538,24 +542,19 @@ void IngredientDock::exportFile(const QString& path) {
 }
 
 void IngredientDock::browseImport() {
-    QSettings settings;
-    const QString path = QFileDialog::getOpenFileName(this, tr("Import ingredients"),
-                                                      settings.value("ingredients/lastFolder").toString(),
-                                                      tr("Ingredient files (*.json *.csv)"));
-    if (path.isEmpty()) return;
-    settings.setValue("ingredients/lastFolder", QFileInfo(path).absolutePath());
-    importFile(path);
+    const auto chosen = chooseFileToOpen(
+        this, QStringLiteral("ingredient_import_dialog"), tr("Import ingredients"),
+        QStringLiteral("ingredients/lastFolder"),
+        plugins::offeredFormats(plugins::Registry::global(), plugins::OfferKind::IngredientImport));
+    if (chosen) importFile(chosen->path, chosen->format_id);
 }
 
 void IngredientDock::browseExport() {
-    QSettings settings;
-    QString path = QFileDialog::getSaveFileName(this, tr("Export the listed ingredients"),
-                                                settings.value("ingredients/lastFolder").toString(),
-                                                tr("JSON (*.json);;CSV (*.csv)"));
-    if (path.isEmpty()) return;
-    if (QFileInfo(path).suffix().isEmpty()) path += ".json";
-    settings.setValue("ingredients/lastFolder", QFileInfo(path).absolutePath());
-    exportFile(path);
+    const auto chosen = chooseFileToSave(
+        this, QStringLiteral("ingredient_export_dialog"), tr("Export the listed ingredients"),
+        QStringLiteral("ingredients/lastFolder"),
+        plugins::offeredFormats(plugins::Registry::global(), plugins::OfferKind::IngredientExport));
+    if (chosen) exportFile(chosen->path, chosen->format_id);
 }
 
 void IngredientDock::showError(const QString& title, const QString& message) {

@@ -4,8 +4,8 @@
 // kind filter; the selected one's fields with their units (ingredient_fields.h),
 // its literature sources, technological limits and spectra (table and
 // preview chart); editing with validation (a bad value names the field in a
-// message and nothing is saved); import and export of ingredient files (JSON,
-// CSV) through the database's importers and exporters; and adding the
+// message and nothing is saved); import and export of ingredient files in
+// the formats of the plugin registry (format_dialog.h); and adding the
 // selected ingredient to a layer of the recipe being edited (an undoable step).
 //
 // Searches (about 250 ms for 5000 ingredients), imports (files up to 64 MiB)
@@ -73,13 +73,15 @@ public:
     // as one undo step; false with a message if it does not fit.
     bool addToLayer(int layer);
 
-    // Imports an ingredient file (JSON or CSV; whole or nothing) on the
-    // worker; the result arrives later (importFinished). Errors name the file
-    // and the record.
-    void importFile(const QString& path);
-    // Exports the listed ingredients (as filtered) to a JSON or CSV file
-    // (by its extension) on the worker (exportFinished).
-    void exportFile(const QString& path);
+    // Imports an ingredient file (whole or nothing) through the plugin
+    // registry (plugins/exchange.h): the importer of `format_id`, else the
+    // one the extension and content choose. Runs on the worker; the result
+    // arrives later (importFinished). Errors name the file and the record.
+    void importFile(const QString& path, const std::optional<std::string>& format_id = {});
+    // Exports the listed ingredients (as filtered) with the registry's
+    // exporter of `format_id`, else the one claiming the extension, on the
+    // worker (exportFinished).
+    void exportFile(const QString& path, const std::optional<std::string>& format_id = {});
     DatabaseWorker* worker() { return &m_worker; }
 
     QLineEdit* searchField() const { return m_search; }

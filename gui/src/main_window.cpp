@@ -166,6 +166,7 @@ void MainWindow::buildMenus() {
     });
     file->addAction(tr("&Save version..."), QKeySequence::Save, this, &MainWindow::saveVersion);
     addDatabaseMenuItems(file);
+    addExchangeMenuItems(file);
     file->addAction(tr("Open &scene..."), this, [this]() {
         const QString path = QFileDialog::getOpenFileName(this, tr("Open scene"), {}, tr("Scenes (*.json)"));
         if (!path.isEmpty()) openScene(path.toStdString(), {});

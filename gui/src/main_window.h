@@ -20,15 +20,19 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string>
 
 class QDockWidget;
 class QListWidget;
 class QMenu;
+class QProgressDialog;
 class QThread;
 
 namespace paintlab::gui {
 
 class AccuracyDock;
+class AppearanceExport;
+class DatabaseWorker;
 class InplanePlot;
 class MatchDock;
 class PlotsDock;
@@ -113,12 +117,30 @@ public:
     PlotsDock* plotsDock() { return m_plots; }
     MatchDock* matchDock() { return m_match; }
 
+    // File > Import into database... after its dialog (main_window_exchange.cpp):
+    // the file through the plugin registry (the importer of `format_id`,
+    // else by extension and content; any kind: measurement, spectra,
+    // ingredients, recipe), stored whole or not at all on a worker; then
+    // importFinished. A bad file: a message naming it, nothing stored.
+    void importIntoDatabase(const QString& path, const std::optional<std::string>& format_id = {});
+    DatabaseWorker* importWorker() { return m_import_worker; }
+    // File > Export appearance... after its dialog: the edited recipe's fast
+    // model (standard preset) written by the registry's exporter of
+    // `format_id`, else the one claiming the extension, on a thread with a
+    // progress dialog; then appearanceExported. False (and a message) if it
+    // cannot start: no recipe, no exporter for the file, an export running.
+    bool exportAppearance(const QString& path, const std::optional<std::string>& format_id = {});
+    AppearanceExport* appearanceExport() { return m_appearance_export; }
+
 protected:
     void closeEvent(QCloseEvent* event) override;
 
 signals:
     // saveVersionAs stored a version (or found the recipe identical to the latest one).
     void versionSaved(const QString& recipe, int version);
+    // importIntoDatabase and exportAppearance ended (the message says what happened).
+    void importFinished(bool ok, const QString& message);
+    void appearanceExported(bool ok, const QString& message);
 
 private:
     void buildMenus();
@@ -203,6 +225,13 @@ private:
     // After an accepted fit was saved as a version: the fit's rows in the database.
     void recordMatchFit(const QString& note);
     MatchDock* m_match = nullptr;
+
+    // main_window_exchange.cpp: File > Import into database... and Export
+    // appearance..., with the plugin registry's formats (format_dialog.h).
+    void addExchangeMenuItems(QMenu* file);
+    DatabaseWorker* m_import_worker = nullptr;
+    AppearanceExport* m_appearance_export = nullptr;
+    QProgressDialog* m_export_progress = nullptr;
 };
 
 }  // namespace paintlab::gui

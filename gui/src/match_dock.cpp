@@ -4,6 +4,7 @@
 
 #include "cost_curve.h"
 #include "fit_runner.h"
+#include "format_dialog.h"
 #include "recipe_document.h"
 #include "split_sphere_view.h"
 
@@ -12,11 +13,11 @@
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/fit/parameter_paths.h"
 #include "paintlab/engine/io/number_format.h"
+#include "paintlab/plugins/exchange.h"
 #include "paintlab/plugins/registry.h"
 
 #include <QCheckBox>
 #include <QComboBox>
-#include <QFileDialog>
 #include <QFileInfo>
 #include <QFormLayout>
 #include <QHBoxLayout>
@@ -121,7 +122,8 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     auto* import = new QPushButton(tr("File..."));
     import->setObjectName("match_import");
     import->setToolTip(
-        tr("Read a measurement file (JSON, CSV, MERL .binary: what db import reads) without storing it"));
+        tr("Read a measurement file (any format db import reads) without storing it; it is stored with "
+           "an accepted fit"));
     measurement_row->addWidget(m_measurement, 1);
     measurement_row->addWidget(import);
     form->addRow(tr("Measured"), measurement_row);
@@ -151,18 +153,14 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
                                    5 * m_parameters->verticalHeader()->defaultSectionSize() + 4);
     layout->addWidget(m_parameters, 1);
 
-    auto* results = new QWidget;
-    layout = new QVBoxLayout(results);
-    layout->setContentsMargins(4, 4, 4, 4);
+    // The run's controls stay above the results' scroll area: they never
+    // scroll away or get clipped (at 1024 x 700 the pane is ~250 px wide),
+    // Fit and Cancel on a row of their own, the starts and progress below.
+    auto* controls = new QWidget;
+    controls->setObjectName("match_run_controls");
+    auto* controls_layout = new QVBoxLayout(controls);
+    controls_layout->setContentsMargins(4, 4, 4, 0);
     auto* run_row = new QHBoxLayout;
-    m_starts = new QSpinBox;
-    m_starts->setObjectName("match_starts");
-    m_starts->setPrefix(tr("starts "));  // no label beside it: the row fits a narrow pane
-    m_starts->setRange(1, 200);
-    m_starts->setValue(8);
-    m_starts->setToolTip(
-        tr("Multi-start points spread over the bounds: more finds other minima, costs time"));
-    run_row->addWidget(m_starts);
     m_run = new QPushButton(tr("Fit"));
     m_run->setObjectName("match_run");
     m_cancel = new QPushButton(tr("Cancel"));
@@ -170,15 +168,29 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     m_cancel->setEnabled(false);
     run_row->addWidget(m_run);
     run_row->addWidget(m_cancel);
-    run_row->addStretch(1);  // compact: the row fits a narrow pane
-    layout->addLayout(run_row);
-
+    run_row->addStretch(1);
+    controls_layout->addLayout(run_row);
+    auto* starts_row = new QHBoxLayout;
+    m_starts = new QSpinBox;
+    m_starts->setObjectName("match_starts");
+    m_starts->setPrefix(tr("starts "));  // no label beside it: the row fits a narrow pane
+    m_starts->setRange(1, 200);
+    m_starts->setValue(8);
+    m_starts->setToolTip(
+        tr("Multi-start points spread over the bounds: more finds other minima, costs time"));
+    starts_row->addWidget(m_starts);
     m_progress = new QProgressBar;
     m_progress->setObjectName("match_progress");
     m_progress->setRange(0, 1000);
     m_progress->setTextVisible(false);
     m_progress->setMaximumHeight(8);
-    layout->addWidget(m_progress);
+    m_progress->setMinimumWidth(24);  // takes what the row has left: the row asks no more than Fit and Cancel
+    starts_row->addWidget(m_progress, 1);
+    controls_layout->addLayout(starts_row);
+
+    auto* results = new QWidget;
+    layout = new QVBoxLayout(results);
+    layout->setContentsMargins(4, 4, 4, 4);
     m_curve = new CostCurve;
     layout->addWidget(m_curve);
 
@@ -217,10 +229,20 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     m_splitter->setObjectName("match_panes");
     m_splitter->setChildrenCollapsible(false);
     m_splitter->addWidget(scrollingPane(setup, "match_setup"));
-    m_splitter->addWidget(scrollingPane(results, "match_results"));
+    auto* results_pane = new QWidget;
+    auto* results_layout = new QVBoxLayout(results_pane);
+    results_layout->setContentsMargins(0, 0, 0, 0);
+    results_layout->setSpacing(0);
+    results_layout->addWidget(controls);
+    results_layout->addWidget(scrollingPane(results, "match_results"), 1);
+    m_splitter->addWidget(results_pane);
     m_splitter->addWidget(m_split);
-    m_splitter->setStretchFactor(0, 4);
-    m_splitter->setStretchFactor(1, 4);
+    // The choices get the most room: at 1024 x 700 with a BRDF measurement
+    // (a 658 px bottom tab, 131 px of it the sphere) 329 px hold the
+    // parameter table without scrolling sideways, and 198 px still hold Fit
+    // and Cancel (174).
+    m_splitter->setStretchFactor(0, 5);
+    m_splitter->setStretchFactor(1, 3);
     m_splitter->setStretchFactor(2, 2);
     setWidget(m_splitter);
 
@@ -326,16 +348,23 @@ const db::Measurement* MatchDock::chosen(const QComboBox* box) const {
 }
 
 void MatchDock::importFile() {
-    const QString file = QFileDialog::getOpenFileName(
-        this, tr("Measurement file"), QString(), tr("Measurements (*.json *.csv *.binary);;All files (*)"));
-    if (file.isEmpty()) return;
+    const auto chosen = chooseFileToOpen(
+        this, QStringLiteral("match_import_dialog"), tr("Measurement file"),
+        QStringLiteral("measurements/lastFolder"),
+        plugins::offeredFormats(plugins::Registry::global(), plugins::OfferKind::MeasurementImport));
+    if (chosen) readFile(chosen->path, chosen->format_id);
+}
+
+bool MatchDock::readFile(const QString& file, const std::optional<std::string>& format_id) {
     try {
         db::ImportOptions options;
         options.measurement.name = QFileInfo(file).completeBaseName().toStdString();
-        addFileMeasurement(plugins::readMeasurementFile(file.toStdString(), options));
+        addFileMeasurement(plugins::readMeasurementFile(file.toStdString(), options, 0, format_id));
         showMessage(tr("Read %1.").arg(QFileInfo(file).fileName()), false);
+        return true;
     } catch (const std::exception& e) {
         showMessage(QString::fromStdString(e.what()), true);
+        return false;
     }
 }
 
@@ -590,8 +619,10 @@ void MatchDock::refreshSplitView() {
         const bool across = m_splitter->orientation() == Qt::Horizontal;
         const int extent = across ? m_splitter->width() : m_splitter->height();
         // Side by side the sphere needs no more width than the dock's height.
+        // The rest 5 : 3, as the stretch factors: the choices' table is the wider.
         const int sphere = across ? std::min(extent / 5, m_splitter->height()) : extent / 4;
-        if (split && extent > 0) m_splitter->setSizes({(extent - sphere) / 2, (extent - sphere) / 2, sphere});
+        const int choices = (extent - sphere) * 5 / 8;
+        if (split && extent > 0) m_splitter->setSizes({choices, extent - sphere - choices, sphere});
     }
     if (m == nullptr) {
         m_split->showMessage(tr("Choose a BRDF measurement for the split view of measured against fitted."));

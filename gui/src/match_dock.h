@@ -21,6 +21,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 class QComboBox;
@@ -53,6 +54,10 @@ public:
     // A measurement read from a file (File dialog of the dock, or a test):
     // listed as "name (file)" and chosen.
     void addFileMeasurement(db::Measurement measurement);
+    // Reads a measurement file through the plugin registry (the importer of
+    // `format_id`, else by extension and content; File... calls it with the
+    // dialog's choice) and adds it; false, with the message in the dock, for a bad file.
+    bool readFile(const QString& file, const std::optional<std::string>& format_id = {});
     // Ticks a parameter by path with optional bounds (tests, scripts); false if the recipe has no such path.
     bool freeParameter(const QString& path, std::optional<double> lower = {},
                        std::optional<double> upper = {});
@@ -79,6 +84,7 @@ public:
     QLabel* status() const { return m_status; }
     QLabel* warnings() const { return m_warnings; }
     QPushButton* runButton() const { return m_run; }
+    QPushButton* cancelButton() const { return m_cancel; }
     QPushButton* acceptButton() const { return m_accept; }
     QComboBox* measurementBox() const { return m_measurement; }
     // The split view of a BRDF measurement against the fitted recipe (or
@@ -101,7 +107,6 @@ signals:
     void acceptRequested(const paintlab::Recipe& fitted, const QString& note);
     // The chosen measurement changed (nullopt: none or not multi-angle).
     void measuredChanged();
-    void importRequested();
 
 protected:
     void resizeEvent(QResizeEvent* event) override;

@@ -20,6 +20,7 @@
 #include "save_screenshot.h"
 #include "spectrum_chart.h"
 #include "versions_dock.h"
+#include "workstation_fixture.h"
 
 #include "paintlab/database/database.h"
 #include "paintlab/database/ingredient_json.h"
@@ -112,10 +113,8 @@ private:
 
 void DocksTest::initTestCase() {
     QVERIFY(m_dir.isValid());
-    qputenv("XDG_CACHE_HOME", (m_dir.path() + "/cache").toUtf8());
-    qputenv("XDG_CONFIG_HOME", (m_dir.path() + "/config").toUtf8());
-    qputenv("XDG_DATA_HOME", (m_dir.path() + "/data").toUtf8());  // recovery drafts
-    paintlab::gui::rememberAuthor(QStringLiteral("GUI test"));    // no author question at the first save
+    paintlab::test::isolateUserFolders(m_dir.path());
+    paintlab::gui::rememberAuthor(QStringLiteral("GUI test"));  // no author question at the first save
     m_db_file = m_dir.path() + "/lab.db";
     paintlab::gui::WorkstationOptions options;
     options.database = m_db_file.toStdString();

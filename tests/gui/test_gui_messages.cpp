@@ -17,6 +17,7 @@
 #include "recipe_editor_dock.h"
 #include "recipe_structure_panel.h"
 #include "render_dock.h"
+#include "workstation_fixture.h"
 
 #include "paintlab/engine/plan/plan.h"
 #include "paintlab/engine/recipe_json.h"
@@ -92,9 +93,7 @@ private:
 
 void GuiMessagesTest::initTestCase() {
     QVERIFY(m_dir.isValid());
-    qputenv("XDG_CONFIG_HOME", (m_dir.path() + "/config").toUtf8());
-    qputenv("XDG_DATA_HOME", (m_dir.path() + "/data").toUtf8());
-    qputenv("XDG_CACHE_HOME", (m_dir.path() + "/cache").toUtf8());
+    paintlab::test::isolateUserFolders(m_dir.path());
     qputenv("HOME", m_dir.path().toUtf8());
     paintlab::gui::rememberAuthor(QStringLiteral("GUI test"));
 }

@@ -129,9 +129,7 @@ std::unique_ptr<MainWindow> LayoutTest::openWindow(bool scene) {
 
 void LayoutTest::initTestCase() {
     QVERIFY(m_dir.isValid());
-    qputenv("XDG_CACHE_HOME", (m_dir.path() + "/cache").toUtf8());
-    qputenv("XDG_CONFIG_HOME", (m_dir.path() + "/config").toUtf8());
-    qputenv("XDG_DATA_HOME", (m_dir.path() + "/data").toUtf8());
+    paintlab::test::isolateUserFolders(m_dir.path());
     paintlab::gui::rememberAuthor(QStringLiteral("GUI test"));
     m_scene = paintlab::test::writeTinyDemoScene(m_dir.path());
     m_window = openWindow(true);

@@ -20,6 +20,7 @@
 #include "spectra_plot.h"
 #include "split_sphere.h"
 #include "split_sphere_view.h"
+#include "workstation_fixture.h"
 
 #include "paintlab/database/database.h"
 #include "paintlab/database/measurements.h"
@@ -29,11 +30,14 @@
 #include "paintlab/engine/measured/scattered_brdf.h"
 #include "paintlab/engine/multiangle.h"
 
+#include <QAction>
 #include <QComboBox>
 #include <QDockWidget>
 #include <QElapsedTimer>
 #include <QLabel>
 #include <QPushButton>
+#include <QScrollArea>
+#include <QScrollBar>
 #include <QSignalSpy>
 #include <QSpinBox>
 #include <QTabWidget>
@@ -118,6 +122,7 @@ private slots:
     void fitRecoversTheThicknessAndAcceptIsOneUndoableSavedStep();
     void interpolatedSamplesShadeLikeTheirBrdf();
     void brdfMeasurementPointsAndSplitView();
+    void runControlsShowWholeAtLaptopSize();
     void cleanupTestCase();
 
 private:
@@ -132,9 +137,7 @@ private:
 
 void MatchDockTest::initTestCase() {
     QVERIFY(m_dir.isValid());
-    qputenv("XDG_CACHE_HOME", (m_dir.path() + "/cache").toUtf8());
-    qputenv("XDG_CONFIG_HOME", (m_dir.path() + "/config").toUtf8());
-    qputenv("XDG_DATA_HOME", (m_dir.path() + "/data").toUtf8());
+    paintlab::test::isolateUserFolders(m_dir.path());
     paintlab::gui::rememberAuthor(QStringLiteral("GUI test"));
     m_db_file = m_dir.path() + "/lab.db";
     paintlab::gui::WorkstationOptions options;
@@ -155,6 +158,42 @@ void MatchDockTest::initTestCase() {
     dock()->show();
     dock()->raise();
     dock()->addFileMeasurement(simulated(truth));
+}
+
+// Review item: at 1024 x 700 (the laptop layout: the dock a bottom tab) with
+// a BRDF measurement chosen (the split pane takes room), the results pane
+// scrolled and Cancel was clipped. Fit and Cancel must show whole, unscrolled.
+void MatchDockTest::runControlsShowWholeAtLaptopSize() {
+    const QSize old_size = m_window->size();
+    m_window->resize(1024, 700);
+    QTRY_COMPARE_WITH_TIMEOUT(m_window->size(), QSize(1024, 700), kGuiWaitMs);
+    m_window->findChild<QAction*>("reset_layout_action")->trigger();  // the default layout for this size
+    dock()->show();
+    dock()->raise();
+    QVERIFY(QTest::qWaitFor(
+        [&]() { return m_window->plotsDock()->brdf() != nullptr && !m_window->plotsDock()->computing(); },
+        kGuiWaitMs));
+    const std::shared_ptr<const paintlab::LayeredBrdf> brdf = m_window->plotsDock()->brdf();
+    dock()->addFileMeasurement(brdfSamples(*brdf, "gonio laptop", true));
+    QVERIFY(QTest::qWaitFor([&]() { return !dock()->splitView()->busy(); }, kGuiWaitMs));
+    QTest::qWait(100);  // the layout settles
+    for (QPushButton* button : {dock()->runButton(), dock()->cancelButton()}) {
+        QVERIFY(button->isVisible());
+        const QRect shown = button->visibleRegion().boundingRect();
+        QVERIFY2(shown == button->rect(), qPrintable(QStringLiteral("%1 shows %2x%3 of %4x%5")
+                                                         .arg(button->objectName())
+                                                         .arg(shown.width())
+                                                         .arg(shown.height())
+                                                         .arg(button->width())
+                                                         .arg(button->height())));
+    }
+    // Nor does the choices' pane scroll sideways (its parameter table's columns readable).
+    auto* setup = dock()->findChild<QScrollArea*>("match_setup");
+    QVERIFY(setup != nullptr);
+    QVERIFY2(!setup->horizontalScrollBar()->isVisible(),
+             qPrintable(QStringLiteral("the choices' pane is %1 px wide").arg(setup->width())));
+    paintlab::test::saveScreenshot(m_window.get(), "match-laptop-1024x700");
+    m_window->resize(old_size);
 }
 
 bool MatchDockTest::waitForFit() {

@@ -21,6 +21,7 @@
 #include "recovery_draft.h"
 #include "render_dock.h"
 #include "versions_dock.h"
+#include "workstation_fixture.h"
 
 #include "paintlab/database/database.h"
 #include "paintlab/database/recipes.h"
@@ -85,9 +86,7 @@ private:
 
 void NoLostWorkTest::initTestCase() {
     QVERIFY(m_dir.isValid());
-    qputenv("XDG_CONFIG_HOME", (m_dir.path() + "/config").toUtf8());
-    qputenv("XDG_DATA_HOME", (m_dir.path() + "/data").toUtf8());
-    qputenv("XDG_CACHE_HOME", (m_dir.path() + "/cache").toUtf8());
+    paintlab::test::isolateUserFolders(m_dir.path());
 }
 
 void NoLostWorkTest::init() {

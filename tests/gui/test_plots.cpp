@@ -28,6 +28,7 @@
 #include "plots_dock.h"
 #include "spectra_plot.h"
 #include "spectrum_chart.h"
+#include "workstation_fixture.h"
 
 #include "paintlab/engine/fast_model/brdf_colour.h"
 #include "paintlab/engine/fast_model/layered_brdf.h"
@@ -655,9 +656,7 @@ void PlotsTest::dockComparisonIsOnThePaintSpectraToo() {
 }
 
 void PlotsTest::mainWindowPlotsDockFollowsTheRecipe() {
-    qputenv("XDG_CACHE_HOME", (m_dir.path() + "/cache").toUtf8());
-    qputenv("XDG_CONFIG_HOME", (m_dir.path() + "/config").toUtf8());
-    qputenv("XDG_DATA_HOME", (m_dir.path() + "/data").toUtf8());  // recovery drafts
+    paintlab::test::isolateUserFolders(m_dir.path());
     WorkstationOptions options;
     options.database = m_dir.filePath("lab.db").toStdString();
     options.open_scene = false;  // the BRDF alone: no scene to trace

@@ -94,9 +94,7 @@ private:
 
 void WalkthroughTest::initTestCase() {
     QVERIFY(m_dir.isValid());
-    qputenv("XDG_CACHE_HOME", (m_dir.path() + "/cache").toUtf8());
-    qputenv("XDG_CONFIG_HOME", (m_dir.path() + "/config").toUtf8());
-    qputenv("XDG_DATA_HOME", (m_dir.path() + "/data").toUtf8());
+    paintlab::test::isolateUserFolders(m_dir.path());
     paintlab::gui::rememberAuthor(QStringLiteral("GUI test"));  // no author question at the first save
     paintlab::gui::WorkstationOptions options;
     options.database = (m_dir.path() + "/lab.db").toStdString();

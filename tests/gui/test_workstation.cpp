@@ -142,10 +142,8 @@ paintlab::gui::RenderResult WorkstationTest::renderNow() {
 
 void WorkstationTest::initTestCase() {
     QVERIFY(m_dir.isValid());
-    qputenv("XDG_CACHE_HOME", (m_dir.path() + "/cache").toUtf8());
-    qputenv("XDG_CONFIG_HOME", (m_dir.path() + "/config").toUtf8());
-    qputenv("XDG_DATA_HOME", (m_dir.path() + "/data").toUtf8());  // recovery drafts
-    paintlab::gui::rememberAuthor(QStringLiteral("GUI test"));    // no author question at the first save
+    paintlab::test::isolateUserFolders(m_dir.path());
+    paintlab::gui::rememberAuthor(QStringLiteral("GUI test"));  // no author question at the first save
     const QString scene_file = paintlab::test::writeTinyDemoScene(m_dir.path());
     paintlab::gui::WorkstationOptions options;
     options.database = (m_dir.path() + "/lab.db").toStdString();

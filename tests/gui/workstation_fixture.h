@@ -1,21 +1,32 @@
 #pragma once
-// What the workstation's GUI tests share: the demo car scene made tiny (64 x
-// 36 pixels, so that tracing and relighting take well under a second even
-// under ASan), and the measured times masked in the labels before a
-// screenshot is compared with its baseline (they are the one thing that
-// differs from run to run, and by 4x under the sanitizers).
+// What the workstation's GUI tests share: the user's folders isolated (a
+// test never reads or writes the user's settings, drafts or cache), the demo
+// car scene made tiny (64 x 36 pixels, so that tracing and relighting take
+// well under a second even under ASan), and the measured times masked in the
+// labels before a screenshot is compared with its baseline (they are the one
+// thing that differs from run to run, and by 4x under the sanitizers).
 
 #include <QDir>
 #include <QLabel>
 #include <QRegularExpression>
 #include <QString>
 #include <QWidget>
+#include <QtGlobal>
 
 #include <nlohmann/json.hpp>
 
 #include <fstream>
 
 namespace paintlab::test {
+
+// XDG_CACHE_HOME (ray maps, fonts, shaders), XDG_CONFIG_HOME (QSettings: the
+// layout, recent files, the author) and XDG_DATA_HOME (recovery drafts) in
+// <root>/cache, /config and /data. Call before the first window or QSettings.
+inline void isolateUserFolders(const QString& root) {
+    qputenv("XDG_CACHE_HOME", (root + "/cache").toUtf8());
+    qputenv("XDG_CONFIG_HOME", (root + "/config").toUtf8());
+    qputenv("XDG_DATA_HOME", (root + "/data").toUtf8());
+}
 
 // Writes the demo scene at 64 x 36 pixels into <folder>/scenes/car.json; returns its path.
 inline QString writeTinyDemoScene(const QString& folder) {
