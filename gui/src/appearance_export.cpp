@@ -6,6 +6,7 @@
 #include "paintlab/engine/recipe_validation.h"
 #include "paintlab/plugins/exchange.h"
 
+#include <atomic>
 #include <exception>
 #include <functional>
 #include <utility>
@@ -27,6 +28,14 @@ bool AppearanceExport::start(Recipe recipe, Preset preset, const plugins::Appear
             }
             return !cancel.load();
         };
+        // The exporter may report from several threads at once.
+        std::atomic<int> last_written{-1};
+        options.progress = [this, &cancel, &last_written](double fraction) {
+            const int percent = static_cast<int>(100.0 * fraction);
+            if (last_written.exchange(percent) != percent)
+                post([this, fraction]() { emit writeProgressed(fraction); });
+            return !cancel.load();
+        };
         std::function<void()> deliver;
         try {
             validateRecipe(recipe, options.recipe_path);
@@ -34,12 +43,13 @@ bool AppearanceExport::start(Recipe recipe, Preset preset, const plugins::Appear
             options.settings_json = plugins::fastModelSettingsJson(brdf, presetName(preset));
             if (cancel.load()) throw Error("cancelled");
             post([this]() { emit writing(); });
-            exporter->write(recipe, brdf, file, options);
-            const QString message =
+            const std::string report = exporter->write(recipe, brdf, file, options);
+            QString message =
                 tr("Wrote %1 (%2, %3 bands, fast model %4 s)")
                     .arg(QString::fromStdString(file.string()), QString::fromStdString(exporter->format().id))
                     .arg(brdf.wavelengthsNm().size())
                     .arg(brdf.computeSeconds(), 0, 'f', 2);
+            if (!report.empty()) message += QStringLiteral(". ") + QString::fromStdString(report);
             deliver = [this, message]() { emit finished(message); };
         } catch (const std::exception& e) {
             if (cancel.load())

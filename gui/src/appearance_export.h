@@ -1,13 +1,14 @@
 #pragma once
 // File > Export appearance...: a recipe's appearance written by one of the
-// plugin registry's AppearanceExporters (the BRDF table, MERL .binary, and
-// whatever a plugin adds) off the GUI thread: the fast model at a preset
-// (about 1 s at standard), then the exporter, on a thread of its own, with
-// the fast model's progress on the GUI thread and cancel at every progress
-// step. The exporter's own step has no progress and cannot be cancelled
-// (the interface has neither): tabulating a MERL file's 1.46 million bins
-// takes about a minute (docs/PERFORMANCE.md). One export at a time;
-// destroying the object cancels the fast model and waits for the thread.
+// plugin registry's AppearanceExporters (the BRDF table, MERL .binary, glTF,
+// MaterialX and whatever a plugin adds) off the GUI thread: the fast model at
+// a preset (about 1 s at standard), then the exporter, on a thread of its
+// own, with progress on the GUI thread and cancel at every progress step.
+// An exporter with long work of its own reports it through
+// ExportOptions::progress (MERL's 1.46 million bins, about a minute,
+// docs/PERFORMANCE.md) and stops there when cancelled; the others write in
+// a second or two. One export at a time; destroying the object cancels and
+// waits for the thread.
 
 #include "background_job.h"
 
@@ -34,9 +35,11 @@ public:
     // cancel(), running(), wait(): BackgroundJob's.
 
 signals:
-    void progressed(double fraction);  // the fast model's
-    void writing();                    // the fast model is done; the exporter writes
-    // "Wrote FILE (format, bands, fast model seconds)".
+    void progressed(double fraction);       // the fast model's
+    void writing();                         // the fast model is done; the exporter writes
+    void writeProgressed(double fraction);  // the exporter's, if it reports any
+    // "Wrote FILE (format, bands, fast model seconds)", then the exporter's
+    // report (an approximation's ΔE00) if it gives one.
     void finished(const QString& message);
     // The error's text: it names the file (or the recipe's field).
     void failed(const QString& message);

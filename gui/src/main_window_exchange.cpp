@@ -102,11 +102,13 @@ void MainWindow::addExchangeMenuItems(QMenu* file) {
     connect(m_appearance_export, &AppearanceExport::progressed, this,
             [this](double fraction) { m_export_progress->setValue(static_cast<int>(1000.0 * fraction)); });
     connect(m_appearance_export, &AppearanceExport::writing, this, [this]() {
-        m_export_progress->setRange(0, 0);  // busy: the exporter reports no progress
-        m_export_progress->setCancelButton(nullptr);
+        m_export_progress->setRange(0, 0);  // busy until the exporter reports progress (if it does)
         m_export_progress->setLabelText(m_export_progress->labelText() +
-                                        tr("\nThe fast model is done; writing the file (this step cannot be "
-                                           "cancelled)."));
+                                        tr("\nThe fast model is done; writing the file."));
+    });
+    connect(m_appearance_export, &AppearanceExport::writeProgressed, this, [this](double fraction) {
+        if (m_export_progress->maximum() == 0) m_export_progress->setRange(0, 1000);
+        m_export_progress->setValue(static_cast<int>(1000.0 * fraction));
     });
     connect(m_appearance_export, &AppearanceExport::finished, this, [this](const QString& message) {
         closeExportProgress(m_export_progress);

@@ -146,7 +146,7 @@ MatchDock::MatchDock(RecipeDocument* document, QWidget* parent)
     m_parameters->horizontalHeader()->setSectionResizeMode(kColumnParameter, QHeaderView::Stretch);
     for (int column : {kColumnNow, kColumnLower, kColumnUpper}) {
         m_parameters->horizontalHeader()->setSectionResizeMode(column, QHeaderView::Interactive);
-        m_parameters->setColumnWidth(column, m_parameters->fontMetrics().horizontalAdvance("0.0000") + 12);
+        m_parameters->setColumnWidth(column, m_parameters->fontMetrics().horizontalAdvance("0.00000") + 12);
     }
     // At least five rows show; more scroll inside the table.
     m_parameters->setMinimumHeight(m_parameters->horizontalHeader()->sizeHint().height() +
@@ -423,7 +423,10 @@ void MatchDock::fillParameters() {
         const auto old = kept.find(path);
         name->setCheckState(old != kept.end() && old->second.free ? Qt::Checked : Qt::Unchecked);
         m_parameters->setItem(row, kColumnParameter, name);
-        auto* now = new QTableWidgetItem(number(p.value));
+        // Four significant digits fit the column (elided in the middle, 10.0627
+        // read "10…27", like a range); the tooltip has every digit.
+        auto* now = new QTableWidgetItem(QString::number(p.value, 'g', 4));
+        now->setToolTip(number(p.value));
         now->setFlags(Qt::ItemIsEnabled);
         m_parameters->setItem(row, kColumnNow, now);
         auto* lower = new QTableWidgetItem(old != kept.end() ? old->second.lower : QString());

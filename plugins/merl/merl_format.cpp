@@ -5,8 +5,10 @@
 #include "paintlab/engine/colour/band_weights.h"
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/io/atomic_file.h"
+#include "paintlab/plugins/plugin.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -113,7 +115,10 @@ std::string encode(const Table& table) {
     return bytes;
 }
 
-Table decode(std::string_view bytes, const std::string& source) {
+namespace {
+
+// The three dimensions first: a wrong header is named before a wrong size.
+void checkHeader(std::string_view bytes, const std::string& source) {
     if (bytes.size() < kHeaderBytes)
         throw InputError(source, "header",
                          "truncated: " + std::to_string(bytes.size()) +
@@ -128,11 +133,20 @@ Table decode(std::string_view bytes, const std::string& source) {
                              std::to_string(dims[2]) + " (" + claimed.str() +
                              " samples per channel); a MERL BRDF file has 90 x 90 x 180");
     }
-    if (bytes.size() != kFileBytes)
+}
+
+void checkSize(std::uintmax_t size, const std::string& source) {
+    if (size != kFileBytes)
         throw InputError(source, "",
-                         "the file has " + std::to_string(bytes.size()) +
-                             " bytes; a 90 x 90 x 180 MERL file has " + std::to_string(kFileBytes) +
-                             (bytes.size() < kFileBytes ? " (truncated)" : ""));
+                         "the file has " + std::to_string(size) + " bytes; a 90 x 90 x 180 MERL file has " +
+                             std::to_string(kFileBytes) + (size < kFileBytes ? " (truncated)" : ""));
+}
+
+}  // namespace
+
+Table decode(std::string_view bytes, const std::string& source) {
+    checkHeader(bytes, source);
+    checkSize(bytes.size(), source);
     Table table;
     std::memcpy(table.rgb.data(), bytes.data() + kHeaderBytes, table.rgb.size() * sizeof(double));
     for (std::size_t c = 0; c < 3; ++c)
@@ -164,20 +178,22 @@ Table readFile(const std::filesystem::path& file) {
     std::string bytes(wanted, '\0');
     in.read(bytes.data(), static_cast<std::streamsize>(wanted));
     if (static_cast<std::size_t>(in.gcount()) != wanted) throw InputError(source, "", "read error");
-    if (wanted == kHeaderBytes && size != kFileBytes) {
-        decode(bytes, source);  // a wrong header is named first
-        throw InputError(source, "",
-                         "the file has " + std::to_string(size) + " bytes; a 90 x 90 x 180 MERL file has " +
-                             std::to_string(kFileBytes) + (size < kFileBytes ? " (truncated)" : ""));
+    if (size != kFileBytes) {
+        checkHeader(bytes, source);
+        checkSize(size, source);
     }
     return decode(bytes, source);
 }
 
-Table tabulate(const std::function<Rgb(const Direction& wi, const Direction& wo)>& f) {
+Table tabulate(const std::function<Rgb(const Direction& wi, const Direction& wo)>& f,
+               const ProgressCallback& progress) {
     Table table;
     // One task per theta_half bin (16,200 entries each); f is called from several threads.
     constexpr std::size_t kPerThetaHalf = kEntries / kThetaHalfBins;
+    std::atomic<int> done{0};
+    std::atomic<bool> stop{false};
     tbb::parallel_for(0, kThetaHalfBins, [&](int h) {
+        if (stop.load()) return;
         const std::size_t begin = static_cast<std::size_t>(h) * kPerThetaHalf;
         for (std::size_t i = begin; i < begin + kPerThetaHalf; ++i) {
             const auto [wi, wo] = binDirections(binOf(i));
@@ -186,18 +202,23 @@ Table tabulate(const std::function<Rgb(const Direction& wi, const Direction& wo)
             table.rgb[kEntries + i] = rgb.g;
             table.rgb[2 * kEntries + i] = rgb.b;
         }
+        const double fraction = static_cast<double>(++done) / kThetaHalfBins;
+        if (progress && !progress(fraction)) stop = true;
     });
+    if (stop.load()) throw ExportCancelled();
     return table;
 }
 
-Table tabulate(const LayeredBrdf& brdf) {
+Table tabulate(const LayeredBrdf& brdf, const ProgressCallback& progress) {
     const BandColourWeights weights = bandColourWeights(brdf.wavelengthsNm());
     const std::size_t bands = brdf.wavelengthsNm().size();
-    return tabulate([&](const Direction& wi, const Direction& wo) {
-        std::vector<double> spectrum(bands);  // per call: eval runs on several threads
-        brdf.eval(wi, wo, spectrum);
-        return weightedLinearSrgb(weights, spectrum);
-    });
+    return tabulate(
+        [&](const Direction& wi, const Direction& wo) {
+            std::vector<double> spectrum(bands);  // per call: eval runs on several threads
+            brdf.eval(wi, wo, spectrum);
+            return weightedLinearSrgb(weights, spectrum);
+        },
+        progress);
 }
 
 db::Measurement toMeasurement(const Table& table, std::size_t max_samples, db::Measurement description) {

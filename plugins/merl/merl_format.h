@@ -69,9 +69,12 @@ Table decode(std::string_view bytes, const std::string& source);
 
 // Every bin's f (called from several threads), evaluated at binDirections(); directions below kMinCosine
 // are raised to it (renderers interpolate up to the horizon).
-Table tabulate(const std::function<Rgb(const Direction& wi, const Direction& wo)>& f);
+// progress (if set) gets the fraction of theta_half bins done; when it returns
+// false the remaining bins are skipped and ExportCancelled is thrown.
+Table tabulate(const std::function<Rgb(const Direction& wi, const Direction& wo)>& f,
+               const ProgressCallback& progress = {});
 // Linear sRGB (D65) of the spectral BRDF, mirror term excluded.
-Table tabulate(const LayeredBrdf& brdf);
+Table tabulate(const LayeredBrdf& brdf, const ProgressCallback& progress = {});
 
 // A BRDF measurement from a table: channels R, G, B, at most max_samples
 // measured bins with both direction cosines at least kMinCosine, evenly spread over

@@ -57,8 +57,8 @@ public:
                 {".binary"}};
     }
     std::string write(const Recipe& /*recipe*/, const LayeredBrdf& brdf, const std::filesystem::path& file,
-                      const ExportOptions& /*options*/) const override {
-        const std::string bytes = encode(tabulate(brdf));
+                      const ExportOptions& options) const override {
+        const std::string bytes = encode(tabulate(brdf, options.progress));
         writeExportFile(file, bytes);
         return {};
     }

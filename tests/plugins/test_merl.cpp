@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -75,6 +76,29 @@ TEST(Merl, BinCentresLookUpToTheirOwnBinInMerlsConvention) {
         ++checked;
     }
     EXPECT_GT(checked, kEntries / 2);
+}
+
+// The export's progress (ExportOptions::progress): one report per theta_half
+// bin, ending at 1; a false answer stops the tabulation with ExportCancelled
+// long before all bins are done.
+TEST(Merl, TabulationReportsProgressAndStopsWhenCancelled) {
+    std::atomic<int> reports{0};
+    std::atomic<bool> reached_one{false};
+    (void)tabulate(analytic, [&](double fraction) {
+        ++reports;
+        if (fraction == 1.0) reached_one = true;
+        return true;
+    });
+    EXPECT_EQ(reports.load(), kThetaHalfBins);
+    EXPECT_TRUE(reached_one.load());
+    std::atomic<int> evaluated{0};
+    const auto counting = [&](const Direction& wi, const Direction& wo) {
+        ++evaluated;
+        return analytic(wi, wo);
+    };
+    EXPECT_THROW((void)tabulate(counting, [](double) { return false; }), ExportCancelled);
+    // Each worker finishes the bin it is in (16,200 entries); a few bins at most, not 90.
+    EXPECT_LT(evaluated.load(), static_cast<int>(kEntries / 10));
 }
 
 TEST(Merl, WriteThenReadGivesTheFunctionBackAtEveryIndex) {
@@ -181,7 +205,10 @@ std::string setValue(std::string bytes, std::size_t channel, std::size_t flat, d
 
 TEST(Merl, BadFilesAreRefusedNamingTheFile) {
     const std::string good = encode(tabulate(analytic));
-    expectRefused("paintlab_merl_truncated.binary", good.substr(0, good.size() / 2), "truncated");
+    // The file's own size is named (it once said 12, the header's).
+    expectRefused("paintlab_merl_truncated.binary", good.substr(0, good.size() / 2),
+                  "the file has " + std::to_string(good.size() / 2) +
+                      " bytes; a 90 x 90 x 180 MERL file has " + std::to_string(kFileBytes) + " (truncated)");
     expectRefused("paintlab_merl_header_only.binary", good.substr(0, 8), "truncated");
     expectRefused("paintlab_merl_long.binary", good + std::string(8, '\0'), "bytes");
     std::string huge = good.substr(0, 64);

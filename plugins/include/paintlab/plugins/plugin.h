@@ -37,7 +37,7 @@
 namespace paintlab::plugins {
 
 // 2: exporters of database content (measurements, spectra, ingredients), ingredient importers.
-// 3: ExportOptions::object; AppearanceExporter::write returns its report.
+// 3: ExportOptions::object and ::progress, ExportCancelled; AppearanceExporter::write returns its report.
 inline constexpr int kApiVersion = 3;
 
 // How many leading bytes of a file a probe sees.
@@ -100,6 +100,16 @@ struct ExportOptions {
     std::string settings_json;      // the fast model's settings as a JSON object ("{}" if none)
     double step_deg = 5.0;          // tabulated formats with a free grid: the angular step
     std::string object = "sphere";  // formats holding a painted object (glTF): one of kExportObjects
+    // An exporter whose own work takes long (MERL's 1.46 million bins) reports
+    // the fraction done; when this returns false it stops and throws
+    // ExportCancelled, writing nothing. Empty: no progress. Called from any thread.
+    ProgressCallback progress;
+};
+
+// Thrown by an exporter whose ExportOptions::progress asked it to stop.
+class ExportCancelled : public Error {
+public:
+    ExportCancelled() : Error("export cancelled: nothing written") {}
 };
 
 // Writes a recipe's appearance, from its fast-model BRDF, to a file.
