@@ -129,7 +129,9 @@ public:
     // `format_id`, else the one claiming the extension, on a thread with a
     // progress dialog; then appearanceExported. False (and a message) if it
     // cannot start: no recipe, no exporter for the file, an export running.
-    bool exportAppearance(const QString& path, const std::optional<std::string>& format_id = {});
+    // object: the painted object of a format that writes one (glTF; default sphere).
+    bool exportAppearance(const QString& path, const std::optional<std::string>& format_id = {},
+                          const std::optional<std::string>& object = {});
     AppearanceExport* appearanceExport() { return m_appearance_export; }
 
 protected:

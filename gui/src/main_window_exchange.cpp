@@ -14,6 +14,7 @@
 
 #include <QAction>
 #include <QFileInfo>
+#include <QInputDialog>
 #include <QMenu>
 #include <QProgressDialog>
 #include <QStatusBar>
@@ -85,7 +86,26 @@ void MainWindow::addExchangeMenuItems(QMenu* file) {
             this, QStringLiteral("appearance_export_dialog"), tr("Export the recipe's appearance"),
             QStringLiteral("appearance/lastFolder"),
             plugins::offeredFormats(plugins::Registry::global(), plugins::OfferKind::AppearanceExport));
-        if (chosen) exportAppearance(chosen->path, chosen->format_id);
+        if (!chosen) return;
+        // A format that writes a painted object (glTF): which one.
+        std::optional<std::string> object;
+        const plugins::AppearanceExporter* exporter =
+            plugins::Registry::global().exporterFor(chosen->path.toStdString(), chosen->format_id);
+        if (exporter != nullptr && exporter->format().paints_object) {
+            QInputDialog dialog(this);
+            dialog.setObjectName(QStringLiteral("export_object_dialog"));
+            dialog.setWindowTitle(tr("Painted object"));
+            dialog.setLabelText(
+                tr("The object painted with the recipe in %1:").arg(QFileInfo(chosen->path).fileName()));
+            QStringList objects;
+            for (const std::string_view name : plugins::kExportObjects)
+                objects << QString::fromUtf8(name.data(), static_cast<int>(name.size()));
+            dialog.setComboBoxItems(objects);
+            dialog.setComboBoxEditable(false);
+            if (dialog.exec() != QDialog::Accepted) return;
+            object = dialog.textValue().toStdString();
+        }
+        exportAppearance(chosen->path, chosen->format_id, object);
     });
     appearance->setObjectName("export_appearance_action");
     appearance->setStatusTip(tr("Write the edited recipe's BRDF (fast model, standard preset) in a format "
@@ -163,7 +183,8 @@ void MainWindow::importIntoDatabase(const QString& path, const std::optional<std
         });
 }
 
-bool MainWindow::exportAppearance(const QString& path, const std::optional<std::string>& format_id) {
+bool MainWindow::exportAppearance(const QString& path, const std::optional<std::string>& format_id,
+                                  const std::optional<std::string>& object) {
     const auto refuse = [this](const QString& message) {
         showError(tr("Cannot export the appearance"), message);
         emit appearanceExported(false, message);
@@ -182,6 +203,7 @@ bool MainWindow::exportAppearance(const QString& path, const std::optional<std::
                          plugins::offeredFormats(registry, plugins::OfferKind::AppearanceExport)))));
     plugins::ExportOptions options;
     options.recipe_path = currentLabel().toStdString();  // the file's provenance
+    if (object) options.object = *object;
     m_appearance_export->start(m_document.recipe(), Preset::Standard, exporter, file, options);
     m_export_progress->setLabelText(
         tr("Exporting the appearance to %1 (%2)...")

@@ -20,11 +20,14 @@ public:
     explicit GltfExporter(bool binary) : m_binary(binary) {}
     FormatInfo format() const override {
         if (m_binary)
-            return {
-                "glb", "glTF 2.0 binary: a painted object (--object) with a fitted PBR material", {".glb"}};
+            return {"glb",
+                    "glTF 2.0 binary: a painted object (--object) with a fitted PBR material",
+                    {".glb"},
+                    true};
         return {"gltf",
                 "glTF 2.0: a painted object (--object) with a fitted PBR material, buffer embedded",
-                {".gltf"}};
+                {".gltf"},
+                true};
     }
     std::string write(const Recipe& recipe, const LayeredBrdf& brdf, const std::filesystem::path& file,
                       const ExportOptions& options) const override {

@@ -22,6 +22,7 @@
 #include <QAction>
 #include <QComboBox>
 #include <QFileDialog>
+#include <QInputDialog>
 #include <QLabel>
 #include <QLineEdit>
 #include <QMessageBox>
@@ -259,6 +260,27 @@ void FileFormatsTest::exportAppearanceWritesTheChosenFormat() {
     const auto table = nlohmann::json::parse(in);
     QCOMPARE(table.at("settings").at("preset").get<std::string>(), std::string("standard"));
     QVERIFY(!table.at("wavelengths_nm").empty());
+
+    // glTF writes a painted object: the workstation asks which, and the file holds it.
+    const QString gltf = m_dir.filePath("solid-red-panel.gltf");
+    answers.expect("appearance_export_dialog", choose(gltf));
+    QString offered;
+    answers.expect("export_object_dialog", [&offered](QWidget* w) {
+        auto* dialog = qobject_cast<QInputDialog*>(w);
+        offered = dialog->comboBoxItems().join(',');
+        dialog->setTextValue(QStringLiteral("panel"));
+        dialog->accept();
+    });
+    action("export_appearance_action")->trigger();
+    QTRY_VERIFY_WITH_TIMEOUT(exported.count() == 2, kGuiWaitMs);
+    QVERIFY2(exported.back().at(0).toBool(), qPrintable(exported.back().at(1).toString()));
+    QCOMPARE(offered, QStringLiteral("sphere,panel,car"));
+    // The status names the approximation's colour error (the exporter's report).
+    QVERIFY2(exported.back().at(1).toString().contains(QStringLiteral("ΔE00")),
+             qPrintable(exported.back().at(1).toString()));
+    std::ifstream gltf_in(gltf.toStdString());
+    const auto asset = nlohmann::json::parse(gltf_in);
+    QVERIFY2(asset.dump().find("\"panel\"") != std::string::npos, "the painted object is not the panel");
 
     // A file no exporter claims: refused before any work, the formats listed.
     QString shown;

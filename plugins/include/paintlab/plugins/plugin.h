@@ -47,6 +47,9 @@ struct FormatInfo {
     std::string id;                       // unique among loaded plugins: "merl-binary", "measurement-csv"
     std::string description;              // one line for listings and file dialogs
     std::vector<std::string> extensions;  // lower case with the dot: ".binary"
+    // An appearance exporter that writes a painted object (ExportOptions::object
+    // applies; the GUI asks which): glTF. False for tabulated BRDFs.
+    bool paints_object = false;
 };
 
 struct ReadOptions {
