@@ -44,11 +44,13 @@ bool AppearanceExport::start(Recipe recipe, Preset preset, const plugins::Appear
             if (cancel.load()) throw Error("cancelled");
             post([this]() { emit writing(); });
             const std::string report = exporter->write(recipe, brdf, file, options);
-            QString message =
-                tr("Wrote %1 (%2, %3 bands, fast model %4 s)")
-                    .arg(QString::fromStdString(file.string()), QString::fromStdString(exporter->format().id))
-                    .arg(brdf.wavelengthsNm().size())
-                    .arg(brdf.computeSeconds(), 0, 'f', 2);
+            QString message = tr("Wrote %1 (%2, %3 bands, fast model %4 s)")
+                                  // The file name alone: the folder is the one just chosen, and the report
+                                  // after it must fit.
+                                  .arg(QString::fromStdString(file.filename().string()),
+                                       QString::fromStdString(exporter->format().id))
+                                  .arg(brdf.wavelengthsNm().size())
+                                  .arg(brdf.computeSeconds(), 0, 'f', 2);
             if (!report.empty()) message += QStringLiteral(". ") + QString::fromStdString(report);
             deliver = [this, message]() { emit finished(message); };
         } catch (const std::exception& e) {

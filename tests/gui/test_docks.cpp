@@ -113,15 +113,10 @@ private:
 
 void DocksTest::initTestCase() {
     QVERIFY(m_dir.isValid());
-    paintlab::test::isolateUserFolders(m_dir.path());
-    paintlab::gui::rememberAuthor(QStringLiteral("GUI test"));  // no author question at the first save
+    paintlab::test::prepareTestUser(m_dir.path());
     m_db_file = m_dir.path() + "/lab.db";
-    paintlab::gui::WorkstationOptions options;
-    options.database = m_db_file.toStdString();
-    options.open_scene = false;
-    m_window = std::make_unique<MainWindow>(options);
-    m_window->show();
-    QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
+    m_window = paintlab::test::openWorkstation(paintlab::test::withoutScene(m_db_file));
+    QVERIFY(m_window != nullptr);
     waitListed();
 }
 

@@ -134,16 +134,11 @@ private:
 
 void FileFormatsTest::initTestCase() {
     QVERIFY(m_dir.isValid());
-    paintlab::test::isolateUserFolders(m_dir.path());
+    paintlab::test::prepareTestUser(m_dir.path());
     QCoreApplication::setAttribute(Qt::AA_DontUseNativeDialogs);  // Qt's own dialog: the test answers it
-    paintlab::gui::rememberAuthor(QStringLiteral("GUI test"));
     m_db_file = m_dir.path() + "/lab.db";
-    paintlab::gui::WorkstationOptions options;
-    options.database = m_db_file.toStdString();
-    options.open_scene = false;
-    m_window = std::make_unique<MainWindow>(options);
-    m_window->show();
-    QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
+    m_window = paintlab::test::openWorkstation(paintlab::test::withoutScene(m_db_file));
+    QVERIFY(m_window != nullptr);
     QVERIFY(m_window->selectRecipe(kSolidRed));
 }
 

@@ -93,9 +93,8 @@ private:
 
 void GuiMessagesTest::initTestCase() {
     QVERIFY(m_dir.isValid());
-    paintlab::test::isolateUserFolders(m_dir.path());
+    paintlab::test::prepareTestUser(m_dir.path());
     qputenv("HOME", m_dir.path().toUtf8());
-    paintlab::gui::rememberAuthor(QStringLiteral("GUI test"));
 }
 
 void GuiMessagesTest::init() {

@@ -129,8 +129,7 @@ std::unique_ptr<MainWindow> LayoutTest::openWindow(bool scene) {
 
 void LayoutTest::initTestCase() {
     QVERIFY(m_dir.isValid());
-    paintlab::test::isolateUserFolders(m_dir.path());
-    paintlab::gui::rememberAuthor(QStringLiteral("GUI test"));
+    paintlab::test::prepareTestUser(m_dir.path());
     m_scene = paintlab::test::writeTinyDemoScene(m_dir.path());
     m_window = openWindow(true);
     QVERIFY(m_window != nullptr);

@@ -94,17 +94,14 @@ private:
 
 void WalkthroughTest::initTestCase() {
     QVERIFY(m_dir.isValid());
-    paintlab::test::isolateUserFolders(m_dir.path());
-    paintlab::gui::rememberAuthor(QStringLiteral("GUI test"));  // no author question at the first save
+    paintlab::test::prepareTestUser(m_dir.path());
     paintlab::gui::WorkstationOptions options;
     options.database = (m_dir.path() + "/lab.db").toStdString();
     options.scene = paintlab::test::writeTinyDemoScene(m_dir.path()).toStdString();
     options.raymap_follows_view = false;  // the tiny scene as it is
     options.refine_ray_map = false;       // screenshots of one fixed map, not of a map refining meanwhile
-    m_window = std::make_unique<MainWindow>(options);
-    m_window->resize(1366, 768);
-    m_window->show();
-    QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
+    m_window = paintlab::test::openWorkstation(options, QSize(1366, 768));
+    QVERIFY(m_window != nullptr);
     QTRY_VERIFY_WITH_TIMEOUT(m_window->scheduler()->rayMap() != nullptr, kGuiWaitMs);
 }
 

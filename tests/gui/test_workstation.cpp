@@ -142,18 +142,15 @@ paintlab::gui::RenderResult WorkstationTest::renderNow() {
 
 void WorkstationTest::initTestCase() {
     QVERIFY(m_dir.isValid());
-    paintlab::test::isolateUserFolders(m_dir.path());
-    paintlab::gui::rememberAuthor(QStringLiteral("GUI test"));  // no author question at the first save
+    paintlab::test::prepareTestUser(m_dir.path());
     const QString scene_file = paintlab::test::writeTinyDemoScene(m_dir.path());
     paintlab::gui::WorkstationOptions options;
     options.database = (m_dir.path() + "/lab.db").toStdString();
     options.scene = scene_file.toStdString();
     options.raymap_follows_view = false;  // the tiny scene as it is
     options.refine_ray_map = false;       // the cases compare renders of one fixed map
-    m_window = std::make_unique<MainWindow>(options);
-    m_window->resize(1400, 900);  // a fixed size for the screenshot baselines
-    m_window->show();
-    QVERIFY(QTest::qWaitForWindowExposed(m_window.get()));
+    m_window = paintlab::test::openWorkstation(options, QSize(1400, 900));  // fixed for the baselines
+    QVERIFY(m_window != nullptr);
 }
 
 void WorkstationTest::startsOnTheDemoDatabase() {

@@ -250,17 +250,16 @@ MaterialFit fitGltfMaterial(const SpectralBrdf& brdf, const MaterialFitOptions& 
 }
 
 std::string deltaESummary(const MaterialFit& fit, std::string_view model) {
-    std::string line = std::string(model) + " approximation, ΔE00 against the fast model:";
+    // The maximum first: a status line cut at the window's edge keeps it.
+    std::string line = std::string(model) + " approximation: max ΔE00 " +
+                       io::formatFixed(fit.max_delta_e00, 2) + " against the fast model (";
     for (const GeometryDeltaE& g : fit.geometries)
-        line.append(" 45as")
+        line.append("45as")
             .append(io::formatNumber(g.aspecular_deg))
             .append(" ")
-            .append(io::formatFixed(g.delta_e00, 2));
-    return line.append("; max ")
-        .append(io::formatFixed(fit.max_delta_e00, 2))
-        .append(" (fit ")
-        .append(io::formatFixed(fit.seconds, 2))
-        .append(" s)");
+            .append(io::formatFixed(g.delta_e00, 2))
+            .append(", ");
+    return line.append("fit ").append(io::formatFixed(fit.seconds, 2)).append(" s)");
 }
 
 MaterialFitOptions gltfFitOptions(const Recipe& recipe, const LayeredBrdf& brdf) {

@@ -40,7 +40,8 @@ void checkSettings(const FitSettings& s) {
 
 FitBounds defaultFitBounds(const ParameterPath& parameter, const FitSettings& settings) {
     FitBounds out{parameter.min, parameter.max};
-    if (parameter.decl->key == "orientation_spread_deg") {
+    // A spread the fit's grids cannot resolve would only fit noise.
+    if (parameter.decl == &params::kOrientationSpread) {
         const double resolved =
             std::max(narrowestResolvedFlakeSpreadDeg(fitSettings(settings.search_preset)),
                      narrowestResolvedFlakeSpreadDeg(fitSettings(settings.polish_preset)));

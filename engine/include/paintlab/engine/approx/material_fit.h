@@ -79,8 +79,8 @@ std::vector<GeometryDeltaE>
 multiAngleDeltaE(const SpectralBrdf& reference,
                  const std::function<Rgb(const Direction& wi, const Direction& wo)>& approximation);
 
-// One line for people: "<model> approximation, ΔE00 against the fast model:
-// 45as-15 0.81 ... 45as110 0.10; max 0.81 (fit 0.17 s)".
+// One line for people: "<model> approximation: max ΔE00 0.81 against the
+// fast model (45as-15 0.81, ..., 45as110 0.10, fit 0.17 s)".
 std::string deltaESummary(const MaterialFit& fit, std::string_view model);
 
 // Fits the glTF material to a spectral BRDF (no mirror term in it) with the
