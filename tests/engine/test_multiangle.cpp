@@ -104,7 +104,10 @@ TEST(MultiAngle, OutOfPlaneDirectionsAreXRitesNames) {
     expectDirection(multiAngleDirections(15.0, 38.3, 43.0).wo, a, 2e-3);
     expectDirection(multiAngleDirections(45.0, 60.0, 125.3).wo, b, 2e-3);
     expectDirection(multiAngleDirections(15.0, 46.9, 104.5).wo, b, 2e-3);
+    expectDirection(multiAngleDirections(45.0, 25.0, -90.0).wo, {a.x, -a.y, a.z}, 2e-3);
+    expectDirection(multiAngleDirections(15.0, 38.3, -43.0).wo, {a.x, -a.y, a.z}, 2e-3);
     expectDirection(multiAngleDirections(45.0, 60.0, -125.3).wo, {b.x, -b.y, b.z}, 2e-3);
+    expectDirection(multiAngleDirections(15.0, 46.9, -104.5).wo, {b.x, -b.y, b.z}, 2e-3);
 }
 
 TEST(MultiAngle, AzimuthZeroAndHalfTurnAreTheInPlaneGeometry) {
