@@ -93,7 +93,8 @@ void prepareMultiAngle(const MultiAngleMeasurement& m, std::size_t mi, const Rec
                        formatNumber(r.azimuth_deg) + "° is outside [-180, 180]");
         // The directions by multiangle.h's convention (the one conversion).
         const MultiAngleGeometry g = multiAngleDirections(r.illumination_deg, r.aspecular_deg, r.azimuth_deg);
-        if (!(detectorPolarAngleDeg(g) < 90.0))
+        // 1e-9: a detector at exactly 90° (cos 6e-17 in floating point) is on the horizon, refused as before.
+        if (!(detectorPolarAngleDeg(g) < 90.0 - 1e-9))
             check.fail(fieldPath(at, "aspecular_deg"),
                        formatNumber(r.aspecular_deg) + "° puts the detector below the horizon" +
                            (r.azimuth_deg == 0.0 ? "" : " at azimuth " + formatNumber(r.azimuth_deg) + "°"));
