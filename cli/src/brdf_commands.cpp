@@ -4,6 +4,7 @@
 #include "brdf_table_io.h"
 #include "commands.h"
 
+#include "paintlab/database/measurements.h"
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/multiangle.h"
@@ -23,6 +24,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 namespace paintlab::cli {
@@ -39,6 +41,7 @@ struct BrdfOptions {
     std::string wo;
     double step_deg = 5.0;
     std::string object = "sphere";
+    std::vector<std::string> geometries;  // multiangle --geometry
     bool json = false;
 };
 
@@ -147,37 +150,102 @@ int runEval(const BrdfOptions& o) {
     return 0;
 }
 
+// The --geometry names as directions, each checked as a measurement's reading is.
+std::vector<MultiAngleGeometry> requestedGeometries(const std::vector<std::string>& names) {
+    std::vector<MultiAngleGeometry> out;
+    for (const std::string& name : names) {
+        const auto g = db::parseMultiAngleGeometry(name);
+        if (!g)
+            throw InputError("<argument>", "--geometry",
+                             "'" + name + "' is not a geometry like 45as15, 15as-45 or 45as25az90");
+        db::Measurement check;
+        check.name = name;
+        check.readings.push_back({g->illumination_deg, g->aspecular_deg, 0.0, 0.0, 0.0, {}, g->azimuth_deg});
+        try {
+            db::validateMeasurement(check, "<argument>");
+        } catch (const InputError& e) {
+            // "readings[0].azimuth_deg" -> "'45as25az200': azimuth_deg 200 deg is outside -180 to 180"
+            std::string message = "'" + name + "': ";
+            message.append(e.field().substr(e.field().rfind('.') + 1)).append(" ").append(e.detail());
+            throw InputError("<argument>", "--geometry", message);
+        }
+        out.push_back(multiAngleDirections(g->illumination_deg, g->aspecular_deg, g->azimuth_deg));
+    }
+    return out;
+}
+
 int runMultiangle(const BrdfOptions& o) {
+    const std::vector<MultiAngleGeometry> requested = requestedGeometries(o.geometries);
     const LayeredBrdf brdf = runFastModel(o);
-    const MultiAngleReport report = multiAngleColours(brdf);
+    MultiAngleReport report = multiAngleColours(brdf);
+    // --geometry: those geometries instead of the six; the flop index where its three are among them.
+    double flop = report.flop_index;
+    bool has_flop = true;
+    if (!requested.empty()) {
+        report.colours.clear();
+        const ColourConditions conditions{.illuminant = report.illuminant, .observer = report.observer};
+        for (const MultiAngleGeometry& g : requested)
+            report.colours.push_back(multiAngleColour(brdf, g, conditions));
+        const auto lightness = [&](double aspecular) -> std::optional<double> {
+            for (const auto& c : report.colours)
+                if (c.illumination_deg == kMultiAngleIlluminationDeg && c.aspecular_deg == aspecular &&
+                    c.azimuth_deg == 0.0)
+                    return c.lab.L;
+            return std::nullopt;
+        };
+        const auto L15 = lightness(15.0);
+        const auto L45 = lightness(45.0);
+        const auto L110 = lightness(110.0);
+        has_flop = L15 && L45 && L110;
+        flop = has_flop ? flopIndex(*L15, *L45, *L110) : 0.0;
+    }
+    const bool one_illumination =
+        std::all_of(report.colours.begin(), report.colours.end(), [](const MultiAngleColour& c) {
+            return c.illumination_deg == kMultiAngleIlluminationDeg;
+        });
     if (o.json) {
         ordered_json out;
         out["recipe"] = o.recipe;
         out["illuminant"] = std::string(toString(report.illuminant));
         out["observer"] = std::string(toString(report.observer));
-        out["illumination_deg"] = kMultiAngleIlluminationDeg;
+        if (one_illumination) out["illumination_deg"] = kMultiAngleIlluminationDeg;
         out["settings"] = settingsJson(brdf, o.preset);
         ordered_json geometries = ordered_json::array();
-        for (const auto& c : report.colours)
-            geometries.push_back({{"aspecular_deg", c.aspecular_deg},
-                                  {"L", c.lab.L},
-                                  {"a", c.lab.a},
-                                  {"b", c.lab.b},
-                                  {"X", c.xyz.X},
-                                  {"Y", c.xyz.Y},
-                                  {"Z", c.xyz.Z},
-                                  {"reflectance_factor", c.reflectance_factor}});
+        for (const auto& c : report.colours) {
+            ordered_json entry;
+            if (!requested.empty()) {
+                // Named geometries: each says where it is (the six standard ones are as before).
+                entry["geometry"] =
+                    db::multiAngleGeometryName(c.illumination_deg, c.aspecular_deg, c.azimuth_deg);
+                entry["illumination_deg"] = c.illumination_deg;
+            }
+            entry["aspecular_deg"] = c.aspecular_deg;
+            if (c.azimuth_deg != 0.0) entry["azimuth_deg"] = c.azimuth_deg;
+            entry["L"] = c.lab.L;
+            entry["a"] = c.lab.a;
+            entry["b"] = c.lab.b;
+            entry["X"] = c.xyz.X;
+            entry["Y"] = c.xyz.Y;
+            entry["Z"] = c.xyz.Z;
+            entry["reflectance_factor"] = c.reflectance_factor;
+            geometries.push_back(std::move(entry));
+        }
         out["geometries"] = std::move(geometries);
-        out["flop_index"] = report.flop_index;
+        if (has_flop) out["flop_index"] = flop;
         std::cout << out.dump(2) << '\n';
     } else {
-        std::printf("CIELAB (%s, %s), illumination 45 deg, preset %s\n",
-                    std::string(toString(report.illuminant)).c_str(),
-                    std::string(toString(report.observer)).c_str(), o.preset.c_str());
+        std::printf("CIELAB (%s, %s)%s, preset %s\n", std::string(toString(report.illuminant)).c_str(),
+                    std::string(toString(report.observer)).c_str(),
+                    one_illumination ? ", illumination 45 deg" : "", o.preset.c_str());
         std::printf("%10s %8s %8s %8s\n", "geometry", "L*", "a*", "b*");
-        for (const auto& c : report.colours)
-            std::printf("  45as%-4g %8.2f %8.2f %8.2f\n", c.aspecular_deg, c.lab.L, c.lab.a, c.lab.b);
-        std::printf("flop index %.2f\n", report.flop_index);
+        for (const auto& c : report.colours) {
+            const std::string name =
+                db::multiAngleGeometryName(c.illumination_deg, c.aspecular_deg, c.azimuth_deg);
+            // The six standard ones as before; named geometries with room for "45as25az-90".
+            std::printf("  %-*s %8.2f %8.2f %8.2f\n", requested.empty() ? 8 : 12, name.c_str(), c.lab.L,
+                        c.lab.a, c.lab.b);
+        }
+        if (has_flop) std::printf("flop index %.2f\n", flop);
     }
     return 0;
 }
@@ -216,6 +284,11 @@ void addBrdfCommands(CLI::App& app, CommandAction& action) {
     CLI::App* multiangle = app.add_subcommand(
         "multiangle", "CIELAB at the multi-angle geometries 45as-15..110 and the flop index");
     addCommon(multiangle, *o);
+    multiangle->add_option(
+        "--geometry", o->geometries,
+        "A geometry to report instead of the six standard ones, by its instrument name: "
+        "45as15, 15as-45, or out of the plane of incidence 45as25az90 (the detector turned "
+        "90 deg about the specular direction); repeatable");
     multiangle->add_flag("--json", o->json, "Print JSON");
     multiangle->callback([o, &action] { action = [o] { return runMultiangle(*o); }; });
 }

@@ -169,16 +169,19 @@ ordered_json resultJson(const fit::FitResult& r, const FitOptions& o, const std:
                               {"at_bound", p.at_bound},
                               {"determined", p.determined}});
     ordered_json geometries = ordered_json::array();
-    for (const auto& g : r.geometries)
-        geometries.push_back({{"measurement", g.measurement},
-                              {"side", std::string(fit::sideName(g.side))},
-                              {"illumination_deg", g.illumination_deg},
-                              {"aspecular_deg", g.aspecular_deg},
-                              {"delta_e00", g.delta_e00},
-                              {"measured_lab", labJson(g.measured)},
-                              {"fitted_lab", labJson(g.fitted)},
-                              {"wavelengths_nm", g.wavelengths_nm},
-                              {"fitted_reflectance_factor", g.fitted_reflectance_factor}});
+    for (const auto& g : r.geometries) {
+        ordered_json entry{{"measurement", g.measurement},
+                           {"side", std::string(fit::sideName(g.side))},
+                           {"illumination_deg", g.illumination_deg},
+                           {"aspecular_deg", g.aspecular_deg}};
+        if (g.azimuth_deg != 0.0) entry["azimuth_deg"] = g.azimuth_deg;  // out of the plane only
+        entry["delta_e00"] = g.delta_e00;
+        entry["measured_lab"] = labJson(g.measured);
+        entry["fitted_lab"] = labJson(g.fitted);
+        entry["wavelengths_nm"] = g.wavelengths_nm;
+        entry["fitted_reflectance_factor"] = g.fitted_reflectance_factor;
+        geometries.push_back(std::move(entry));
+    }
     ordered_json residuals = ordered_json::array();
     for (const auto& x : r.residuals)
         residuals.push_back(
@@ -242,11 +245,15 @@ void printResult(const fit::FitResult& r, const std::vector<std::string>& names)
     }
     if (!r.geometries.empty()) {
         std::printf("multi-angle geometries (measured vs fitted):\n");
-        for (const auto& g : r.geometries)
-            std::printf("  %-6s %gas%-4g  dE00 %6.2f   L*a*b* %6.2f %6.2f %6.2f  vs %6.2f %6.2f %6.2f\n",
-                        std::string(fit::sideName(g.side)).c_str(), g.illumination_deg, g.aspecular_deg,
-                        g.delta_e00, g.measured.L, g.measured.a, g.measured.b, g.fitted.L, g.fitted.a,
-                        g.fitted.b);
+        for (const auto& g : r.geometries) {
+            // "45as15 " as before; out-of-plane names ("45as25az90") take the room they need.
+            std::string name = db::multiAngleGeometryName(g.illumination_deg, g.aspecular_deg, g.azimuth_deg);
+            const std::size_t width = name.find("as") + 6;
+            if (name.size() < width) name.resize(width, ' ');
+            std::printf("  %-6s %s  dE00 %6.2f   L*a*b* %6.2f %6.2f %6.2f  vs %6.2f %6.2f %6.2f\n",
+                        std::string(fit::sideName(g.side)).c_str(), name.c_str(), g.delta_e00, g.measured.L,
+                        g.measured.a, g.measured.b, g.fitted.L, g.fitted.a, g.fitted.b);
+        }
     }
     for (const auto& i : r.identifiability) std::printf("warning: %s\n", i.message.c_str());
     if (!r.alternatives.empty()) {

@@ -24,6 +24,7 @@ fit::MultiAngleMeasurement multiAngle(const Measurement& m, fit::Side side) {
         fit::MultiAngleReading reading;
         reading.illumination_deg = r.illumination_deg;
         reading.aspecular_deg = r.aspecular_deg;
+        reading.azimuth_deg = r.azimuth_deg;
         if (!r.reflectance.empty()) {
             reading.wavelengths_nm = m.wavelengths_nm;
             reading.reflectance_factor = r.reflectance;

@@ -50,6 +50,8 @@ nlohmann::ordered_json measurementJson(const Measurement& m, bool with_descripti
                                            {"L", r.L},
                                            {"a", r.a},
                                            {"b", r.b}};
+            // Only out of the plane: in-plane readings are written as before azimuths.
+            if (r.azimuth_deg != 0.0) reading["azimuth_deg"] = r.azimuth_deg;
             if (!r.reflectance.empty()) reading["reflectance"] = r.reflectance;
             out["readings"].push_back(std::move(reading));
         }
@@ -99,6 +101,7 @@ void readMeasurementJson(const nlohmann::json& json, bool with_description, Meas
             if (r.has("illumination_deg"))
                 reading.illumination_deg = r.number("illumination_deg", "a number");
             reading.aspecular_deg = r.number("aspecular_deg", "a number");
+            if (r.has("azimuth_deg")) reading.azimuth_deg = r.number("azimuth_deg", "a number");
             if (r.has("reflectance")) reading.reflectance = r.numbers("reflectance");
             // A spectral reading may leave CIELAB out: it follows from the spectrum.
             if (reading.reflectance.empty() || r.has("L") || r.has("a") || r.has("b")) {
@@ -228,7 +231,7 @@ Measurement parseMeasurementCsv(std::string_view text, const std::string& source
             if (b.empty()) table.requireColumns({"b"});
         }
         std::vector<std::string_view> allowed{
-            "geometry", "aspecular_deg", "illumination_deg", "L", "a", "b", "L*", "a*", "b*"};
+            "geometry", "aspecular_deg", "illumination_deg", "azimuth_deg", "L", "a", "b", "L*", "a*", "b*"};
         allowed.insert(allowed.end(), spectrum_columns.begin(), spectrum_columns.end());
         table.allowOnlyColumns(allowed);
         for (const auto& record : table.records()) {
@@ -239,16 +242,13 @@ Measurement parseMeasurementCsv(std::string_view text, const std::string& source
                 if (!geometry)
                     throw InputError(source, CsvTable::where(record, "geometry"),
                                      "'" + name + "' is not a geometry like 45as15 or 45as-15");
-                if (geometry->azimuth_deg != 0.0)
-                    throw InputError(source, CsvTable::where(record, "geometry"),
-                                     "'" + name +
-                                         "' is out of the plane of incidence; a multi-angle measurement "
-                                         "holds in-plane geometries only");
                 reading.illumination_deg = geometry->illumination_deg;
                 reading.aspecular_deg = geometry->aspecular_deg;
+                reading.azimuth_deg = geometry->azimuth_deg;
             } else {
                 reading.aspecular_deg = table.requiredNumber(record, "aspecular_deg");
                 reading.illumination_deg = table.number(record, "illumination_deg").value_or(45.0);
+                reading.azimuth_deg = table.number(record, "azimuth_deg").value_or(0.0);
             }
             if (!lab_from_spectra) {
                 reading.L = table.requiredNumber(record, l);
@@ -272,12 +272,17 @@ std::string measurementToJson(const Measurement& measurement) {
 std::string measurementToCsv(const Measurement& m) {
     std::string out;
     if (m.kind == MeasurementKind::MultiAngle) {
+        // azimuth_deg only when a reading is out of the plane: in-plane files are as before azimuths.
+        const bool azimuths = std::any_of(m.readings.begin(), m.readings.end(),
+                                          [](const MultiAngleReading& r) { return r.azimuth_deg != 0.0; });
         std::vector<std::string> header{"illumination_deg", "aspecular_deg", "L", "a", "b"};
+        if (azimuths) header.insert(header.begin() + 2, "azimuth_deg");
         for (const double w : m.wavelengths_nm) header.push_back(io::csvNumber(w) + "nm");
         out = io::csvLine(header);
         for (const auto& r : m.readings) {
             std::vector<std::string> fields{io::csvNumber(r.illumination_deg), io::csvNumber(r.aspecular_deg),
                                             io::csvNumber(r.L), io::csvNumber(r.a), io::csvNumber(r.b)};
+            if (azimuths) fields.insert(fields.begin() + 2, io::csvNumber(r.azimuth_deg));
             for (const double v : r.reflectance) fields.push_back(io::csvNumber(v));
             out += io::csvLine(fields);
         }

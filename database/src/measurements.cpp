@@ -10,6 +10,7 @@
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/fast_model/brdf_colour.h"
 #include "paintlab/engine/io/number_format.h"
+#include "paintlab/engine/multiangle.h"
 
 #include <cctype>
 #include <charconv>
@@ -158,9 +159,11 @@ std::optional<MultiAngleGeometry> parseMultiAngleGeometry(std::string_view name)
     return g;
 }
 
-std::string multiAngleGeometryName(double illumination_deg, double aspecular_deg) {
-    return formatNumber(illumination_deg, io::NumberFormat::Shortest) + "as" +
-           formatNumber(aspecular_deg, io::NumberFormat::Shortest);
+std::string multiAngleGeometryName(double illumination_deg, double aspecular_deg, double azimuth_deg) {
+    std::string name = formatNumber(illumination_deg, io::NumberFormat::Shortest) + "as" +
+                       formatNumber(aspecular_deg, io::NumberFormat::Shortest);
+    if (azimuth_deg != 0.0) name += "az" + formatNumber(azimuth_deg, io::NumberFormat::Shortest);
+    return name;
 }
 
 Illuminant measurementIlluminant(const Measurement& m) {
@@ -208,9 +211,21 @@ void validateMeasurement(const Measurement& m, const std::string& source) {
             const auto& r = m.readings[i];
             const std::string field = "readings[" + std::to_string(i) + "]";
             requireRange(r.illumination_deg, 0.0, 89.9, source, field + ".illumination_deg", "deg");
-            // The detector stays above the horizon: its polar angle |illumination - aspecular| < 90.
-            requireRange(r.aspecular_deg, r.illumination_deg - 89.9, r.illumination_deg + 89.9, source,
-                         field + ".aspecular_deg", "deg");
+            requireRange(r.azimuth_deg, -180.0, 180.0, source, field + ".azimuth_deg", "deg");
+            if (r.azimuth_deg == 0.0) {
+                // The detector stays above the horizon: its polar angle |illumination - aspecular| < 90.
+                requireRange(r.aspecular_deg, r.illumination_deg - 89.9, r.illumination_deg + 89.9, source,
+                             field + ".aspecular_deg", "deg");
+            } else {
+                requireFinite(r.aspecular_deg, source, field + ".aspecular_deg");
+                const double polar = detectorPolarAngleDeg(
+                    multiAngleDirections(r.illumination_deg, r.aspecular_deg, r.azimuth_deg));
+                if (!(polar <= 89.9))
+                    throw InputError(source, field + ".aspecular_deg",
+                                     formatNumber(r.aspecular_deg) + " deg at azimuth " +
+                                         formatNumber(r.azimuth_deg) + " deg puts the detector " +
+                                         formatNumber(polar) + " deg from the normal (at most 89.9)");
+            }
             requireRange(r.L, 0.0, 400.0, source, field + ".L", "");
             requireFinite(r.a, source, field + ".a");
             requireFinite(r.b, source, field + ".b");

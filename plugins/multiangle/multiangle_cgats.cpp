@@ -10,6 +10,7 @@
 #include "paintlab/engine/fast_model/brdf_colour.h"
 #include "paintlab/engine/io/cgats.h"
 #include "paintlab/engine/io/number_format.h"
+#include "paintlab/engine/multiangle.h"
 
 #include "json_reader.h"
 
@@ -153,22 +154,24 @@ std::vector<Row> readRows(const io::CgatsTable& table, const Columns& c, const s
             row.geometry = suffix->second;
         }
         const db::MultiAngleGeometry& g = row.geometry;
-        row.label += " (" + db::multiAngleGeometryName(g.illumination_deg, g.aspecular_deg) + ")";
+        row.label +=
+            " (" + db::multiAngleGeometryName(g.illumination_deg, g.aspecular_deg, g.azimuth_deg) + ")";
         const std::string geometry_field = row.label + ".geometry";
-        if (g.azimuth_deg != 0.0)
-            throw InputError(
-                source, geometry_field,
-                "azimuth " + formatNumber(g.azimuth_deg) +
-                    "° is out of the plane of incidence; a multi-angle measurement holds in-plane "
-                    "geometries only (remove the out-of-plane rows)");
         if (!(g.illumination_deg >= 0.0 && g.illumination_deg < 90.0))
             throw InputError(source, geometry_field,
                              "illumination " + formatNumber(g.illumination_deg) +
                                  "° is not between 0 and 90");
-        if (!(std::abs(g.aspecular_deg - g.illumination_deg) < 89.9))
+        if (!(std::abs(g.azimuth_deg) <= 180.0))
             throw InputError(source, geometry_field,
-                             "aspecular " + formatNumber(g.aspecular_deg) +
-                                 "° puts the detector below the horizon");
+                             "azimuth " + formatNumber(g.azimuth_deg) + "° is not between -180 and 180");
+        // Out of the plane too: the detector turned about the specular direction (engine/multiangle.h).
+        if (!(detectorPolarAngleDeg(
+                  multiAngleDirections(g.illumination_deg, g.aspecular_deg, g.azimuth_deg)) < 89.9))
+            throw InputError(
+                source, geometry_field,
+                "aspecular " + formatNumber(g.aspecular_deg) + "°" +
+                    (g.azimuth_deg == 0.0 ? "" : " at azimuth " + formatNumber(g.azimuth_deg) + "°") +
+                    " puts the detector below the horizon");
         if (c.lab[0]) row.lab = Lab{number(*c.lab[0]), number(*c.lab[1]), number(*c.lab[2])};
         if (row.lab && !(row.lab->L >= 0.0 && row.lab->L <= 400.0))
             throw InputError(source, field(*c.lab[0]), formatNumber(row.lab->L) + " is outside 0 to 400");
@@ -204,7 +207,8 @@ std::vector<Row> oneSample(std::vector<Row> rows, const std::string& wanted, con
     for (std::size_t i = 0; i < rows.size(); ++i)
         for (std::size_t j = 0; j < i; ++j)
             if (rows[i].geometry.illumination_deg == rows[j].geometry.illumination_deg &&
-                rows[i].geometry.aspecular_deg == rows[j].geometry.aspecular_deg)
+                rows[i].geometry.aspecular_deg == rows[j].geometry.aspecular_deg &&
+                rows[i].geometry.azimuth_deg == rows[j].geometry.azimuth_deg)
                 throw InputError(source, rows[i].label,
                                  "the same geometry as " + rows[j].label +
                                      (rows[i].sample.empty() ? "" : " of sample '" + rows[i].sample + "'"));
@@ -291,16 +295,22 @@ double spectralScale(const io::CgatsTable& table, const std::vector<Row>& rows, 
         "them against): give the unit (paintlab-cli: --unit % or --unit 1)");
 }
 
+// "45as-15,15,25,25az90; 15as-45,...": per illumination, the aspecular
+// angles (with the azimuth out of the plane) in the file's order.
 std::string geometryDescription(const std::vector<db::MultiAngleReading>& readings) {
-    std::map<double, std::vector<double>, std::greater<>> by_illumination;
-    for (const auto& r : readings) by_illumination[r.illumination_deg].push_back(r.aspecular_deg);
+    std::map<double, std::vector<std::string>, std::greater<>> by_illumination;
+    for (const auto& r : readings) {
+        const std::string name =
+            db::multiAngleGeometryName(r.illumination_deg, r.aspecular_deg, r.azimuth_deg);
+        by_illumination[r.illumination_deg].push_back(name.substr(name.find("as") + 2));
+    }
     std::string out;
     for (const auto& [illumination, aspeculars] : by_illumination) {
         if (!out.empty()) out += "; ";
         out += formatNumber(illumination, io::NumberFormat::Shortest) + "as";
         for (std::size_t i = 0; i < aspeculars.size(); ++i) {
             if (i > 0) out.push_back(',');
-            out.append(formatNumber(aspeculars[i], io::NumberFormat::Shortest));
+            out.append(aspeculars[i]);
         }
     }
     return out;
@@ -377,6 +387,7 @@ db::Measurement parse(std::string_view text, const std::string& source, const Re
         db::MultiAngleReading r;
         r.illumination_deg = row.geometry.illumination_deg;
         r.aspecular_deg = row.geometry.aspecular_deg;
+        r.azimuth_deg = row.geometry.azimuth_deg;
         for (const double value : row.values) r.reflectance.push_back(value / divisor);
         if (row.lab) {
             r.L = row.lab->L;

@@ -10,10 +10,11 @@
 //       "45as-15", "r45as15", "45asMinus15", "r15as_45" (db::parseMultiAngleGeometry),
 //     ILLUMINATION_ANGLE and ASPECULAR_ANGLE in degrees,
 //     or SAMPLE_NAME ending in such a name ("blue pearl 45as15");
-//   the six geometries of ASTM E2194 / DIN 6175-2 (45as-15 ... 45as110) and the
+//   the six geometries of ASTM E2194 / DIN 6175-2 (45as-15 ... 45as110), the
 //   15° ones of 12-geometry instruments (15as-45, 15as-30, 15as-15, 15as15,
-//   15as45, 15as80) are the usual ones; any in-plane geometry whose detector
-//   is above the horizon is read. Out-of-plane rows ("45as25az90") are refused.
+//   15as45, 15as80) and their out-of-plane ones (45as25az90, 45as25az-90:
+//   the detector turned about the specular direction, engine/multiangle.h)
+//   are the usual ones; any geometry whose detector is above the horizon is read.
 // - LAB_L, LAB_A, LAB_B and/or spectral fields (SPECTRAL_NM400, SPECTRAL_400,
 //   NM400, ...; db::cgatsSpectralWavelength), reflectance factors (1 = the
 //   perfect diffuser; above 1 near the specular direction).

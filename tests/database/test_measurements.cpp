@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <tuple>
 
 namespace paintlab::db {
 namespace {
@@ -43,6 +44,19 @@ Measurement description(const std::string& name) {
     m.sample = "panel 7; \"silver\"";
     m.measured_at = "2024-06-01";
     return m;
+}
+
+// Stored in a database and read back, written as JSON and CSV and read back: the same measurement.
+void expectStoredAndWrittenUnchanged(const Measurement& m) {
+    TempDir dir;
+    Database db = Database::open(dir / "m.db");
+    createMeasurement(db, m);
+    auto stored = findMeasurement(db, m.name);
+    ASSERT_TRUE(stored.has_value());
+    stored->id = 0;
+    EXPECT_EQ(*stored, m);
+    EXPECT_EQ(parseMeasurementJson(measurementToJson(*stored), "m.json"), m);
+    EXPECT_EQ(parseMeasurementCsv(measurementToCsv(*stored), "m.csv", description(m.name)), m);
 }
 
 TEST(Measurements, MultiAngleCsvIsReadAndRoundTrips) {
@@ -129,15 +143,79 @@ TEST(Measurements, SpectralMultiAngleCsvGivesLabAndRoundTrips) {
         EXPECT_NEAR(r.a, 0.0, 1e-3) << i;
         EXPECT_NEAR(r.b, 0.0, 1e-3) << i;
     }
+    expectStoredAndWrittenUnchanged(m);
+}
+
+// A 12-geometry instrument's rows out of the plane of incidence (issue 29):
+// the azimuth is read from the geometry name or its own column, kept through
+// the database, JSON and CSV, and written only where a reading has one.
+TEST(Measurements, OutOfPlaneReadingsRoundTripAndInPlaneFilesStayAsBefore) {
+    const Measurement m = parseMeasurementCsv("geometry,L,a,b\n45as25,50,1,2\n45as25az90,48,1,2\n"
+                                              "45as25azMinus90,47,1,2\n15as-15,90,1,2\n",
+                                              "ma-t12.csv", description("pearl"));
+    ASSERT_EQ(m.readings.size(), 4U);
+    EXPECT_EQ(m.readings[0].azimuth_deg, 0.0);
+    EXPECT_EQ(m.readings[1].azimuth_deg, 90.0);
+    EXPECT_EQ(m.readings[2].azimuth_deg, -90.0);
+    EXPECT_EQ(m.readings[3].illumination_deg, 15.0);
+    expectStoredAndWrittenUnchanged(m);
+    const std::string json = measurementToJson(m);
+    const std::string csv = measurementToCsv(m);
+    EXPECT_EQ(csv.substr(0, csv.find('\n')), "illumination_deg,aspecular_deg,azimuth_deg,L,a,b");
+    // The azimuth column of a table without names.
+    const Measurement columns = parseMeasurementCsv("aspecular_deg,azimuth_deg,L,a,b\n25,-90,47,1,2\n",
+                                                    "columns.csv", description("pearl"));
+    EXPECT_EQ(columns.readings[0].azimuth_deg, -90.0);
+    // JSON only names the azimuth of out-of-plane readings: one key for two of the four.
+    std::size_t keys = 0;
+    for (auto at = json.find("azimuth_deg"); at != std::string::npos; at = json.find("azimuth_deg", at + 1))
+        ++keys;
+    EXPECT_EQ(keys, 2U);
+    // In-plane measurements are written exactly as before azimuths existed.
+    const Measurement plane = parseMeasurementCsv(kMultiAngleCsv, "panel.csv", description("silver panel"));
+    EXPECT_EQ(measurementToJson(plane).find("azimuth"), std::string::npos);
+    EXPECT_EQ(measurementToCsv(plane).substr(0, 39), "illumination_deg,aspecular_deg,L,a,b\n45");
+}
+
+// A database written before azimuths: its readings' JSON has no azimuth_deg
+// (the readings live in measurement.data_json, so no column was added and the
+// schema version is unchanged); it opens and reads them as in-plane.
+TEST(Measurements, DatabaseFromBeforeAzimuthsReadsInPlane) {
     TempDir dir;
-    Database db = Database::open(dir / "m.db");
-    createMeasurement(db, m);
-    auto stored = findMeasurement(db, "spectral panel");
-    ASSERT_TRUE(stored.has_value());
-    stored->id = 0;
-    EXPECT_TRUE(*stored == m);
-    EXPECT_TRUE(parseMeasurementJson(measurementToJson(*stored), "m.json") == m);
-    EXPECT_TRUE(parseMeasurementCsv(measurementToCsv(*stored), "m.csv", description("spectral panel")) == m);
+    const auto file = dir / "old.db";
+    { Database created = Database::open(file); }
+    ASSERT_EQ(test::rawExec(file, R"(INSERT INTO measurement (name, kind, instrument, geometry, sample,
+        measured_at, data_json, source) VALUES ('old panel', 'multiangle', 'BYK-mac i', '45as15,110', '', '',
+        '{"illuminant":"D65","observer":"10deg","readings":[{"illumination_deg":45.0,"aspecular_deg":15.0,
+        "L":80.0,"a":1.0,"b":2.0},{"illumination_deg":45.0,"aspecular_deg":110.0,"L":30.0,"a":1.0,
+        "b":2.0}]}', ''))"),
+              SQLITE_OK);
+    Database db = Database::open(file);
+    const auto m = findMeasurement(db, "old panel");
+    ASSERT_TRUE(m.has_value());
+    ASSERT_EQ(m->readings.size(), 2U);
+    EXPECT_EQ(m->readings[1], (MultiAngleReading{45.0, 110.0, 30.0, 1.0, 2.0, {}, 0.0}));
+    EXPECT_TRUE(db.integrityCheck().empty());
+}
+
+TEST(Measurements, GeometryNamesRoundTrip) {
+    for (const auto& [illumination, aspecular, azimuth, name] :
+         std::vector<std::tuple<double, double, double, std::string>>{
+             {45, -15, 0, "45as-15"},
+             {15, 80, 0, "15as80"},
+             {45, 25, 90, "45as25az90"},
+             {45, 25, -90, "45as25az-90"},
+             {15, 46.9, -104.5, "15as46.9az-104.5"}}) {
+        EXPECT_EQ(multiAngleGeometryName(illumination, aspecular, azimuth), name);
+        const auto parsed = parseMultiAngleGeometry(name);
+        ASSERT_TRUE(parsed.has_value()) << name;
+        EXPECT_EQ(parsed->illumination_deg, illumination) << name;
+        EXPECT_EQ(parsed->aspecular_deg, aspecular) << name;
+        EXPECT_EQ(parsed->azimuth_deg, azimuth) << name;
+    }
+    // X-Rite's spelling of a negative azimuth, and "az0" is in the plane.
+    EXPECT_EQ(parseMultiAngleGeometry("r45as25azMinus90")->azimuth_deg, -90.0);
+    EXPECT_EQ(multiAngleGeometryName(45, 25, 0.0), "45as25");
 }
 
 TEST(Measurements, SpectralMultiAngleJsonWithoutLabIsRead) {
@@ -231,6 +309,17 @@ INSTANTIATE_TEST_SUITE_P(
                        "line 2, column geometry"},
         BadMeasurement{"horizon", "horizon.csv", "aspecular_deg,L,a,b\n140,50,0,0\n",
                        "readings[0].aspecular_deg"},
+        BadMeasurement{"azimuth NaN", "aznan.csv", "aspecular_deg,azimuth_deg,L,a,b\n25,nan,50,0,0\n",
+                       "line 2, column azimuth_deg"},
+        BadMeasurement{"azimuth range", "azrange.csv", "geometry,L,a,b\n45as25az200,50,0,0\n",
+                       "readings[0].azimuth_deg"},
+        BadMeasurement{"azimuth horizon", "azhorizon.csv",
+                       "geometry,L,a,b\n45as25,50,0,0\n15as100az30,50,0,0\n", "readings[1].aspecular_deg"},
+        BadMeasurement{
+            "json azimuth", "az.json",
+            R"({"format": "paintlab-measurement", "format_version": 1, "name": "x", "kind": "multiangle",
+                           "readings": [{"aspecular_deg": 15, "azimuth_deg": "ninety", "L": 50, "a": 0, "b": 0}]})",
+            "readings[0].azimuth_deg"},
         BadMeasurement{"theta", "theta.csv",
                        "theta_i_deg,phi_i_deg,theta_o_deg,phi_o_deg,R,G,B\n95,0,0,0,1,1,1\n",
                        "samples[0].theta_i_deg"},

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -54,6 +55,72 @@ TEST(MultiAngle, GeometriesFollowTheAspecularConvention) {
         EXPECT_NEAR(std::acos(std::clamp(cos_as, -1.0, 1.0)) * 180.0 / std::numbers::pi, std::abs(as), 1e-9);
     }
     EXPECT_THROW(multiAngleGeometry(140.0), std::invalid_argument);
+}
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+double angleDeg(const Direction& a, const Direction& b) {
+    return std::acos(std::clamp(a.x * b.x + a.y * b.y + a.z * b.z, -1.0, 1.0)) / kDeg;
+}
+
+void expectDirection(const Direction& actual, const Direction& expected, double tolerance) {
+    EXPECT_NEAR(actual.x, expected.x, tolerance);
+    EXPECT_NEAR(actual.y, expected.y, tolerance);
+    EXPECT_NEAR(actual.z, expected.z, tolerance);
+}
+
+TEST(MultiAngle, OutOfPlaneDetectorTurnsAboutTheSpecularDirection) {
+    // 45as25az90 by hand: the specular direction r = (-sin 45, 0, cos 45); the
+    // detector 25° from r in the plane through r perpendicular to the plane of
+    // incidence, on the -y side (multiangle.h). 1e-15: rounding of a few sines.
+    const double s45 = std::sin(45.0 * kDeg);
+    const double c25 = std::cos(25.0 * kDeg);
+    const double s25 = std::sin(25.0 * kDeg);
+    const MultiAngleGeometry plus = multiAngleDirections(45.0, 25.0, 90.0);
+    expectDirection(plus.wi, {s45, 0.0, s45}, 1e-15);
+    expectDirection(plus.wo, {-s45 * c25, -s25, s45 * c25}, 1e-15);
+    expectDirection(multiAngleDirections(45.0, 25.0, -90.0).wo, {-s45 * c25, s25, s45 * c25}, 1e-15);
+    // Not a turn about the normal (which would keep the in-plane polar angle of 20°).
+    EXPECT_NEAR(detectorPolarAngleDeg(plus), std::acos(s45 * c25) / kDeg, 1e-12);
+    EXPECT_GT(detectorPolarAngleDeg(plus), 50.0);
+    // Every azimuth keeps the detector as far from the specular direction.
+    const Direction mirror{-plus.wi.x, -plus.wi.y, plus.wi.z};
+    for (double az : {-170.0, -90.0, -30.0, 10.0, 60.0, 135.0})
+        EXPECT_NEAR(angleDeg(multiAngleDirections(45.0, 25.0, az).wo, mirror), 25.0, 1e-9) << az;
+}
+
+TEST(MultiAngle, OutOfPlaneDirectionsAreXRitesNames) {
+    // X-Rite's direction vectors for its out-of-plane names (colorimetry tests
+    // of a public X-Rite web application, docs/ARCHITECTURE.md "Multi-angle
+    // geometries"), light along (sin θi, 0, -cos θi): detector A =
+    // (0.640856, 0.422618, 0.640856) is 45as25az90 and 15as38.3az43, B =
+    // (0, 0.707, 0.707) is 45as60az125.3 and 15as46.9az104.5, their mirror
+    // images in y the negative azimuths. Our light is at phi 0 where X-Rite's
+    // is at phi 180: the same vectors turned 180° about the normal.
+    const Direction a{-0.640856, -0.422618, 0.640856};
+    const Direction b{0.0, -std::sqrt(0.5), std::sqrt(0.5)};
+    // X-Rite rounds the names to 0.1° (and A to 6 digits): 2e-3 in each coordinate.
+    expectDirection(multiAngleDirections(45.0, 25.0, 90.0).wo, a, 2e-3);
+    expectDirection(multiAngleDirections(15.0, 38.3, 43.0).wo, a, 2e-3);
+    expectDirection(multiAngleDirections(45.0, 60.0, 125.3).wo, b, 2e-3);
+    expectDirection(multiAngleDirections(15.0, 46.9, 104.5).wo, b, 2e-3);
+    expectDirection(multiAngleDirections(45.0, 25.0, -90.0).wo, {a.x, -a.y, a.z}, 2e-3);
+    expectDirection(multiAngleDirections(15.0, 38.3, -43.0).wo, {a.x, -a.y, a.z}, 2e-3);
+    expectDirection(multiAngleDirections(45.0, 60.0, -125.3).wo, {b.x, -b.y, b.z}, 2e-3);
+    expectDirection(multiAngleDirections(15.0, 46.9, -104.5).wo, {b.x, -b.y, b.z}, 2e-3);
+}
+
+TEST(MultiAngle, AzimuthZeroAndHalfTurnAreTheInPlaneGeometry) {
+    for (double as : kAspecularAnglesDeg) {
+        const MultiAngleGeometry in_plane = multiAngleGeometry(as);
+        // Azimuth 0 is the in-plane geometry exactly (the same formula as before azimuths).
+        expectDirection(multiAngleDirections(45.0, as, 0.0).wo, in_plane.wo, 0.0);
+        // A half turn about the specular direction from the far side is the in-plane +as (multiangle.h).
+        expectDirection(multiAngleDirections(45.0, as, 180.0).wo, in_plane.wo, 1e-15);
+        expectDirection(multiAngleDirections(45.0, as, -180.0).wo, in_plane.wo, 1e-15);
+    }
+    // Below the horizon: reported through the polar angle, never thrown.
+    EXPECT_GE(detectorPolarAngleDeg(multiAngleDirections(75.0, 60.0, 30.0)), 90.0);
 }
 
 TEST(MultiAngle, LambertianWhiteIsTheWhitePointEverywhereWithNoFlop) {

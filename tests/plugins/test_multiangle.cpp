@@ -22,8 +22,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
+#include <numbers>
 #include <random>
 #include <sstream>
 #include <string>
@@ -37,6 +39,8 @@ const std::filesystem::path kSix =
     std::filesystem::path(PAINTLAB_TEST_DATA_DIR) / "multiangle/multiangle_6.cgats";
 const std::filesystem::path kTwelve =
     std::filesystem::path(PAINTLAB_TEST_DATA_DIR) / "multiangle/multiangle_12.cgats";
+const std::filesystem::path kOutOfPlane =
+    std::filesystem::path(PAINTLAB_TEST_DATA_DIR) / "multiangle/multiangle_12_out_of_plane.cgats";
 
 std::string slurp(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
@@ -91,8 +95,10 @@ TEST(MultiAngleGeometry, InstrumentSpellings) {
     for (const std::string_view bad :
          {"", "as15", "45as", "45", "class", "45as1x", "-45as15", "45as--15", "45as15az"})
         EXPECT_FALSE(db::parseMultiAngleGeometry(bad)) << bad;
+    expect("r45as25azMinus90", 45, 25, -90);
     EXPECT_EQ(db::multiAngleGeometryName(45, -15), "45as-15");
     EXPECT_EQ(db::multiAngleGeometryName(15, 80), "15as80");
+    EXPECT_EQ(db::multiAngleGeometryName(45, 25, 90), "45as25az90");
 }
 
 TEST(MultiAngleCgats, ProbeSaysHowSure) {
@@ -163,10 +169,32 @@ TEST(MultiAngleCgats, TwelveGeometriesAsFractionsAt15And45Degrees) {
     expectSpectraReproduceLab(multiangle::readFile(kSix, {}));
 }
 
+// An MA-T12-style export with rows out of the plane of incidence (issue 29):
+// read with their azimuths, and a measurement the fit takes as it is.
+TEST(MultiAngleCgats, OutOfPlaneRowsAreReadAndTheFitAcceptsThem) {
+    const db::Measurement m = multiangle::readFile(kOutOfPlane, {});
+    ASSERT_EQ(m.readings.size(), 13U);
+    EXPECT_EQ(m.geometry, "45as-15,15,25,45,75,110,25az90,25az-90; 15as-45,-15,15,45,80");
+    EXPECT_EQ(m.readings[11].illumination_deg, 45.0);
+    EXPECT_EQ(m.readings[11].aspecular_deg, 25.0);
+    EXPECT_EQ(m.readings[11].azimuth_deg, 90.0);
+    EXPECT_EQ(m.readings[12].azimuth_deg, -90.0);
+    EXPECT_EQ(m.readings[2].azimuth_deg, 0.0);
+    expectSpectraReproduceLab(m);
+    fit::FitProblem problem;
+    problem.recipe =
+        loadRecipeFile(std::filesystem::path(PAINTLAB_DEMO_DIR) / "recipes/pearlescent-two-layer.json");
+    problem.free.push_back({"layers[1].components[0].orientation_spread_deg", std::nullopt, std::nullopt});
+    db::addFitObservation(problem.observations, m, fit::Side::Top);
+    ASSERT_EQ(problem.observations.multi_angle.at(0).readings.size(), 13U);
+    EXPECT_EQ(problem.observations.multi_angle[0].readings[12].azimuth_deg, -90.0);
+    EXPECT_NO_THROW(fit::validateFitProblem(problem));
+}
+
 TEST(MultiAngleCgats, StoredAndReadBackUnchanged) {
     const TempDir dir;
     db::Database database = db::Database::open(dir / "lab.db");
-    for (const auto& file : {kSix, kTwelve}) {
+    for (const auto& file : {kSix, kTwelve, kOutOfPlane}) {
         const db::Measurement m = multiangle::readFile(file, {});
         db::createMeasurement(database, m);
         auto stored = db::findMeasurement(database, m.name);
@@ -247,7 +275,11 @@ TEST(MultiAngleCgats, BadFilesAreRefusedNamingTheField) {
     EXPECT_EQ(errorField(replaced(" 77.99 ", " -7.99 ")), "data set 1 (45as-15).SPECTRAL_NM400");
     EXPECT_EQ(errorField(replaced("\"45as75\"", "\"45as-75\"")),
               "data set 5 (45as-75).geometry");  // below horizon
-    EXPECT_EQ(errorField(replaced("\"45as75\"", "\"45as25az90\"")), "data set 5 (45as25).geometry");
+    EXPECT_EQ(errorField(replaced("\"45as75\"", "\"45as25az200\"")),
+              "data set 5 (45as25az200).geometry");  // azimuth out of range
+    EXPECT_EQ(errorField(replaced("\"45as75\"", "\"15as100az30\"")),
+              "data set 5 (15as100az30).geometry");  // out of the plane and below the horizon
+    EXPECT_EQ(errorField(replaced("\"45as75\"", "\"45as25aznan\"")), "data set 5.GEOMETRY");
     EXPECT_EQ(errorField(replaced("\"45as75\"", "\"45as15\"")), "data set 5 (45as15)");  // twice
     EXPECT_EQ(errorField(replaced("\"45as75\"", "\"sideways\"")), "data set 5.GEOMETRY");
     EXPECT_EQ(errorField(replaced("BEGIN_DATA_FORMAT", "BEGIN_DATA_FORMATX")), "<file>");
@@ -264,9 +296,10 @@ TEST(MultiAngleCgats, BadFilesAreRefusedNamingTheField) {
 // Physics: spectra simulated from the silver metallic demo recipe at all 12
 // geometries (15° and 45° illumination, detector placed by the ASTM E2284
 // definition of the aspecular angle: from the specular direction towards the
-// light), written as CGATS, read and fitted from a wrong first guess: the
-// orientation spread comes back. The same file with its 15° rows labelled
-// 25° cannot be fitted as well: the illumination angle is used.
+// light) and the two out-of-plane ones 45as25az+-90, written as CGATS, read
+// and fitted from a wrong first guess: the orientation spread comes back. The
+// same file with its 15° rows labelled 25° cannot be fitted as well: the
+// illumination angle is used.
 TEST(MultiAngleCgats, FittedBackAtBothIlluminationAngles) {
     Recipe truth = loadRecipeFile(std::filesystem::path(PAINTLAB_DEMO_DIR) / "recipes/silver-metallic.json");
     const std::string path = "layers[1].components[0].orientation_spread_deg";
@@ -278,23 +311,33 @@ TEST(MultiAngleCgats, FittedBackAtBothIlluminationAngles) {
     for (const double w : wavelengths) fields += " SPECTRAL_NM" + std::to_string(static_cast<int>(w));
     std::vector<std::string> rows;
     std::vector<std::string> rows_mislabelled;  // 15° written as 25°
-    const std::vector<std::pair<int, int>> geometries{{45, -15}, {45, 15},  {45, 25},  {45, 45},
-                                                      {45, 75},  {45, 110}, {15, -45}, {15, -30},
-                                                      {15, -15}, {15, 15},  {15, 45},  {15, 80}};
-    for (const auto& [illumination, aspecular] : geometries) {
+    const std::vector<std::array<int, 3>> geometries{
+        {45, -15, 0}, {45, 15, 0},  {45, 25, 0}, {45, 45, 0}, {45, 75, 0}, {45, 110, 0}, {15, -45, 0},
+        {15, -30, 0}, {15, -15, 0}, {15, 15, 0}, {15, 45, 0}, {15, 80, 0}, {45, 25, 90}, {45, 25, -90}};
+    for (const auto& [illumination, aspecular, azimuth] : geometries) {
         // Light at +illumination in the plane (phi 0), its mirror direction at -illumination;
         // the detector aspecular degrees from the mirror direction towards the light.
         const double detector = -illumination + aspecular;
         const Direction wi = directionFromAnglesDeg(illumination, 0.0);
-        const Direction wo = directionFromAnglesDeg(std::abs(detector), detector >= 0.0 ? 0.0 : 180.0);
+        Direction wo = directionFromAnglesDeg(std::abs(detector), detector >= 0.0 ? 0.0 : 180.0);
+        if (azimuth != 0) {
+            // By hand: az +-90 turns the detector a quarter turn about the mirror direction
+            // m = (-sin i, 0, cos i): wo = cos(as) m -+ sin(as) y (engine/multiangle.h).
+            const double i = illumination * std::numbers::pi / 180.0;
+            const double as = aspecular * std::numbers::pi / 180.0;
+            wo = {-std::sin(i) * std::cos(as), azimuth > 0 ? -std::sin(as) : std::sin(as),
+                  std::cos(i) * std::cos(as)};
+        }
         const auto colour = reflectanceFactorColour(brdf, wi, wo);
         std::ostringstream values;
         values.precision(17);
         for (const double r : colour.reflectance) values << ' ' << r;
-        const std::string name = std::to_string(illumination) + "as" + std::to_string(aspecular);
+        const std::string name = std::to_string(illumination) + "as" + std::to_string(aspecular) +
+                                 (azimuth != 0 ? "az" + std::to_string(azimuth) : "");
         rows.push_back("panel \"" + name + "\"" + values.str());
-        rows_mislabelled.push_back("panel \"" + std::to_string(illumination == 15 ? 25 : 45) + "as" +
-                                   std::to_string(aspecular) + "\"" + values.str());
+        rows_mislabelled.push_back(
+            "panel \"" + std::to_string(illumination == 15 ? 25 : 45) + "as" + std::to_string(aspecular) +
+            (azimuth != 0 ? "az" + std::to_string(azimuth) : "") + "\"" + values.str());
     }
     ReadOptions fractions;
     fractions.cgats.unit = "1";

@@ -5,6 +5,7 @@
 
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/io/number_format.h"
+#include "paintlab/engine/multiangle.h"
 #include "paintlab/engine/recipe_paths.h"
 
 #include <cmath>
@@ -86,15 +87,21 @@ void prepareMultiAngle(const MultiAngleMeasurement& m, std::size_t mi, const Rec
         check.angle(fieldPath(at, "illumination_deg"), r.illumination_deg, 0.0, 90.0);
         p.illumination_deg = r.illumination_deg;
         check.finite(fieldPath(at, "aspecular_deg"), r.aspecular_deg);
-        // Detector in the plane of incidence at the signed angle -illumination
-        // + aspecular from the normal (multiangle.h's convention).
-        const double detector = -r.illumination_deg + r.aspecular_deg;
-        if (!(std::abs(detector) < 90.0))
+        check.finite(fieldPath(at, "azimuth_deg"), r.azimuth_deg);
+        if (std::abs(r.azimuth_deg) > 180.0)
+            check.fail(fieldPath(at, "azimuth_deg"),
+                       formatNumber(r.azimuth_deg) + "° is outside [-180, 180]");
+        // The directions by multiangle.h's convention (the one conversion).
+        const MultiAngleGeometry g = multiAngleDirections(r.illumination_deg, r.aspecular_deg, r.azimuth_deg);
+        // 1e-9: a detector at exactly 90° (cos 6e-17 in floating point) is on the horizon, refused as before.
+        if (!(detectorPolarAngleDeg(g) < 90.0 - 1e-9))
             check.fail(fieldPath(at, "aspecular_deg"),
-                       formatNumber(r.aspecular_deg) + "° puts the detector below the horizon");
+                       formatNumber(r.aspecular_deg) + "° puts the detector below the horizon" +
+                           (r.azimuth_deg == 0.0 ? "" : " at azimuth " + formatNumber(r.azimuth_deg) + "°"));
         p.aspecular_deg = r.aspecular_deg;
-        p.wi = directionFromAnglesDeg(r.illumination_deg, 0.0);
-        p.wo = directionFromAnglesDeg(std::abs(detector), detector >= 0.0 ? 0.0 : 180.0);
+        p.azimuth_deg = r.azimuth_deg;
+        p.wi = g.wi;
+        p.wo = g.wo;
         if (r.wavelengths_nm.size() != r.reflectance_factor.size())
             check.fail(fieldPath(at, "reflectance_factor"),
                        "has " + std::to_string(r.reflectance_factor.size()) + " values for " +

@@ -116,6 +116,7 @@ void observationDetails(const SideBrdfs& brdfs, const PreparedObservations& prep
         g.side = r.side;
         g.illumination_deg = r.illumination_deg;
         g.aspecular_deg = r.aspecular_deg;
+        g.azimuth_deg = r.azimuth_deg;
         ObservationResidual o{r.measurement, r.index, ObservationKind::MultiAngleLab, r.side, 0.0, 0.0};
         // The fitted colour is computed as the measured one is: from the
         // spectrum at the measured wavelengths, or, where the instrument gave

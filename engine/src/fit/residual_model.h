@@ -20,6 +20,7 @@ struct PreparedReading {
     Side side = Side::Top;
     double illumination_deg = 45.0;
     double aspecular_deg = 0.0;
+    double azimuth_deg = 0.0;
     Direction wi;
     Direction wo;
     ColourConditions conditions;

@@ -133,6 +133,19 @@ TEST(FitInputs, EachBadInputNamesItsField) {
          }},
         {"multi_angle[0].readings[3].aspecular_deg",
          [](FitProblem& p) { p.observations.multi_angle[0].readings[3].aspecular_deg = 140.0; }},
+        {"multi_angle[0].readings[2].azimuth_deg",
+         [&](FitProblem& p) { p.observations.multi_angle[0].readings[2].azimuth_deg = nan; }},
+        {"multi_angle[0].readings[2].azimuth_deg",
+         [](FitProblem& p) { p.observations.multi_angle[0].readings[2].azimuth_deg = 200.0; }},
+        {"multi_angle[0].readings[4].aspecular_deg",
+         [](FitProblem& p) {
+             // 45as75 turned 90° out of the plane about the specular direction
+             // stays in front; at 15° illumination 15as100az30 is below the horizon.
+             auto& r = p.observations.multi_angle[0].readings[4];
+             r.illumination_deg = 15.0;
+             r.aspecular_deg = 100.0;
+             r.azimuth_deg = 30.0;
+         }},
         {"multi_angle[0].side",
          [](FitProblem& p) { p.observations.multi_angle[0].side = fit::Side::Bottom; }},
         {"layers[1].components[0].volume_fraction",

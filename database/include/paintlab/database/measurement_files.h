@@ -7,6 +7,7 @@
 //           multiangle: "illuminant": "D65", "observer": "10deg",
 //                       optional "wavelengths_nm": [...] for spectral readings,
 //                       "readings": [ { "illumination_deg": 45, "aspecular_deg": 15,
+//                                       "azimuth_deg": 90 (optional, 0: in-plane),
 //                                       "L": 92.1, "a": -0.4, "b": 1.2,
 //                                       "reflectance": [...] (optional) } ]
 //                       (a spectral reading may leave L, a, b out: computed)
@@ -14,8 +15,10 @@
 //                       "samples": [ { "theta_i_deg", "phi_i_deg", "theta_o_deg",
 //                                      "phi_o_deg", "values": [...] } ] }
 // - CSV, as instruments export a table:
-//   multiangle: columns aspecular_deg (or geometry "45as15"), optional
-//               illumination_deg (default 45), L, a, b (or L*, a*, b*),
+//   multiangle: columns aspecular_deg (or geometry "45as15", "45as25az90"),
+//               optional illumination_deg (default 45) and azimuth_deg
+//               (default 0, in-plane; written only when a reading has one),
+//               L, a, b (or L*, a*, b*),
 //               and/or one reflectance-factor column per wavelength ("400",
 //               "400nm"; without L, a, b they are computed from the spectra);
 //   brdf:       columns theta_i_deg, phi_i_deg, theta_o_deg, phi_o_deg, then

@@ -4,9 +4,11 @@
 //
 // - multiangle: CIELAB at the geometries of a multi-angle spectrophotometer
 //   (ASTM E2194 / DIN 6175-2: illumination 45° from the normal, aspecular
-//   angles -15, 15, 25, 45, 75, 110°), as BYK-mac or MA-T instruments export it,
-//   and optionally the spectral reflectance factor per geometry (what such
-//   instruments measure; CIELAB follows from it);
+//   angles -15, 15, 25, 45, 75, 110°; 12-geometry instruments add 15°
+//   illumination and geometries out of the plane of incidence such as
+//   45as25az90), as BYK-mac or MA-T instruments export it, and optionally the
+//   spectral reflectance factor per geometry (what such instruments measure;
+//   CIELAB follows from it);
 // - brdf: goniophotometer samples f(wi, wo) in 1/sr at (theta_i, phi_i,
 //   theta_o, phi_o) in degrees, spectral (one value per wavelength) or RGB.
 //
@@ -40,24 +42,31 @@ struct MultiAngleReading {
     // white; above 1 near the specular direction), one per
     // Measurement::wavelengths_nm; empty when only CIELAB was measured.
     std::vector<double> reflectance;
+    // The detector's rotation about the specular direction out of the plane
+    // of incidence, -180 to 180 (0: in the plane; "az" of 45as25az90; the
+    // convention is engine/multiangle.h's, X-Rite's). Last, so that positional
+    // initialisers written before it keep their meaning.
+    double azimuth_deg = 0.0;
     friend bool operator==(const MultiAngleReading&, const MultiAngleReading&) = default;
 };
 
 // A multi-angle geometry by its instrument name: "45as15", "45as-15", with
 // the spellings instruments and their software use ("r45as15", "45asMinus15",
-// "r15as_45", "45as25az90"; case and a degree sign ignored). Illumination in
-// the plane of incidence at illumination_deg from the normal, the detector
-// aspecular_deg from the specular direction (MultiAngleReading), azimuth_deg
-// the detector's rotation out of that plane (0: in the plane).
+// "r15as_45", "45as25az90", "45as25azMinus90"; case and a degree sign
+// ignored). Illumination in the plane of incidence at illumination_deg from
+// the normal, the detector aspecular_deg from the specular direction and
+// azimuth_deg turned about it out of that plane (MultiAngleReading; 0: in the plane).
 struct MultiAngleGeometry {
     double illumination_deg = 45.0;
     double aspecular_deg = 0.0;
     double azimuth_deg = 0.0;
 };
-// nullopt when the text is not a geometry name (never throws).
+// nullopt when the text is not a geometry name (never throws; the ranges are
+// validateMeasurement's).
 std::optional<MultiAngleGeometry> parseMultiAngleGeometry(std::string_view name);
-// "45as-15", "15as80" (shortest numbers).
-std::string multiAngleGeometryName(double illumination_deg, double aspecular_deg);
+// "45as-15", "15as80", "45as25az-90" (shortest numbers; "az" only when the
+// azimuth is not 0): parseMultiAngleGeometry reads it back.
+std::string multiAngleGeometryName(double illumination_deg, double aspecular_deg, double azimuth_deg = 0.0);
 
 struct BrdfSample {
     double theta_i_deg = 0.0;  // light direction: polar angle from the normal, 0 to 90
@@ -101,8 +110,9 @@ struct MeasurementSummary {
 };
 
 // Checks a measurement: name, kind-specific data present and finite, angles
-// in range, BRDF values and reflectance factors >= 0 and one per channel or
-// wavelength (all readings spectral or none). Throws InputError(source, field, ...).
+// in range (a multi-angle detector above the horizon, azimuth -180 to 180), BRDF values and reflectance
+// factors >= 0 and one per channel or wavelength (all readings spectral or none). Throws InputError(source,
+// field, ...).
 void validateMeasurement(const Measurement& measurement, const std::string& source);
 
 // Each throws DatabaseError naming the file when SQLite fails and InputError

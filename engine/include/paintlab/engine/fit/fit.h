@@ -137,6 +137,7 @@ struct GeometryMatch {
     double delta_e00 = 0.0;
     std::vector<double> wavelengths_nm;  // the fitted reflectance factors at these
     std::vector<double> fitted_reflectance_factor;
+    double azimuth_deg = 0.0;  // out of the plane of incidence (observations.h)
 };
 
 enum class IdentifiabilityKind { Correlated, Undetermined, AtBound };

@@ -47,10 +47,12 @@ double defaultBrdfLogNoise(const std::vector<double>& values, double cos_i);
 enum class Side { Top, Bottom };
 std::string_view sideName(Side side);
 
-// One geometry of a multi-angle instrument: illumination in the plane of
-// incidence at illumination_deg from the normal, detection in that plane at
-// aspecular_deg from the specular direction towards the illuminator (the
-// convention of multiangle.h: 45as15 looks 15° off specular).
+// One geometry of a multi-angle instrument: illumination at
+// illumination_deg from the normal, detection at aspecular_deg from the
+// specular direction towards the illuminator, and azimuth_deg, the
+// detector's rotation about the specular direction out of the plane of
+// incidence (0: in the plane; the convention of multiangle.h: 45as15 looks
+// 15° off specular, 45as25az90 25° off specular, at right angles to the plane).
 struct MultiAngleReading {
     double illumination_deg = 45.0;
     double aspecular_deg = 0.0;
@@ -66,6 +68,7 @@ struct MultiAngleReading {
     double reflectance_relative_noise = 0.0;
     double reflectance_absolute_noise = 0.0;
     double lab_noise = 0.0;
+    double azimuth_deg = 0.0;  // last, so that positional initialisers keep their meaning
 };
 
 struct MultiAngleMeasurement {
