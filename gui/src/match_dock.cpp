@@ -10,9 +10,11 @@
 
 #include "paintlab/database/exchange.h"
 #include "paintlab/database/fit_observations.h"
+#include "paintlab/database/measurements.h"
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/fit/parameter_paths.h"
 #include "paintlab/engine/io/number_format.h"
+#include "paintlab/engine/multiangle.h"
 #include "paintlab/plugins/exchange.h"
 #include "paintlab/plugins/registry.h"
 
@@ -90,10 +92,9 @@ QWidget* scrollingPane(QWidget* content, const char* name) {
 }
 
 QString geometryName(const fit::GeometryMatch& g) {
-    return QStringLiteral("%1as%2%3")
-        .arg(g.illumination_deg, 0, 'g', 3)
-        .arg(g.aspecular_deg, 0, 'g', 3)
-        .arg(g.side == fit::Side::Bottom ? QObject::tr(" (below)") : QString());
+    return QString::fromStdString(
+               db::multiAngleGeometryName(g.illumination_deg, g.aspecular_deg, g.azimuth_deg)) +
+           (g.side == fit::Side::Bottom ? QObject::tr(" (below)") : QString());
 }
 
 QString labText(const Lab& lab) {
@@ -663,13 +664,18 @@ std::optional<MultiAngleReport> MatchDock::measuredReport() const {
     MultiAngleReport report;
     report.illuminant = db::measurementIlluminant(*m);
     report.observer = db::measurementObserver(*m);
+    // The plots' flop (a*b* travel, spectra) is the 45° in-plane series;
+    // readings at other illuminations or out of the plane would sit on it at
+    // their aspecular angle alone. They are in the geometry table after a fit.
     for (const auto& r : m->readings) {
+        if (r.illumination_deg != kMultiAngleIlluminationDeg || r.azimuth_deg != 0.0) continue;
         MultiAngleColour c;
         c.aspecular_deg = r.aspecular_deg;
         c.lab = Lab{r.L, r.a, r.b};
         c.reflectance_factor = r.reflectance;
         report.colours.push_back(std::move(c));
     }
+    if (report.colours.empty()) return std::nullopt;
     return report;
 }
 

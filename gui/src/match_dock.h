@@ -95,7 +95,8 @@ public:
     const db::Measurement* chosenMeasurement() const { return chosen(m_measurement); }
 
     // The chosen top measurement's multi-angle colours as a report (for the
-    // plots' measured overlay); nullopt for none or a BRDF measurement.
+    // plots' measured overlay: its 45° in-plane readings); nullopt for none,
+    // a BRDF measurement, or no such reading.
     std::optional<MultiAngleReport> measuredReport() const;
     // Its spectra's wavelengths (empty: CIELAB only) and its name.
     std::vector<double> measuredWavelengths() const;

@@ -123,6 +123,7 @@ private slots:
     void interpolatedSamplesShadeLikeTheirBrdf();
     void brdfMeasurementPointsAndSplitView();
     void runControlsShowWholeAtLaptopSize();
+    void onlyTheInPlane45DegreeReadingsJoinTheFlopPlots();
     void cleanupTestCase();
 
 private:
@@ -158,6 +159,30 @@ void MatchDockTest::initTestCase() {
 // Review item: at 1024 x 700 (the laptop layout: the dock a bottom tab) with
 // a BRDF measurement chosen (the split pane takes room), the results pane
 // scrolled and Cancel was clipped. Fit and Cancel must show whole, unscrolled.
+// A 12-geometry instrument's file: the 15° rows and the out-of-plane
+// 45as25az90 would sit on the plots' 45° in-plane flop at their aspecular
+// angle alone (a zig-zag in the a*b* travel); the overlay keeps the six 45°
+// in-plane readings. The geometry table names them in full (geometryName).
+void MatchDockTest::onlyTheInPlane45DegreeReadingsJoinTheFlopPlots() {
+    db::Measurement m = simulated(m_window->document()->recipe());
+    m.name = "twelve-geometry panel";
+    const db::MultiAngleReading in_plane = m.readings.at(2);  // 45as25
+    db::MultiAngleReading out_of_plane = in_plane;
+    out_of_plane.azimuth_deg = 90.0;
+    db::MultiAngleReading low = in_plane;
+    low.illumination_deg = 15.0;
+    m.readings.push_back(out_of_plane);
+    m.readings.push_back(low);
+    dock()->addFileMeasurement(m);
+    QCOMPARE(QString::fromStdString(dock()->chosenMeasurement()->name),
+             QStringLiteral("twelve-geometry panel"));
+    const auto report = dock()->measuredReport();
+    QVERIFY(report.has_value());
+    QCOMPARE(report->colours.size(), m.readings.size() - 2);
+    for (std::size_t k = 0; k < report->colours.size(); ++k)
+        QCOMPARE(report->colours[k].aspecular_deg, m.readings[k].aspecular_deg);
+}
+
 void MatchDockTest::runControlsShowWholeAtLaptopSize() {
     const QSize old_size = m_window->size();
     m_window->resize(1024, 700);
