@@ -138,7 +138,10 @@ TEST(BottomOperator, SamplingMatchesEvaluation) {
         // Histogram of 200k draws in 8 x 8 cells of (mu^2, |dphi|) against the pdf's integrals.
         constexpr int kCells = 8;
         constexpr int kDraws = 200000;
-        std::vector<double> counts(kCells * kCells, 0.0);
+        std::vector<double> counts(static_cast<std::size_t>(kCells) * kCells, 0.0);
+        const auto cell = [](int a, int b) {
+            return static_cast<std::size_t>(a) * kCells + static_cast<std::size_t>(b);
+        };
         double sum = 0.0;
         double sum2 = 0.0;
         for (int d = 0; d < kDraws; ++d) {
@@ -150,7 +153,7 @@ TEST(BottomOperator, SamplingMatchesEvaluation) {
                 std::abs(std::remainder(std::atan2(u.y, u.x) - 25.0 * kPi / 180.0, 2.0 * kPi));
             const int a = std::min(kCells - 1, static_cast<int>(u.z * u.z * kCells));
             const int b = std::min(kCells - 1, static_cast<int>(dphi / kPi * kCells));
-            counts[static_cast<std::size_t>(a * kCells + b)] += 1.0;
+            counts[cell(a, b)] += 1.0;
         }
         const double mean = sum / kDraws;
         const double se = std::sqrt((sum2 / kDraws - mean * mean) / kDraws);
@@ -171,7 +174,7 @@ TEST(BottomOperator, SamplingMatchesEvaluation) {
                 }
                 p *= 2.0 * (1.0 / (kCells * kSub)) * (kPi / (kCells * kSub));
                 const double expected = p * kDraws;
-                const double diff = counts[static_cast<std::size_t>(a * kCells + b)] - expected;
+                const double diff = counts[cell(a, b)] - expected;
                 chi2 += diff * diff / expected;
             }
         }
