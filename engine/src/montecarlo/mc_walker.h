@@ -170,8 +170,8 @@ struct Walker {
     // The smooth substrate's (Lambertian or the bottom operator's) next-event
     // estimates (chains and cone connections).
     void scoreLambert(const Slice& s);
-    // That substrate's f from the path's direction v into the upward u (1/sr).
-    double substrateF(const Vec3& u) const;
+    // What that substrate sends towards the upward u per sr: weight times its f from v into u.
+    double substrateEmitted(const Vec3& u) const;
     // Connections from a pigment collision into the cones (directly and through a flake's image).
     void connectFromPigment(const Slice& s, double sigma);
     // Delta-chain walk: the last-flake connections from the flight of `length`

@@ -172,17 +172,19 @@ void Walker::scoreCollision(const Slice& s, double sigma) {
     }
 }
 
-double Walker::substrateF(const Vec3& u) const {
-    return stack.substrate == SubstrateKind::Operator ? stack.bottom->eval(v, u) : stack.lambert_albedo / kPi;
+double Walker::substrateEmitted(const Vec3& u) const {
+    // The Lambertian's product in its order before the operator (bit-identical results).
+    return stack.substrate == SubstrateKind::Operator ? weight * stack.bottom->eval(v, u)
+                                                      : weight * stack.lambert_albedo / kPi;
 }
 
 void Walker::scoreLambert(const Slice& s) {
     for (std::size_t k = 0; k < chains.size(); ++k)
         if (chains[k].lambert > 0.0)
-            brdf_out[k] += weight * substrateF(chains[k].direction(stack, j, true)) * chains[k].lambert;
+            brdf_out[k] += substrateEmitted(chains[k].direction(stack, j, true)) * chains[k].lambert;
     if (connection_rng != nullptr && settings.cone_direct)
         coneNextEvent(
-            s, [&](const Vec3& u) { return weight * substrateF(u); }, [](std::size_t /*k*/) { return 1.0; });
+            s, [&](const Vec3& u) { return substrateEmitted(u); }, [](std::size_t /*k*/) { return 1.0; });
 }
 
 void Walker::connectFromPigment(const Slice& s, double sigma) {
@@ -310,7 +312,7 @@ void Walker::reverseFromPigment(const Slice& s, double sigma) {
 }
 
 void Walker::reverseFromLambert(const Slice& s) {
-    reverseNextEvent(s, [&](const Vec3& u) { return weight * substrateF(u); });
+    reverseNextEvent(s, [&](const Vec3& u) { return substrateEmitted(u); });
 }
 
 bool Walker::headsIntoCone() const {
