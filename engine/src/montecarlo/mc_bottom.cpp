@@ -172,8 +172,14 @@ double BottomOperator::nodeF0(int i, double mu_o) const {
 }
 
 double BottomOperator::eval(const Vec3& v, const Vec3& u) const {
-    const double mu_i = std::clamp(-v.z, 0.0, 1.0);
-    const double mu_o = std::clamp(u.z, 0.0, 1.0);
+    const double sin_i = std::sqrt(std::max(0.0, 1.0 - v.z * v.z));
+    const double sin_o = std::sqrt(std::max(0.0, 1.0 - u.z * u.z));
+    const double c =
+        sin_i * sin_o > 1e-12 ? std::clamp((v.x * u.x + v.y * u.y) / (sin_i * sin_o), -1.0, 1.0) : 1.0;
+    return evalAt(std::clamp(-v.z, 0.0, 1.0), std::clamp(u.z, 0.0, 1.0), c);
+}
+
+double BottomOperator::evalAt(double mu_i, double mu_o, double c) const {
     if (!(mu_o > 0.0)) return 0.0;
     int ki = 0;
     int ko = 0;
@@ -183,10 +189,6 @@ double BottomOperator::eval(const Vec3& v, const Vec3& u) const {
     locate(mu_o, ko, to, true);
     const int ki1 = std::min(ki + 1, static_cast<int>(m_mu.size()) - 1);
     const int ko1 = std::min(ko + 1, static_cast<int>(m_mu.size()) - 1);
-    const double sin_i = std::sqrt(std::max(0.0, 1.0 - v.z * v.z));
-    const double sin_o = std::sqrt(std::max(0.0, 1.0 - u.z * u.z));
-    const double c =
-        sin_i * sin_o > 1e-12 ? std::clamp((v.x * u.x + v.y * u.y) / (sin_i * sin_o), -1.0, 1.0) : 1.0;
     // cos(m dphi) by the Chebyshev recurrence.
     double previous = 1.0;
     double current = c;
@@ -206,17 +208,16 @@ double BottomOperator::eval(const Vec3& v, const Vec3& u) const {
     return std::max(0.0, f / denominator(mu_o, mu_i));
 }
 
-double BottomOperator::nodePdf(int i, int cell, double mu_o, double abs_dphi) const {
+double BottomOperator::nodePdf(int i, int cell, double mu_o, std::size_t bin) const {
     const std::size_t count = m_mu.size();
     const auto o = static_cast<std::size_t>(cell);
     const double* cells = &m_cell_cdf[static_cast<std::size_t>(i) * (count + 1)];
     const double area = m_edges[o + 1] * m_edges[o + 1] - m_edges[o] * m_edges[o];
     const std::size_t bins = kAzimuthBins;
     const double* az = &m_azimuth_cdf[(static_cast<std::size_t>(i) * count + o) * (bins + 1)];
-    const auto b = std::min(bins - 1, static_cast<std::size_t>(abs_dphi / kPi * static_cast<double>(bins)));
     // Cell probability, mu in it by 2 mu / area, the azimuth bin's density over [0, pi] halved (both signs).
-    return (cells[o + 1] - cells[o]) * 2.0 * mu_o / area * (az[b + 1] - az[b]) * static_cast<double>(bins) /
-           kPi * 0.5;
+    return (cells[o + 1] - cells[o]) * 2.0 * mu_o / area * (az[bin + 1] - az[bin]) *
+           static_cast<double>(bins) / kPi * 0.5;
 }
 
 double BottomOperator::pdf(const Vec3& v, const Vec3& u) const {
@@ -228,8 +229,10 @@ double BottomOperator::pdf(const Vec3& v, const Vec3& u) const {
     const double phi_v = std::atan2(v.y, v.x);
     double dphi = std::abs(std::remainder(std::atan2(u.y, u.x) - phi_v, 2.0 * kPi));
     if (std::sqrt(std::max(0.0, 1.0 - v.z * v.z)) < 1e-12) dphi = std::abs(std::atan2(u.y, u.x));
-    double p = (1.0 - ti) * nodePdf(ki, cell, u.z, dphi);
-    if (ti > 0.0) p += ti * nodePdf(ki + 1, cell, u.z, dphi);
+    const std::size_t bins = kAzimuthBins;
+    const auto bin = std::min(bins - 1, static_cast<std::size_t>(dphi / kPi * static_cast<double>(bins)));
+    double p = (1.0 - ti) * nodePdf(ki, cell, u.z, bin);
+    if (ti > 0.0) p += ti * nodePdf(ki + 1, cell, u.z, bin);
     return p;
 }
 
@@ -255,14 +258,21 @@ Vec3 BottomOperator::sample(const Vec3& v, PathRng& rng, double& factor) const {
         std::upper_bound(az + 1, az + bins + 1, ua) - az - 1, 0, static_cast<std::ptrdiff_t>(bins) - 1));
     const double width = az[b + 1] - az[b];
     const double within = width > 0.0 ? (ua - az[b]) / width : 0.5;
-    double dphi = (static_cast<double>(b) + std::clamp(within, 0.0, 1.0)) * kPi / static_cast<double>(bins);
-    if (rng.uniform() < 0.5) dphi = -dphi;
+    const double dphi =
+        (static_cast<double>(b) + std::clamp(within, 0.0, 1.0)) * kPi / static_cast<double>(bins);
+    const double sign = rng.uniform() < 0.5 ? -1.0 : 1.0;
+    // u at azimuth +-dphi from v's (x when v is vertical, as pdf() measures it).
     const double sin_v = std::sqrt(std::max(0.0, 1.0 - v.z * v.z));
-    const double phi = (sin_v > 1e-12 ? std::atan2(v.y, v.x) : 0.0) + dphi;
+    const double ax = sin_v > 1e-12 ? v.x / sin_v : 1.0;
+    const double ay = sin_v > 1e-12 ? v.y / sin_v : 0.0;
+    const double cos_d = std::cos(dphi);
+    const double sin_d = sign * std::sin(dphi);
     const double sin_o = std::sqrt(std::max(0.0, 1.0 - mu_o * mu_o));
-    const Vec3 u{sin_o * std::cos(phi), sin_o * std::sin(phi), mu_o};
-    const double p = pdf(v, u);
-    if (p > 0.0) factor = eval(v, u) * mu_o / p;
+    const Vec3 u{sin_o * (ax * cos_d - ay * sin_d), sin_o * (ay * cos_d + ax * sin_d), mu_o};
+    // pdf(v, u) and eval(v, u) from what the draw already knows (its cell and bin).
+    double p = (1.0 - ti) * nodePdf(ki, static_cast<int>(o), mu_o, b);
+    if (ti > 0.0) p += ti * nodePdf(ki + 1, static_cast<int>(o), mu_o, b);
+    if (p > 0.0) factor = evalAt(std::clamp(-v.z, 0.0, 1.0), mu_o, cos_d) * mu_o / p;
     return u;
 }
 

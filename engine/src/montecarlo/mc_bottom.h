@@ -88,7 +88,10 @@ private:
     double denominator(double mu_o, double mu_i) const { return std::max(mu_o + mu_i, m_mu.front()); }
     // The interpolated f^0 at incident node i.
     double nodeF0(int i, double mu_o) const;
-    double nodePdf(int i, int cell, double mu_o, double abs_dphi) const;
+    // The density of sample() after incident node i at cell `cell`, cosine mu_o, azimuth bin `bin`.
+    double nodePdf(int i, int cell, double mu_o, std::size_t bin) const;
+    // f at the cosines in and out and the cosine of the azimuth between them.
+    double evalAt(double mu_i, double mu_o, double cos_dphi) const;
 
     int m_orders = 0;
     std::vector<double> m_mu;           // node cosines, ascending
