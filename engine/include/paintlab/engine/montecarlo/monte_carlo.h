@@ -9,7 +9,9 @@
 // continuum of oriented reflectors with the fast model's statistics or, with
 // explicit_flakes, real flat flakes in a periodic Embree tile per layer;
 // internal interfaces refract and reflect; the substrate is Lambertian,
-// black, metal or transparent.
+// black, metal or transparent. The layers below the lowest flakes, with the
+// substrate, are by default one reflecting surface: their adding-doubling
+// operator (McSettings::bottom_operator), the same pigment continuum.
 //
 // Estimates, each with its standard error: the albedo (mirror term
 // included), the transmittance into a transparent substrate, and f(wi, wo)
