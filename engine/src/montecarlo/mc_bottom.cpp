@@ -16,8 +16,9 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kSameIndex = 1e-9;  // as the fast model's stack assembly
-// Floors of the sampling densities (of their means), so that every direction
-// f reaches has a density: the weight f cos / pdf stays bounded.
+// Floors of the sampling densities (shares of the cosine-weighted uniform
+// density of the same total), so that every direction f reaches has a
+// density: the weight f cos / pdf stays bounded.
 constexpr double kCellFloor = 1e-3;
 constexpr double kAzimuthFloor = 1e-2;
 
@@ -97,17 +98,17 @@ BottomOperator::BottomOperator(const Recipe& recipe, std::size_t first_layer, do
     m_cell_cdf.assign(count * (count + 1), 0.0);
     for (int i = 0; i < nn; ++i) {
         std::vector<double> q(count);
-        double mean = 0.0;
+        double total = 0.0;
         for (std::size_t o = 0; o < count; ++o) {
             const double area = m_edges[o + 1] * m_edges[o + 1] - m_edges[o] * m_edges[o];
             q[o] = area * std::max(0.0, at(0, static_cast<int>(o), i) /
                                             (m_mu[o] + m_mu[static_cast<std::size_t>(i)]));
-            mean += q[o];
+            total += q[o];
         }
         double* cdf = &m_cell_cdf[static_cast<std::size_t>(i) * (count + 1)];
         for (std::size_t o = 0; o < count; ++o) {
             const double area = m_edges[o + 1] * m_edges[o + 1] - m_edges[o] * m_edges[o];
-            cdf[o + 1] = cdf[o] + q[o] + kCellFloor * area * std::max(mean, 1e-300);
+            cdf[o + 1] = cdf[o] + q[o] + kCellFloor * area * std::max(total, 1e-300);
         }
         for (std::size_t o = 1; o <= count; ++o) cdf[o] /= cdf[count];
     }
