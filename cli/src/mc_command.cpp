@@ -53,8 +53,9 @@ struct McOptions {
     bool histogram_only = false;  // explicit flakes: the cone histogram alone (no connections)
     int tile_views = 32;          // explicit flakes: azimuths each tile is traced at
     int batches = mc::McSettings{}.batches;
-    bool table = false;     // mc: tabulate on the fast model's basis (mc_table.h)
-    double step_deg = 5.0;  // mc --table: angular step of the written table
+    std::string bottom_operator = "on";  // the flake-free bottom as one reflecting surface (mc_bottom.h)
+    bool table = false;                  // mc: tabulate on the fast model's basis (mc_table.h)
+    double step_deg = 5.0;               // mc --table: angular step of the written table
 };
 
 constexpr std::int64_t kDefaultSamples = 20000;
@@ -97,6 +98,7 @@ mc::McSettings mcSettings(const McOptions& o) {
     s.split_branches = !o.histogram_only;  // --histogram-only: the analog walk, no split branches
     s.tile_views = o.tile_views;
     s.batches = o.batches;
+    s.bottom_operator = o.bottom_operator == "on";
     s.histogram_cone_deg = o.cone_deg > 0.0 ? o.cone_deg : (o.explicit_flakes ? 5.0 : 0.0);
     s.max_paths = has_samples ? o.samples : kDefaultSamples;
     if (has_rel_error) {
@@ -154,6 +156,7 @@ ordered_json settingsJson(const mc::McSettings& s, const mc::McResult& r) {
             {"flake_shape", s.flake_polygon_sides == 0 ? std::string("disk")
                                                        : std::to_string(s.flake_polygon_sides) + "-gon"},
             {"batches", s.batches},
+            {"bottom_operator", s.bottom_operator},
             {"connections", s.explicit_flakes && s.connections},
             {"tile_views", s.explicit_flakes ? s.tile_views : 1},
             {"glint_azimuths", s.explicit_flakes && s.connections && s.glint_azimuths},
@@ -422,6 +425,13 @@ void addStopOptions(CLI::App* command, McOptions& o) {
         ->add_option("--tile-views", o.tile_views,
                      "With --explicit-flakes: azimuths of the incidence plane each tile is traced at "
                      "(flake statistics are isotropic; more views, less spread between tiles)")
+        ->capture_default_str();
+    command
+        ->add_option("--bottom-operator", o.bottom_operator,
+                     "on: the layers below the lowest flakes and the substrate are one reflecting "
+                     "surface, their reflection operator by adding-doubling (where it has no mirror "
+                     "part); off: the walk crosses them")
+        ->check(CLI::IsMember({"on", "off"}))
         ->capture_default_str();
     command
         ->add_option("--batches", o.batches,

@@ -292,6 +292,8 @@ BENCHMARK(BM_McDemoOnePercent)
 //     (McSettings::connection_roulette, the estimator before issue 30)
 //   26 / 27 the default / the delta-chain walks alone (22) with the
 //     last-flake connections (McSettings::last_flake_connections, issue 30)
+//   28 the default walking the flake-free bottom instead of its reflection
+//     operator (McSettings::bottom_operator off, the estimator before it)
 // The figures quoted in docs/PERFORMANCE.md: see there (each row names its
 // arguments). Prints f, its standard error and the relative error per band
 // and geometry (stdout) and reports the worst relative error, the time 1 %
@@ -346,6 +348,7 @@ void BM_McExplicitBudget(benchmark::State& state) {
         s.histogram_classes = mc::HistogramClasses::none();
     }
     if (config == 26 || config == 27) s.last_flake_connections = true;
+    if (config == 28) s.bottom_operator = false;  // the walk through the flake-free bottom (issue 30)
     applyBenchOverlaps(s);
     s.seed = benchSeed();
     double worst = 0.0;
@@ -410,6 +413,8 @@ BENCHMARK(BM_McExplicitBudget)
     ->ArgsProduct({{26, 27}, {20, 200}, {8}})
     // Silver (issue 30): one tile, the first-flake walks, no roulette by promise.
     ->ArgsProduct({{6, 17, 18}, {200}, {8}})
+    // Three-layer (issue 30): the bottom operator off, against /5/4/8 and /5/20/8.
+    ->ArgsProduct({{28}, {4}, {8}})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);

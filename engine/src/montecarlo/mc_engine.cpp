@@ -1,5 +1,7 @@
 #include "mc_engine.h"
 
+#include "mc_bottom.h"
+
 #include "mc_job_runner.h"
 #include "mc_statistics.h"
 
@@ -157,6 +159,8 @@ McEngine::~McEngine() = default;
 
 McEngine::Band McEngine::band(double wavelength_nm) const {
     Band band{buildPaintStack(m_recipe, wavelength_nm, m_settings.slices), {}};
+    // Before the tiles take the flakes out of their slices: the bottom begins below the last flake.
+    if (m_settings.bottom_operator) attachBottomOperator(band.stack, m_recipe, m_settings.slices);
     if (!m_settings.explicit_flakes) return band;
     // The tiles replace the continuum flakes of their layers.
     for (auto& slice : band.stack.slices)

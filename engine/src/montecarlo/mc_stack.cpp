@@ -161,6 +161,7 @@ double PaintStack::substrateMirrorReflectance(double mu) const {
         return fresnelDielectric(mu, below_n / n_last);
     case SubstrateKind::Lambertian:
     case SubstrateKind::Black:
+    case SubstrateKind::Operator:  // smooth: no mirror part (mc_bottom.h)
         break;
     }
     return 0.0;

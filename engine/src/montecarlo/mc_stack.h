@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <memory>
 #include <vector>
 
 namespace paintlab::mc {
@@ -93,7 +94,11 @@ struct Slice {
     double kernel(const Vec3& v, const Vec3& v_out) const;
 };
 
-enum class SubstrateKind { Lambertian, Black, Metal, Transparent };
+// Operator: the flake-free bottom of the paint as one reflecting surface
+// (mc_bottom.h): a smooth vertex like the Lambertian, with its own f.
+enum class SubstrateKind { Lambertian, Black, Metal, Transparent, Operator };
+
+class BottomOperator;
 
 struct PaintStack {
     double wavelength_nm = 550.0;
@@ -102,7 +107,8 @@ struct PaintStack {
     SubstrateKind substrate = SubstrateKind::Black;
     double lambert_albedo = 0.0;
     std::complex<double> metal_index{1.0, 0.0};
-    double below_n = 1.0;  // transparent substrate
+    double below_n = 1.0;                          // transparent substrate
+    std::shared_ptr<const BottomOperator> bottom;  // SubstrateKind::Operator
 
     // Reflectance of the substrate for a downward ray with cosine mu in the last slice
     // (0 for Lambertian and black, which are not mirrors).

@@ -1,5 +1,7 @@
 #include "mc_walker.h"
 
+#include "mc_bottom.h"
+
 #include "paintlab/engine/optics/fresnel.h"
 
 #include <algorithm>
@@ -299,15 +301,24 @@ bool Walker::substrate(const Slice& s) {
     switch (stack.substrate) {
     case SubstrateKind::Black:
         return false;
-    case SubstrateKind::Lambertian: {
+    case SubstrateKind::Lambertian:
+    case SubstrateKind::Operator: {
+        // A smooth vertex: the Lambertian, or the flake-free bottom whose
+        // direction is drawn from its operator with the weight f cos / pdf.
         if (mode == Mode::DeltaChain) return false;
         if (mode == Mode::Reverse) {
             if (history.path_class == PathClass::Beam) return false;
             reverseFromLambert(s);
         }
         scoreLambert(s);
-        weight *= stack.lambert_albedo;
         history.smoothChange();
+        if (stack.substrate == SubstrateKind::Operator) {
+            double factor = 0.0;
+            v = stack.bottom->sample(v, rng, factor);
+            weight *= factor;
+            return roulette();
+        }
+        weight *= stack.lambert_albedo;
         const double u1 = rng.uniform();
         const double phi = 2.0 * kPi * rng.uniform();
         const double r = std::sqrt(u1);

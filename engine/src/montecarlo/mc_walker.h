@@ -167,8 +167,11 @@ struct Walker {
     void project(const FourierCells& cells);
     // Next-event estimate from a collision in slice j with sampling rate sigma.
     void scoreCollision(const Slice& s, double sigma);
-    // The Lambertian substrate's next-event estimates (chains and cone connections).
+    // The smooth substrate's (Lambertian or the bottom operator's) next-event
+    // estimates (chains and cone connections).
     void scoreLambert(const Slice& s);
+    // What that substrate sends towards the upward u per sr: weight times its f from v into u.
+    double substrateEmitted(const Vec3& u) const;
     // Connections from a pigment collision into the cones (directly and through a flake's image).
     void connectFromPigment(const Slice& s, double sigma);
     // Delta-chain walk: the last-flake connections from the flight of `length`
@@ -178,7 +181,7 @@ struct Walker {
     // the layer's depths [top_um, bottom_um].
     bool legsCross(const Vec3& centre, const Vec3& n, double radius_um, double top_um,
                    double bottom_um) const;
-    // Reverse walk: the estimates from a pigment collision and from the Lambertian substrate.
+    // Reverse walk: the estimates from a pigment collision and from the smooth substrate.
     void reverseFromPigment(const Slice& s, double sigma);
     void reverseFromLambert(const Slice& s);
     // Whether the exit direction of upward v (in slice j) lies in a cone: n sin(theta) is kept up to the

@@ -1,6 +1,7 @@
 #include "mc_walker.h"
 
 #include "last_flake.h"
+#include "mc_bottom.h"
 #include "mc_reflected_beams.h"
 
 #include "paintlab/engine/optics/fresnel.h"
@@ -171,14 +172,19 @@ void Walker::scoreCollision(const Slice& s, double sigma) {
     }
 }
 
+double Walker::substrateEmitted(const Vec3& u) const {
+    // The Lambertian's product in its order before the operator (bit-identical results).
+    return stack.substrate == SubstrateKind::Operator ? weight * stack.bottom->eval(v, u)
+                                                      : weight * stack.lambert_albedo / kPi;
+}
+
 void Walker::scoreLambert(const Slice& s) {
     for (std::size_t k = 0; k < chains.size(); ++k)
-        brdf_out[k] += weight * stack.lambert_albedo / kPi * chains[k].lambert;
-    if (connection_rng != nullptr && settings.cone_direct) {
-        const double emitted = weight * stack.lambert_albedo / kPi;
+        if (chains[k].lambert > 0.0)
+            brdf_out[k] += substrateEmitted(chains[k].direction(stack, j, true)) * chains[k].lambert;
+    if (connection_rng != nullptr && settings.cone_direct)
         coneNextEvent(
-            s, [emitted](const Vec3& /*u*/) { return emitted; }, [](std::size_t /*k*/) { return 1.0; });
-    }
+            s, [&](const Vec3& u) { return substrateEmitted(u); }, [](std::size_t /*k*/) { return 1.0; });
 }
 
 void Walker::connectFromPigment(const Slice& s, double sigma) {
@@ -306,8 +312,7 @@ void Walker::reverseFromPigment(const Slice& s, double sigma) {
 }
 
 void Walker::reverseFromLambert(const Slice& s) {
-    const double emitted = weight * stack.lambert_albedo / kPi;
-    reverseNextEvent(s, [emitted](const Vec3& /*u*/) { return emitted; });
+    reverseNextEvent(s, [&](const Vec3& u) { return substrateEmitted(u); });
 }
 
 bool Walker::headsIntoCone() const {

@@ -42,6 +42,7 @@ TEST(ConnectionRoulette, KeepsTheMeanTransmittanceOfADeepConnection) {
     settings.histogram_cone_deg = 5.0;
     settings.batches = 1;
     settings.tile_flakes = 2000;
+    settings.bottom_operator = false;  // the white walked, not one reflecting surface (mc_bottom.h)
     const mc::McEngine engine(recipe, settings);
     const mc::McEngine::Band band = engine.band(550.0);
     const mc::PaintStack& stack = band.stack;

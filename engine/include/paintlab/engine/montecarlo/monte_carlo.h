@@ -9,7 +9,9 @@
 // continuum of oriented reflectors with the fast model's statistics or, with
 // explicit_flakes, real flat flakes in a periodic Embree tile per layer;
 // internal interfaces refract and reflect; the substrate is Lambertian,
-// black, metal or transparent.
+// black, metal or transparent. The layers below the lowest flakes, with the
+// substrate, are by default one reflecting surface: their adding-doubling
+// operator (McSettings::bottom_operator), the same pigment continuum.
 //
 // Estimates, each with its standard error: the albedo (mirror term
 // included), the transmittance into a transparent substrate, and f(wi, wo)
@@ -200,6 +202,12 @@ struct McSettings {
     // unbiased, and the connections from deep in a scattering coat under a
     // flake layer stop tracing that layer. false: the estimator before issue 30.
     bool connection_roulette = true;
+    // The flake-free bottom of the paint (every layer below the lowest layer
+    // with flakes, and the substrate) is one reflecting surface of the walk:
+    // its reflection operator by the fast model's adding and doubling, the
+    // same pigment continuum the walk would cross (mc_bottom.h, which says
+    // when it applies). false: the walk crosses those layers.
+    bool bottom_operator = true;
     // Diagnostics for error budgets: what each estimator scores.
     ConnectionParts connection_parts;
     HistogramClasses histogram_classes;
