@@ -189,7 +189,7 @@ int runMultiangle(const BrdfOptions& o) {
         const auto lightness = [&](double aspecular) -> std::optional<double> {
             for (const auto& c : report.colours)
                 if (c.illumination_deg == kMultiAngleIlluminationDeg && c.aspecular_deg == aspecular &&
-                    c.azimuth_deg == 0.0)
+                    isInPlane(c.azimuth_deg))
                     return c.lab.L;
             return std::nullopt;
         };
@@ -220,7 +220,7 @@ int runMultiangle(const BrdfOptions& o) {
                 entry["illumination_deg"] = c.illumination_deg;
             }
             entry["aspecular_deg"] = c.aspecular_deg;
-            if (c.azimuth_deg != 0.0) entry["azimuth_deg"] = c.azimuth_deg;
+            if (!isInPlane(c.azimuth_deg)) entry["azimuth_deg"] = c.azimuth_deg;
             entry["L"] = c.lab.L;
             entry["a"] = c.lab.a;
             entry["b"] = c.lab.b;

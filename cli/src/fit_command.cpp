@@ -18,6 +18,7 @@
 #include "paintlab/engine/fit/parameter_paths.h"
 #include "paintlab/engine/io/atomic_file.h"
 #include "paintlab/engine/io/number_format.h"
+#include "paintlab/engine/multiangle.h"
 #include "paintlab/engine/recipe_json.h"
 #include "paintlab/plugins/registry.h"
 
@@ -174,7 +175,7 @@ ordered_json resultJson(const fit::FitResult& r, const FitOptions& o, const std:
                            {"side", std::string(fit::sideName(g.side))},
                            {"illumination_deg", g.illumination_deg},
                            {"aspecular_deg", g.aspecular_deg}};
-        if (g.azimuth_deg != 0.0) entry["azimuth_deg"] = g.azimuth_deg;  // out of the plane only
+        if (!isInPlane(g.azimuth_deg)) entry["azimuth_deg"] = g.azimuth_deg;  // out of the plane only
         entry["delta_e00"] = g.delta_e00;
         entry["measured_lab"] = labJson(g.measured);
         entry["fitted_lab"] = labJson(g.fitted);

@@ -7,6 +7,7 @@
 
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/io/csv.h"
+#include "paintlab/engine/multiangle.h"
 
 #include "json_reader.h"
 
@@ -51,7 +52,7 @@ nlohmann::ordered_json measurementJson(const Measurement& m, bool with_descripti
                                            {"a", r.a},
                                            {"b", r.b}};
             // Only out of the plane: in-plane readings are written as before azimuths.
-            if (r.azimuth_deg != 0.0) reading["azimuth_deg"] = r.azimuth_deg;
+            if (!isInPlane(r.azimuth_deg)) reading["azimuth_deg"] = r.azimuth_deg;
             if (!r.reflectance.empty()) reading["reflectance"] = r.reflectance;
             out["readings"].push_back(std::move(reading));
         }
@@ -273,8 +274,9 @@ std::string measurementToCsv(const Measurement& m) {
     std::string out;
     if (m.kind == MeasurementKind::MultiAngle) {
         // azimuth_deg only when a reading is out of the plane: in-plane files are as before azimuths.
-        const bool azimuths = std::any_of(m.readings.begin(), m.readings.end(),
-                                          [](const MultiAngleReading& r) { return r.azimuth_deg != 0.0; });
+        const bool azimuths =
+            std::any_of(m.readings.begin(), m.readings.end(),
+                        [](const MultiAngleReading& r) { return !isInPlane(r.azimuth_deg); });
         std::vector<std::string> header{"illumination_deg", "aspecular_deg", "L", "a", "b"};
         if (azimuths) header.insert(header.begin() + 2, "azimuth_deg");
         for (const double w : m.wavelengths_nm) header.push_back(io::csvNumber(w) + "nm");

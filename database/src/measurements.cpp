@@ -162,7 +162,7 @@ std::optional<MultiAngleGeometry> parseMultiAngleGeometry(std::string_view name)
 std::string multiAngleGeometryName(double illumination_deg, double aspecular_deg, double azimuth_deg) {
     std::string name = formatNumber(illumination_deg, io::NumberFormat::Shortest) + "as" +
                        formatNumber(aspecular_deg, io::NumberFormat::Shortest);
-    if (azimuth_deg != 0.0) name += "az" + formatNumber(azimuth_deg, io::NumberFormat::Shortest);
+    if (!isInPlane(azimuth_deg)) name += "az" + formatNumber(azimuth_deg, io::NumberFormat::Shortest);
     return name;
 }
 
@@ -212,12 +212,15 @@ void validateMeasurement(const Measurement& m, const std::string& source) {
             const std::string field = "readings[" + std::to_string(i) + "]";
             requireRange(r.illumination_deg, 0.0, 89.9, source, field + ".illumination_deg", "deg");
             requireRange(r.azimuth_deg, -180.0, 180.0, source, field + ".azimuth_deg", "deg");
-            if (r.azimuth_deg == 0.0) {
+            if (isInPlane(r.azimuth_deg)) {
                 // The detector stays above the horizon: its polar angle |illumination - aspecular| < 90.
                 requireRange(r.aspecular_deg, r.illumination_deg - 89.9, r.illumination_deg + 89.9, source,
                              field + ".aspecular_deg", "deg");
             } else {
                 requireFinite(r.aspecular_deg, source, field + ".aspecular_deg");
+                if (const std::string problem = outOfPlaneFormProblem(r.aspecular_deg, r.azimuth_deg);
+                    !problem.empty())
+                    throw InputError(source, field + ".aspecular_deg", problem);
                 const double polar = detectorPolarAngleDeg(
                     multiAngleDirections(r.illumination_deg, r.aspecular_deg, r.azimuth_deg));
                 if (!(polar <= 89.9))

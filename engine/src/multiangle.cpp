@@ -1,6 +1,7 @@
 #include "paintlab/engine/multiangle.h"
 
 #include "paintlab/engine/fast_model/brdf_colour.h"
+#include "paintlab/engine/io/number_format.h"
 
 #include <algorithm>
 #include <cmath>
@@ -25,7 +26,7 @@ MultiAngleGeometry multiAngleDirections(double illumination_deg, double aspecula
     g.aspecular_deg = aspecular_deg;
     g.azimuth_deg = azimuth_deg;
     g.wi = directionFromAnglesDeg(illumination_deg, 0.0);
-    if (azimuth_deg == 0.0) {
+    if (isInPlane(azimuth_deg)) {
         // In the plane: the signed angle from the normal, positive on the
         // light's side: the light at +illumination, its specular direction at
         // -illumination, the detector at -illumination + aspecular.
@@ -45,6 +46,17 @@ MultiAngleGeometry multiAngleDirections(double illumination_deg, double aspecula
     const double sin_az = std::sin(azimuth_deg * kDeg);
     g.wo = {cos_as * r.x + sin_as * cos_az * u.x, -sin_as * sin_az, cos_as * r.z + sin_as * cos_az * u.z};
     return g;
+}
+
+std::string outOfPlaneFormProblem(double aspecular_deg, double azimuth_deg) {
+    if (!(aspecular_deg > 0.0 && aspecular_deg <= 180.0))
+        return "aspecular " + io::formatNumber(aspecular_deg) +
+               "° out of the plane must be in (0, 180]: the same direction is the positive aspecular at the "
+               "opposite azimuth";
+    if (!(std::abs(azimuth_deg) < 180.0))
+        return "azimuth " + io::formatNumber(azimuth_deg) +
+               "° is the plane of incidence: name it without 'az'";
+    return {};
 }
 
 double detectorPolarAngleDeg(const MultiAngleGeometry& geometry) noexcept {

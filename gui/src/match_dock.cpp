@@ -668,7 +668,7 @@ std::optional<MultiAngleReport> MatchDock::measuredReport() const {
     // readings at other illuminations or out of the plane would sit on it at
     // their aspecular angle alone. They are in the geometry table after a fit.
     for (const auto& r : m->readings) {
-        if (r.illumination_deg != kMultiAngleIlluminationDeg || r.azimuth_deg != 0.0) continue;
+        if (r.illumination_deg != kMultiAngleIlluminationDeg || !isInPlane(r.azimuth_deg)) continue;
         MultiAngleColour c;
         c.aspecular_deg = r.aspecular_deg;
         c.lab = Lab{r.L, r.a, r.b};

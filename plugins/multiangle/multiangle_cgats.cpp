@@ -164,13 +164,17 @@ std::vector<Row> readRows(const io::CgatsTable& table, const Columns& c, const s
         if (!(std::abs(g.azimuth_deg) <= 180.0))
             throw InputError(source, geometry_field,
                              "azimuth " + formatNumber(g.azimuth_deg) + "° is not between -180 and 180");
+        if (!isInPlane(g.azimuth_deg))
+            if (const std::string problem = outOfPlaneFormProblem(g.aspecular_deg, g.azimuth_deg);
+                !problem.empty())
+                throw InputError(source, geometry_field, problem);
         // Out of the plane too: the detector turned about the specular direction (engine/multiangle.h).
         if (!(detectorPolarAngleDeg(
                   multiAngleDirections(g.illumination_deg, g.aspecular_deg, g.azimuth_deg)) < 89.9))
             throw InputError(
                 source, geometry_field,
                 "aspecular " + formatNumber(g.aspecular_deg) + "°" +
-                    (g.azimuth_deg == 0.0 ? "" : " at azimuth " + formatNumber(g.azimuth_deg) + "°") +
+                    (isInPlane(g.azimuth_deg) ? "" : " at azimuth " + formatNumber(g.azimuth_deg) + "°") +
                     " puts the detector below the horizon");
         if (c.lab[0]) row.lab = Lab{number(*c.lab[0]), number(*c.lab[1]), number(*c.lab[2])};
         if (row.lab && !(row.lab->L >= 0.0 && row.lab->L <= 400.0))

@@ -313,6 +313,12 @@ INSTANTIATE_TEST_SUITE_P(
                        "line 2, column azimuth_deg"},
         BadMeasurement{"azimuth range", "azrange.csv", "geometry,L,a,b\n45as25az200,50,0,0\n",
                        "readings[0].azimuth_deg"},
+        // One direction, one name: out of the plane the aspecular is positive and the
+        // azimuth short of a half turn (multiangle.h, outOfPlaneFormProblem).
+        BadMeasurement{"negative aspecular out of plane", "azneg.csv", "geometry,L,a,b\n45as-25az90,50,0,0\n",
+                       "readings[0].aspecular_deg"},
+        BadMeasurement{"half turn", "azhalf.csv", "aspecular_deg,azimuth_deg,L,a,b\n25,180,50,0,0\n",
+                       "readings[0].aspecular_deg"},
         BadMeasurement{"azimuth horizon", "azhorizon.csv",
                        "geometry,L,a,b\n45as25,50,0,0\n15as100az30,50,0,0\n", "readings[1].aspecular_deg"},
         BadMeasurement{

@@ -123,6 +123,34 @@ TEST(MultiAngle, AzimuthZeroAndHalfTurnAreTheInPlaneGeometry) {
     EXPECT_GE(detectorPolarAngleDeg(multiAngleDirections(75.0, 60.0, 30.0)), 90.0);
 }
 
+// Rounding noise in a file's azimuth (1e-12) is the plane of incidence at +as,
+// not the out-of-plane formula's limit at -as (30° from the normal instead of 60°).
+TEST(MultiAngle, AzimuthRoundingNoiseStaysInThePlane) {
+    for (double as : kAspecularAnglesDeg)
+        for (double noise : {1e-12, -1e-9, 5e-8}) {
+            const MultiAngleGeometry g = multiAngleDirections(45.0, as, noise);
+            expectDirection(g.wo, multiAngleGeometry(as).wo, 0.0);
+        }
+    EXPECT_NEAR(detectorPolarAngleDeg(multiAngleDirections(45.0, 15.0, 1e-12)), 30.0, 1e-12);
+    // From 1e-7 on the azimuth counts: the same limit as X-Rite's naming.
+    EXPECT_FALSE(isInPlane(kInPlaneAzimuthDeg));
+}
+
+// The forms that repeat another name's direction are refused, X-Rite's are not.
+TEST(MultiAngle, OutOfPlaneNamesHaveOneForm) {
+    EXPECT_EQ(outOfPlaneFormProblem(25.0, 90.0), "");
+    EXPECT_EQ(outOfPlaneFormProblem(25.0, -90.0), "");
+    EXPECT_EQ(outOfPlaneFormProblem(180.0, 45.0), "");
+    // 45as-25az90 is 45as25az-90.
+    expectDirection(multiAngleDirections(45.0, -25.0, 90.0).wo, multiAngleDirections(45.0, 25.0, -90.0).wo,
+                    1e-15);
+    EXPECT_NE(outOfPlaneFormProblem(-25.0, 90.0), "");
+    EXPECT_NE(outOfPlaneFormProblem(0.0, 90.0), "");  // the specular direction at any azimuth
+    EXPECT_NE(outOfPlaneFormProblem(200.0, 90.0), "");
+    EXPECT_NE(outOfPlaneFormProblem(25.0, 180.0), "");  // the in-plane 45as25
+    EXPECT_NE(outOfPlaneFormProblem(25.0, -180.0), "");
+}
+
 TEST(MultiAngle, LambertianWhiteIsTheWhitePointEverywhereWithNoFlop) {
     const LambertianBrdf white(std::vector<double>(41, 1.0));
     const auto report = multiAngleColours(white);

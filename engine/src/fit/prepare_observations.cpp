@@ -91,13 +91,18 @@ void prepareMultiAngle(const MultiAngleMeasurement& m, std::size_t mi, const Rec
         if (std::abs(r.azimuth_deg) > 180.0)
             check.fail(fieldPath(at, "azimuth_deg"),
                        formatNumber(r.azimuth_deg) + "° is outside [-180, 180]");
+        if (!isInPlane(r.azimuth_deg))
+            if (const std::string problem = outOfPlaneFormProblem(r.aspecular_deg, r.azimuth_deg);
+                !problem.empty())
+                check.fail(fieldPath(at, "aspecular_deg"), problem);
         // The directions by multiangle.h's convention (the one conversion).
         const MultiAngleGeometry g = multiAngleDirections(r.illumination_deg, r.aspecular_deg, r.azimuth_deg);
         // 1e-9: a detector at exactly 90° (cos 6e-17 in floating point) is on the horizon, refused as before.
         if (!(detectorPolarAngleDeg(g) < 90.0 - 1e-9))
-            check.fail(fieldPath(at, "aspecular_deg"),
-                       formatNumber(r.aspecular_deg) + "° puts the detector below the horizon" +
-                           (r.azimuth_deg == 0.0 ? "" : " at azimuth " + formatNumber(r.azimuth_deg) + "°"));
+            check.fail(
+                fieldPath(at, "aspecular_deg"),
+                formatNumber(r.aspecular_deg) + "° puts the detector below the horizon" +
+                    (isInPlane(r.azimuth_deg) ? "" : " at azimuth " + formatNumber(r.azimuth_deg) + "°"));
         p.aspecular_deg = r.aspecular_deg;
         p.azimuth_deg = r.azimuth_deg;
         p.wi = g.wi;

@@ -67,7 +67,10 @@ BottomOperator::BottomOperator(const Recipe& recipe, std::size_t first_layer, do
         if (m == 0) f0_max = largest;
         m_orders = m + 1;
         // The coefficients fall monotonically with m (HG's g^m): the first negligible order ends the series.
-        if (m > 0 && largest <= 1e-7 * f0_max) break;
+        if (m > 0 && largest <= 1e-7 * f0_max) {
+            m_series_converged = true;
+            break;
+        }
     }
     m_f.resize(static_cast<std::size_t>(m_orders) * count * count);
 
@@ -307,7 +310,10 @@ bool attachBottomOperator(PaintStack& stack, const Recipe& recipe, int slices) {
                 return false;
         }
     }
-    stack.bottom = std::make_shared<const BottomOperator>(recipe, first_layer, n, wavelength_nm, slices);
+    auto bottom = std::make_shared<const BottomOperator>(recipe, first_layer, n, wavelength_nm, slices);
+    // A forward-peaked bottom whose Fourier series kOrders cannot hold: walked.
+    if (!bottom->seriesConverged()) return false;
+    stack.bottom = std::move(bottom);
     while (!stack.slices.empty() && static_cast<std::size_t>(stack.slices.back().layer) >= first_layer)
         stack.slices.pop_back();
     stack.substrate = SubstrateKind::Operator;

@@ -45,7 +45,7 @@ public:
     // Quadrature nodes per hemisphere and Fourier orders of the tabulation,
     // and the azimuth bins of the sampling tables over [0, pi].
     static constexpr int kNodes = 48;
-    static constexpr int kOrders = 24;
+    static constexpr int kOrders = 32;
     static constexpr int kAzimuthBins = 64;
     static constexpr double kMaxTruncation = 1e-4;
 
@@ -65,6 +65,10 @@ public:
     // by the cosine, the azimuth from the tabulated Fourier series); `factor`
     // gets f u_z / pdf (0 when nothing is reflected).
     Vec3 sample(const Vec3& v, PathRng& rng, double& factor) const;
+
+    // Whether the Fourier series fell below 1e-7 of order 0 within kOrders
+    // (otherwise the operator would drop its tail: attachBottomOperator declines it).
+    bool seriesConverged() const { return m_series_converged; }
 
     // Albedo of the interpolated operator at an incident cosine (the matrices' column sums, linear).
     double albedo(double mu_i) const;
@@ -94,6 +98,7 @@ private:
     double evalAt(double mu_i, double mu_o, double cos_dphi) const;
 
     int m_orders = 0;
+    bool m_series_converged = false;
     std::vector<double> m_mu;           // node cosines, ascending
     std::vector<double> m_f;            // g^m = f^m(mu_o, mu_i) (mu_o + mu_i), [(m * n + o) * n + i]
     std::vector<double> m_albedo;       // per incident node

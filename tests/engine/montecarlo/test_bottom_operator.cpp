@@ -148,6 +148,12 @@ TEST(BottomOperator, SamplingMatchesEvaluation) {
         for (int d = 0; d < kDraws; ++d) {
             double factor = 0.0;
             const mc::Vec3 u = op.sample(v, rng, factor);
+            // Each draw's weight is f cos / pdf of the direction it returns: a
+            // sampler that returned another direction than the one it weighted
+            // (say pi - dphi) could pass the histogram and the mean, not this.
+            if (d % 997 == 0 && factor > 0.0) {
+                EXPECT_NEAR(factor, op.eval(v, u) * u.z / op.pdf(v, u), 1e-9 * factor) << at;
+            }
             sum += factor;
             sum2 += factor * factor;
             const double dphi =

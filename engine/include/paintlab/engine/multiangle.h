@@ -14,6 +14,8 @@
 #include "paintlab/engine/fast_model/brdf_colour.h"
 
 #include <array>
+#include <cmath>
+#include <string>
 #include <vector>
 
 namespace paintlab {
@@ -44,6 +46,18 @@ struct MultiAngleGeometry {
     double illumination_deg = kMultiAngleIlluminationDeg;
     double azimuth_deg = 0.0;
 };
+
+// An azimuth this close to 0 is the plane of incidence, as in X-Rite's own
+// naming: rounding noise in a file must not send 45as15 to the far side of
+// the specular direction (the out-of-plane formula tends to -as as az -> 0).
+inline constexpr double kInPlaneAzimuthDeg = 1e-7;
+inline bool isInPlane(double azimuth_deg) noexcept { return std::abs(azimuth_deg) < kInPlaneAzimuthDeg; }
+
+// Why an out-of-plane geometry is not in its one form, or empty. X-Rite's
+// names have 0 < aspecular <= 180 and 0 < |azimuth| < 180; the rest repeat
+// a direction (as az is -as az+-180, az +-180 is the in-plane +as) and
+// would be stored as two geometries at one direction.
+std::string outOfPlaneFormProblem(double aspecular_deg, double azimuth_deg);
 
 // The one conversion of a multi-angle geometry to directions (the colour
 // report, the fit, the database's checks and the importers use it). Never
