@@ -7,6 +7,7 @@
 
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/io/csv.h"
+#include "paintlab/engine/io/number_format.h"
 #include "paintlab/engine/multiangle.h"
 
 #include "json_reader.h"
@@ -246,6 +247,17 @@ Measurement parseMeasurementCsv(std::string_view text, const std::string& source
                 reading.illumination_deg = geometry->illumination_deg;
                 reading.aspecular_deg = geometry->aspecular_deg;
                 reading.azimuth_deg = geometry->azimuth_deg;
+                // An angle column beside the name must say the same (an azimuth_deg of 90
+                // beside "45as25" was ignored, the reading stored in the plane).
+                const auto agrees = [&](std::string_view column, double from_name) {
+                    if (const auto value = table.number(record, column); value && *value != from_name)
+                        throw InputError(source, CsvTable::where(record, column),
+                                         io::formatNumber(*value) + " disagrees with the geometry '" + name +
+                                             "' (" + io::formatNumber(from_name) + ")");
+                };
+                agrees("illumination_deg", reading.illumination_deg);
+                agrees("aspecular_deg", reading.aspecular_deg);
+                agrees("azimuth_deg", reading.azimuth_deg);
             } else {
                 reading.aspecular_deg = table.requiredNumber(record, "aspecular_deg");
                 reading.illumination_deg = table.number(record, "illumination_deg").value_or(45.0);

@@ -143,6 +143,14 @@ std::vector<Row> readRows(const io::CgatsTable& table, const Columns& c, const s
         } else if (c.illumination) {
             row.geometry.illumination_deg = number(*c.illumination);
             row.geometry.aspecular_deg = number(*c.aspecular);
+            // A name ending in an out-of-plane geometry has an azimuth these fields
+            // cannot hold: refused rather than read in the plane.
+            if (const auto suffix = c.name ? geometrySuffix(row.sample) : std::nullopt;
+                suffix && !isInPlane(suffix->second.azimuth_deg))
+                throw InputError(source, field(*c.name),
+                                 "'" + row.sample +
+                                     "' names an azimuth that ILLUMINATION_ANGLE and ASPECULAR_ANGLE cannot "
+                                     "hold: give a GEOMETRY field (45as25az90)");
         } else {
             const auto suffix = c.name ? geometrySuffix(row.sample) : std::nullopt;
             if (!suffix)

@@ -317,6 +317,9 @@ INSTANTIATE_TEST_SUITE_P(
         // azimuth short of a half turn (multiangle.h, outOfPlaneFormProblem).
         BadMeasurement{"negative aspecular out of plane", "azneg.csv", "geometry,L,a,b\n45as-25az90,50,0,0\n",
                        "readings[0].aspecular_deg"},
+        BadMeasurement{"angle column against the name", "azboth.csv",
+                       "geometry,azimuth_deg,L,a,b\n45as25,,50,0,0\n45as25,90,50,0,0\n",
+                       "line 3, column azimuth_deg"},
         BadMeasurement{"half turn", "azhalf.csv", "aspecular_deg,azimuth_deg,L,a,b\n25,180,50,0,0\n",
                        "readings[0].aspecular_deg"},
         BadMeasurement{"azimuth horizon", "azhorizon.csv",

@@ -287,6 +287,10 @@ TEST(MultiAngleCgats, BadFilesAreRefusedNamingTheField) {
     EXPECT_EQ(errorField(cgats("SAMPLE_NAME LAB_L LAB_A LAB_B", {"plain 50 0 0"})), "data set 1.SAMPLE_NAME");
     EXPECT_EQ(errorField(cgats("GEOMETRY LAB_L LAB_A", {"\"45as15\" 50 0"})), "DATA_FORMAT");
     EXPECT_EQ(errorField(cgats("GEOMETRY SAMPLE_NAME", {"\"45as15\" x"})), "DATA_FORMAT");
+    // The angle fields cannot carry the azimuth a sample name ends in.
+    EXPECT_EQ(errorField(cgats("SAMPLE_NAME ILLUMINATION_ANGLE ASPECULAR_ANGLE LAB_L LAB_A LAB_B",
+                               {"\"p 45as25az90\" 45 25 50 0 0"})),
+              "data set 1.SAMPLE_NAME");
     std::mt19937 random(11);
     std::string noise(3000, '\0');
     for (char& c : noise) c = static_cast<char>(random());
