@@ -214,8 +214,9 @@ void validateMeasurement(const Measurement& m, const std::string& source) {
             requireRange(r.azimuth_deg, -180.0, 180.0, source, field + ".azimuth_deg", "deg");
             if (isInPlane(r.azimuth_deg)) {
                 // The detector stays above the horizon: its polar angle |illumination - aspecular| < 90.
-                requireRange(r.aspecular_deg, r.illumination_deg - 89.9, r.illumination_deg + 89.9, source,
-                             field + ".aspecular_deg", "deg");
+                requireRange(r.aspecular_deg, r.illumination_deg - kMaxDetectorPolarDeg,
+                             r.illumination_deg + kMaxDetectorPolarDeg, source, field + ".aspecular_deg",
+                             "deg");
             } else {
                 requireFinite(r.aspecular_deg, source, field + ".aspecular_deg");
                 if (const std::string problem = outOfPlaneFormProblem(r.aspecular_deg, r.azimuth_deg);
@@ -223,11 +224,12 @@ void validateMeasurement(const Measurement& m, const std::string& source) {
                     throw InputError(source, field + ".aspecular_deg", problem);
                 const double polar = detectorPolarAngleDeg(
                     multiAngleDirections(r.illumination_deg, r.aspecular_deg, r.azimuth_deg));
-                if (!(polar <= 89.9))
+                if (!(polar <= kMaxDetectorPolarDeg))
                     throw InputError(source, field + ".aspecular_deg",
                                      formatNumber(r.aspecular_deg) + " deg at azimuth " +
                                          formatNumber(r.azimuth_deg) + " deg puts the detector " +
-                                         formatNumber(polar) + " deg from the normal (at most 89.9)");
+                                         formatNumber(polar) + " deg from the normal (at most " +
+                                         formatNumber(kMaxDetectorPolarDeg) + ")");
             }
             requireRange(r.L, 0.0, 400.0, source, field + ".L", "");
             requireFinite(r.a, source, field + ".a");

@@ -177,8 +177,8 @@ std::vector<Row> readRows(const io::CgatsTable& table, const Columns& c, const s
                 !problem.empty())
                 throw InputError(source, geometry_field, problem);
         // Out of the plane too: the detector turned about the specular direction (engine/multiangle.h).
-        if (!(detectorPolarAngleDeg(
-                  multiAngleDirections(g.illumination_deg, g.aspecular_deg, g.azimuth_deg)) < 89.9))
+        if (!(detectorPolarAngleDeg(multiAngleDirections(g.illumination_deg, g.aspecular_deg,
+                                                         g.azimuth_deg)) <= kMaxDetectorPolarDeg))
             throw InputError(
                 source, geometry_field,
                 "aspecular " + formatNumber(g.aspecular_deg) + "°" +

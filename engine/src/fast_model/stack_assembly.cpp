@@ -14,8 +14,6 @@ using Eigen::VectorXd;
 
 namespace {
 
-constexpr double kSameIndex = 1e-9;
-
 InterfaceElement interfaceBetween(const StackQuadrature& grid, double n_above, double n_below) {
     const int n = grid.size();
     InterfaceElement e{VectorXd::Zero(n), VectorXd::Ones(n), VectorXd::Zero(n), VectorXd::Ones(n)};

@@ -6,11 +6,6 @@
 
 namespace paintlab::fast {
 
-namespace {
-// Indices closer than this are the same medium (no interface, no split).
-constexpr double kSameIndex = 1e-9;
-}  // namespace
-
 StackQuadrature::StackQuadrature(int n_nodes, const std::vector<double>& indices) {
     m_n_ref = *std::max_element(indices.begin(), indices.end());
     // Split points: the critical cosines of the lower indices seen from n_ref.

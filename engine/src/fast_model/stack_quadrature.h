@@ -20,6 +20,11 @@
 
 namespace paintlab::fast {
 
+// Refractive indices closer than this are one medium: no interface between
+// them and no split of the quadrature (the stack assembly, the Monte Carlo
+// bottom operator).
+inline constexpr double kSameIndex = 1e-9;
+
 struct MediumNodes {
     double index = 1.0;
     std::vector<int> node;           // indices (into the stack grid) of the nodes that exist here

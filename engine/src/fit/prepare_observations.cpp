@@ -97,8 +97,7 @@ void prepareMultiAngle(const MultiAngleMeasurement& m, std::size_t mi, const Rec
                 check.fail(fieldPath(at, "aspecular_deg"), problem);
         // The directions by multiangle.h's convention (the one conversion).
         const MultiAngleGeometry g = multiAngleDirections(r.illumination_deg, r.aspecular_deg, r.azimuth_deg);
-        // 1e-9: a detector at exactly 90° (cos 6e-17 in floating point) is on the horizon, refused as before.
-        if (!(detectorPolarAngleDeg(g) < 90.0 - 1e-9))
+        if (!(detectorPolarAngleDeg(g) <= kMaxDetectorPolarDeg))
             check.fail(
                 fieldPath(at, "aspecular_deg"),
                 formatNumber(r.aspecular_deg) + "° puts the detector below the horizon" +

@@ -15,7 +15,6 @@ namespace paintlab::mc {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kSameIndex = 1e-9;  // as the fast model's stack assembly
 // Floors of the sampling densities (shares of the cosine-weighted uniform
 // density of the same total), so that every direction f reaches has a
 // density: the weight f cos / pdf stays bounded.
@@ -301,7 +300,7 @@ bool attachBottomOperator(PaintStack& stack, const Recipe& recipe, int slices) {
     const double wavelength_nm = stack.wavelength_nm;
     for (std::size_t l = first_layer; l < recipe.layers.size(); ++l) {
         const Layer& layer = recipe.layers[l];
-        if (std::abs(layer.binder.refractive_index(wavelength_nm) - n) > kSameIndex) return false;
+        if (std::abs(layer.binder.refractive_index(wavelength_nm) - n) > fast::kSameIndex) return false;
         const auto bounds = sliceBoundaries(layer, slices);
         for (std::size_t s = 1; s < bounds.size(); ++s) {
             const SlabOptics optics = slabOptics(layer, wavelength_nm, bounds[s - 1], bounds[s]);

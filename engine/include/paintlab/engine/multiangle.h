@@ -53,6 +53,11 @@ struct MultiAngleGeometry {
 inline constexpr double kInPlaneAzimuthDeg = 1e-7;
 inline bool isInPlane(double azimuth_deg) noexcept { return std::abs(azimuth_deg) < kInPlaneAzimuthDeg; }
 
+// The largest detector polar angle a multi-angle reading may have (deg), for
+// every check of one (the database, the importers, the fit): at the horizon a
+// reflectance factor is 0/0.
+inline constexpr double kMaxDetectorPolarDeg = 89.9;
+
 // Why an out-of-plane geometry is not in its one form, or empty. X-Rite's
 // names have 0 < aspecular <= 180 and 0 < |azimuth| < 180; the rest repeat
 // a direction (as az is -as az+-180, az +-180 is the in-plane +as) and
