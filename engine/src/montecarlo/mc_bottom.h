@@ -24,8 +24,9 @@
 // the propagation directions in and out, f^m = R^m / (pi c_o) from the
 // flux-to-flux matrices (layer_operator.h) at the nodes; f^m (mu_o + mu_i)
 // (single scattering's 1 / (mu_o + mu_i) taken out) is bilinear in (mu_o,
-// mu_i) between them, constant below the first node and linear beyond the
-// last (towards the normal). Each incident
+// mu_i) between them and constant below the first node (the last node is
+// mu = 1: the bottom is one medium, so its Gauss-Radau nodes end at the
+// normal). Each incident
 // node's f^m is rescaled so that the interpolated f^0 reflects exactly the
 // matrices' albedo (the quadrature's column sum): a non-absorbing bottom
 // reflects everything, as it does in the walk.
@@ -84,7 +85,7 @@ private:
                    static_cast<std::size_t>(i)];
     }
     // Node below mu and the linear weight of the one above; beyond the ends
-    // flat, or (`extrapolate`) linear from the last two nodes above the last.
+    // flat (`extrapolate` only matters above the last node, which is mu = 1).
     void locate(double mu, int& k, double& t, bool extrapolate = false) const;
     int cellOf(double mu) const;
     // What the tabulated g = f (mu_o + mu_i) is divided by; never below the first
@@ -110,7 +111,8 @@ private:
 
 // Replaces the slices of the flake-free bottom of `stack` (built from
 // `recipe`, flakes not yet removed for tiles) by a BottomOperator when the
-// conditions above hold; returns whether it did.
+// conditions above hold; returns whether it did. Throws Error (from the
+// fast model's stack assembly) for a recipe it cannot assemble.
 bool attachBottomOperator(PaintStack& stack, const Recipe& recipe, int slices);
 
 }  // namespace paintlab::mc
