@@ -82,8 +82,8 @@ constexpr double kAmplitude = 0.725;
 constexpr double kX0 = 1.719;
 constexpr double kPower = 1.062;
 
-// The report's incidence: 45° in air, refracted into the binder.
-constexpr double kIncidenceDeg = 45.0;
+// The report's incidence: the multi-angle illumination (45° in air), refracted into the binder.
+constexpr double kIncidenceDeg = kMultiAngleIlluminationDeg;
 // An interference flake's transmittance and the film's extinction are
 // averaged over 400-700 nm (the report's band means) every 10 nm.
 constexpr double kMinNm = 400.0;
@@ -207,17 +207,24 @@ struct MultiAngleBinder {
     double tilt_rad = 0.0;  // of the half vector: the flakes that reflect here
 };
 
-// The six multi-angle geometries (multiangle.h) refracted into a binder of index n.
+// A direction in air refracted into a binder of index n (Snell: the tangential part shrinks by 1/n).
+Direction refractedInto(const Direction& w, double n) {
+    const double tx = w.x / n;
+    const double ty = w.y / n;
+    return {tx, ty, std::sqrt(std::max(0.0, 1.0 - tx * tx - ty * ty))};
+}
+
+// The six multi-angle geometries (multiangle.h: multiAngleDirections, the one
+// conversion to directions) refracted into a binder of index n.
 std::vector<MultiAngleBinder> multiAngleInBinder(double n) {
     std::vector<MultiAngleBinder> out;
-    const double theta_i = std::asin(std::sin(kIncidenceDeg * std::numbers::pi / 180.0) / n);
     for (double aspecular : kAspecularAnglesDeg) {
-        // The detector at 45° - aspecular from the normal, positive on the specular side.
-        const double theta_o =
-            std::asin(std::sin((kIncidenceDeg - aspecular) * std::numbers::pi / 180.0) / n);
-        const double hx = std::sin(theta_i) - std::sin(theta_o);
-        const double hz = std::cos(theta_i) + std::cos(theta_o);
-        out.push_back({aspecular, std::cos(theta_i), std::cos(theta_o), std::atan2(std::abs(hx), hz)});
+        const MultiAngleGeometry g = multiAngleDirections(kIncidenceDeg, aspecular);
+        const Direction wi = refractedInto(g.wi, n);
+        const Direction wo = refractedInto(g.wo, n);
+        // The half vector wi + wo: its tilt from the normal is the reflecting flakes'.
+        const double h_tangential = std::hypot(wi.x + wo.x, wi.y + wo.y);
+        out.push_back({aspecular, wi.z, wo.z, std::atan2(h_tangential, wi.z + wo.z)});
     }
     return out;
 }
@@ -294,14 +301,14 @@ FastModelValidity fastModelValidity(const Recipe& recipe, double tolerance) {
 
     FastModelValidity result;
     result.tolerance = tolerance;
-    const double sin_i = std::sin(kIncidenceDeg * std::numbers::pi / 180.0);
+    const Direction incidence = multiAngleDirections(kIncidenceDeg, 0.0).wi;
     std::string worst;
     bool any_flakes = false;
     bool first = true;
     for (std::size_t l = 0; l < recipe.layers.size(); ++l) {
         const Layer& layer = recipe.layers[l];
         const double n_layer = layer.binder.refractive_index(550.0);
-        const double mu = std::sqrt(std::max(0.0, 1.0 - sin_i * sin_i / (n_layer * n_layer)));
+        const double mu = refractedInto(incidence, n_layer).z;
         std::vector<FlakeTerm> terms;
         terms.reserve(layer.components.size());
         for (const auto& component : layer.components) {

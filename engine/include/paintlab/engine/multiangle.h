@@ -65,7 +65,8 @@ inline constexpr double kMaxDetectorPolarDeg = 89.9;
 std::string outOfPlaneFormProblem(double aspecular_deg, double azimuth_deg);
 
 // The one conversion of a multi-angle geometry to directions (the colour
-// report, the fit, the database's checks and the importers use it). Never
+// report, the fit, the database's checks, the importers and the fast model's
+// validity boundary use it). Never
 // throws: wo.z <= 0 when the detector is at or below the horizon, for the
 // caller to report with its field name.
 MultiAngleGeometry multiAngleDirections(double illumination_deg, double aspecular_deg,
