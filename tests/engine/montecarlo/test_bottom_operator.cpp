@@ -8,7 +8,8 @@
 // |a - b| <= 3 sqrt(se_a^2 + se_b^2) (3 combined sigma, two-sided 0.27 % per
 // comparison under a normal error; the seeds are fixed, so a pass is
 // reproducible). A weight 10 % off at the bottom fails AgreesWithTheWalk,
-// ThreeLayerDemo, WhiteFurnace and SamplingMatchesEvaluation. The operator's
+// ThreeLayerDemo, WhiteFurnace and SamplingMatchesEvaluation; an azimuth mirrored
+// in the evaluation or in the draw fails AzimuthOfAForwardScatteringBottom. The operator's
 // own quadrature and interpolation error (48 Gauss nodes, linear in mu between
 // them; BottomOperator.Interpolation) is below 0.5 % within 80 degrees.
 
@@ -26,6 +27,7 @@
 #include <cstdio>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace paintlab {
@@ -300,6 +302,58 @@ TEST(BottomOperator, AgreesWithTheWalk) {
     s.seed = 6;
     const mc::McResult without = mc::runMonteCarlo(recipe, wavelengths, requests(), s);
     expectSameResults(with, without, "coloured bottom");
+}
+
+// The operator's azimuth against the walk's, under a bottom whose f depends
+// on it: a thin haze (tau 0.6, HG g 0.55, non-absorbing) over a black base,
+// under the clear coat and the sparse pearl flakes. Its light is mostly
+// scattered once, so f follows the phase function of the angle between the
+// refracted ways in and out: brighter on the specular side (exits going on in
+// the light's azimuth, phi 180 here) than on the light's own side (phi 0).
+// g 0.55 is about the most the operator takes: its Fourier series must fall
+// to 1e-7 within kOrders (32 orders at g 0.55; g 0.57 and above are walked,
+// and the delta-M truncation at 48 nodes refuses g above 0.82), and the binder
+// sees only directions within 42 deg of the normal, so the contrast is 1.4
+// (28 -> 38 deg) rather than the several-fold of a grazing exit.
+// What it catches (checked by planting each, 2026-12-05): the operator's
+// evaluation mirrored (dphi -> pi - dphi) moves the exits by -15 % to +33 %
+// (|z| 9-22 at 40k paths; AgreesWithTheWalk and SingleScatteringClosedForm fail
+// too); a draw that returns the direction at pi - dphi but weights the one at
+// dphi (so the connections, which evaluate, are right and only the paths that
+// go on after the bottom are wrong) moves them by 2.5-4.5 % (all but the
+// normal exit, 45as45, which has no azimuth), |z| 4.3-8.6 at these paths, and
+// passes AgreesWithTheWalk, whose 53 optical depths of multiple scattering
+// hide it (SamplingMatchesEvaluation's per-draw check fails as well).
+// Tolerance: 3 combined sigma (header); 300k paths each (about 1.3 s) give the
+// exits standard errors of 0.07-0.3 % (operator) and 0.35-0.55 % (walk), so
+// 3 sigma is at most 1.9 %, below the 2.5 % a flipped draw moves them.
+TEST(BottomOperator, AzimuthOfAForwardScatteringBottom) {
+    Layer haze = layer("haze", 2.0, 1.5);
+    haze.components = {test::pigment(0.1, 0.0, 3.0, 0.55)};  // sigma_s 0.3 /um: tau 0.6
+    const Recipe recipe = overBottom({haze}, 0.0);
+    ASSERT_TRUE(attaches(recipe));
+    // The premise: the bottom's own f, forward against backward in azimuth,
+    // along the refracted 45 deg incidence (28 deg in n 1.5) to a 38 deg exit
+    // (measured 0.0321 and 0.0227 /sr).
+    const mc::BottomOperator op = operatorOf(recipe, 2);
+    const double forward = op.eval(down(28.0, 180.0), up(38.0, 180.0));
+    const double backward = op.eval(down(28.0, 180.0), up(38.0, 0.0));
+    EXPECT_GT(forward, 1.3 * backward);
+    mc::IncidenceRequest oblique{multiAngleGeometry(kAspecularAnglesDeg[0]).wi, {}};
+    for (double as : kAspecularAnglesDeg) oblique.wo.push_back(multiAngleGeometry(as).wo);
+    // Out of the plane, on the specular side (phi 150, 120) and on the light's (30, 60).
+    for (const auto& [theta, phi] : {std::pair{50.0, 150.0}, {50.0, 30.0}, {70.0, 120.0}, {70.0, 60.0}})
+        oblique.wo.push_back(directionFromAnglesDeg(theta, phi));
+    const std::vector<mc::IncidenceRequest> incidences{oblique};
+    mc::McSettings s;
+    s.max_paths = 300000;
+    s.seed = 31;
+    const std::vector<double> wavelengths{550.0};
+    const mc::McResult with = mc::runMonteCarlo(recipe, wavelengths, incidences, s);
+    s.bottom_operator = false;
+    s.seed = 32;
+    const mc::McResult without = mc::runMonteCarlo(recipe, wavelengths, incidences, s);
+    expectSameResults(with, without, "forward-scattering haze");
 }
 
 // Test (4): the three-layer white pearl demo with explicit flakes, one band,
