@@ -53,9 +53,10 @@ struct McOptions {
     bool histogram_only = false;  // explicit flakes: the cone histogram alone (no connections)
     int tile_views = 32;          // explicit flakes: azimuths each tile is traced at
     int batches = mc::McSettings{}.batches;
-    std::string bottom_operator = "on";  // the flake-free bottom as one reflecting surface (mc_bottom.h)
-    bool table = false;                  // mc: tabulate on the fast model's basis (mc_table.h)
-    double step_deg = 5.0;               // mc --table: angular step of the written table
+    std::string bottom_operator = "on";    // the flake-free bottom as one reflecting surface (mc_bottom.h)
+    std::string chain_connections = "on";  // last-flake and cavity connections on mirror-flake layers
+    bool table = false;                    // mc: tabulate on the fast model's basis (mc_table.h)
+    double step_deg = 5.0;                 // mc --table: angular step of the written table
 };
 
 constexpr std::int64_t kDefaultSamples = 20000;
@@ -99,6 +100,7 @@ mc::McSettings mcSettings(const McOptions& o) {
     s.tile_views = o.tile_views;
     s.batches = o.batches;
     s.bottom_operator = o.bottom_operator == "on";
+    s.mirror_chain_connections = o.chain_connections == "on";
     s.histogram_cone_deg = o.cone_deg > 0.0 ? o.cone_deg : (o.explicit_flakes ? 5.0 : 0.0);
     s.max_paths = has_samples ? o.samples : kDefaultSamples;
     if (has_rel_error) {
@@ -157,6 +159,7 @@ ordered_json settingsJson(const mc::McSettings& s, const mc::McResult& r) {
                                                        : std::to_string(s.flake_polygon_sides) + "-gon"},
             {"batches", s.batches},
             {"bottom_operator", s.bottom_operator},
+            {"chain_connections", s.mirror_chain_connections},
             {"connections", s.explicit_flakes && s.connections},
             {"tile_views", s.explicit_flakes ? s.tile_views : 1},
             {"glint_azimuths", s.explicit_flakes && s.connections && s.glint_azimuths},
@@ -431,6 +434,14 @@ void addStopOptions(CLI::App* command, McOptions& o) {
                      "on: the layers below the lowest flakes and the substrate are one reflecting "
                      "surface, their reflection operator by adding-doubling (where it has no mirror "
                      "part); off: the walk crosses them")
+        ->check(CLI::IsMember({"on", "off"}))
+        ->capture_default_str();
+    command
+        ->add_option("--chain-connections", o.chain_connections,
+                     "With --explicit-flakes: on: the chains of mirror reflections in layers of mirror "
+                     "flakes whose last flake is met once, or that leave a cavity between two flakes the "
+                     "way they came, are scored by connections through a flake drawn with the tiles' law; "
+                     "off: the walks land them in the cones by chance")
         ->check(CLI::IsMember({"on", "off"}))
         ->capture_default_str();
     command

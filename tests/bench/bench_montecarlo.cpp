@@ -291,9 +291,14 @@ BENCHMARK(BM_McDemoOnePercent)
 //   25 the default without the connections' roulette by transmittance
 //     (McSettings::connection_roulette, the estimator before issue 30)
 //   26 / 27 the default / the delta-chain walks alone (22) with the
-//     last-flake connections (McSettings::last_flake_connections, issue 30)
+//     last-flake connections on every flake layer (McSettings::last_flake_connections)
 //   28 the default walking the flake-free bottom instead of its reflection
 //     operator (McSettings::bottom_operator off, the estimator before it)
+//   29 / 30 the default / the delta-chain walks alone (22) without the
+//     chain connections on mirror-flake layers (McSettings::
+//     mirror_chain_connections, the estimator before them)
+//   33 the histogram's remainder in the default alone (class Beam and part
+//     delta_first of class Other: what no walk or connection takes)
 // The figures quoted in docs/PERFORMANCE.md: see there (each row names its
 // arguments). Prints f, its standard error and the relative error per band
 // and geometry (stdout) and reports the worst relative error, the time 1 %
@@ -339,15 +344,27 @@ void BM_McExplicitBudget(benchmark::State& state) {
         s.connection_parts.reverse_walks = config == 21;
         s.connection_parts.delta_walks = config == 22;
         s.connection_parts.flake_images = config == 23;
+        s.connection_parts.forward_chains = false;
         if (config != 24) s.histogram_classes = mc::HistogramClasses::none();
     }
     if (config == 25) s.connection_roulette = false;
-    if (config == 27) {
+    if (config == 27 || config == 30) {
         s.connection_parts = mc::ConnectionParts::none();
         s.connection_parts.delta_walks = true;
         s.histogram_classes = mc::HistogramClasses::none();
     }
     if (config == 26 || config == 27) s.last_flake_connections = true;
+    if (config == 29 || config == 30) s.mirror_chain_connections = false;
+    if (config == 33) {
+        // The histogram's remainder in the default: class Beam and the part of
+        // class Other that no walk or connection takes (delta_first).
+        s.connection_parts = mc::ConnectionParts::none();
+        s.histogram_classes = mc::HistogramClasses::none();
+        s.histogram_classes.beam = true;
+        s.histogram_classes.other = true;
+        s.histogram_other = mc::HistogramOtherParts::none();
+        s.histogram_other.delta_first = true;
+    }
     if (config == 28) s.bottom_operator = false;  // the walk through the flake-free bottom (issue 30)
     applyBenchOverlaps(s);
     s.seed = benchSeed();
@@ -415,6 +432,8 @@ BENCHMARK(BM_McExplicitBudget)
     ->ArgsProduct({{6, 17, 18}, {200}, {8}})
     // Three-layer (issue 30): the bottom operator off, against /5/4/8 and /5/20/8.
     ->ArgsProduct({{28}, {4}, {8}})
+    // Silver (issue 30): without the chain connections; the histogram's remainder.
+    ->ArgsProduct({{29, 30, 33}, {20, 200}, {8}})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);

@@ -46,10 +46,6 @@ double radicalInverse(std::uint64_t i, std::uint64_t base) {
     return inverse;
 }
 
-Vec3 cross(const Vec3& a, const Vec3& b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-
 // Lateral positions a flake may try before its layer counts as too crowded
 // to reject overlaps. The silver metallic demo (18 µm flakes, 12 degrees,
 // ~2 flake layers in 15 µm) needs up to ~1,800 for its most tilted flakes

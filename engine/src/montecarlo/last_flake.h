@@ -1,6 +1,7 @@
 #pragma once
-// Last-flake connections (McSettings::last_flake_connections, issue 30): the
-// delta-chain walks' escapes whose last direction change is a mirror
+// Last-flake connections (McSettings::mirror_chain_connections and
+// last_flake_connections, issue 30): the delta-chain walks' (and, for what
+// its histogram scores, the forward walk's) escapes whose last direction change is a mirror
 // reflection off an explicit flake that the path meets for the first time,
 // after at least one earlier change (flake -> the top's internal reflection
 // -> flake -> cone, flake -> flake -> cone), scored by next-event estimation
@@ -11,10 +12,13 @@
 // before (flake -> flake -> the same flake -> cone, the wedges of
 // intersecting flakes; flake -> top -> the same flake -> cone: a third of the
 // part at the back-scatter exit of flakes right under the top) and after
-// other changes; the first-flake walks keep all of theirs. Off by default:
-// on silver metallic those repeated flakes are most of the error that is
-// left, and the connections' cost made its time to 1 % longer
-// (docs/PERFORMANCE.md has the figures).
+// other changes, but for the cavity chains (x c x ..., cavity_chain.h),
+// which the cavity connections take with the same law; the first-flake
+// walks keep all of theirs. Each flight connects to one cone drawn
+// uniformly. On by default for layers of mirror flakes (on silver metallic
+// the two halved the time to 1 %; alone, before the cavity connections and
+// with all six cones per flight, they had made it longer:
+// docs/PERFORMANCE.md has the figures).
 //
 // What is estimated. The tiles are realisations of a random arrangement of
 // flakes (flake_tile.h), and the estimate is over them (the batches' errors

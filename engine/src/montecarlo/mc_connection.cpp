@@ -16,50 +16,40 @@ namespace {
 // of T(|u.n|) over the flakes crossed. x, y are advanced to the segment's end.
 double tileTransmittance(const LayerFlakes& lf, double& x, double& y, double depth, const Vec3& u,
                          double length, std::int64_t* rays) {
-    const FlakeTile& tile = *lf.tile;
-    const double L = tile.sideUm();
-    const double inf = std::numeric_limits<double>::infinity();
     double T = 1.0;
-    double t_near = kTileEpsilonUm;
-    double left = length;
-    for (int step = 0; step < kMaxCrossings && left > 0.0; ++step) {
-        if (x < 0.0 || x > L) x -= L * std::floor(x / L);
-        if (y < 0.0 || y > L) y -= L * std::floor(y / L);
-        const double tx = u.x > 0.0 ? (L - x) / u.x : (u.x < 0.0 ? -x / u.x : inf);
-        const double ty = u.y > 0.0 ? (L - y) / u.y : (u.y < 0.0 ? -y / u.y : inf);
-        const double t_side = std::min(tx, ty);
-        const double t_far = std::min(left, t_side);
-        const FlakeHit hit = tile.intersect({x, y, -depth}, u, t_near, t_far);
-        if (rays != nullptr) ++*rays;
-        if (hit.kind >= 0) {
-            T *= lf.kinds[static_cast<std::size_t>(hit.kind)].T(std::abs(dot(u, hit.normal)));
-            if (!(T > 0.0)) return 0.0;
-            x += u.x * hit.t;
-            y += u.y * hit.t;
-            depth -= u.z * hit.t;
-            left -= hit.t;
-            t_near = kTileEpsilonUm;
-            continue;
-        }
-        if (t_side >= left) {
-            x += u.x * left;
-            y += u.y * left;
-            return T;
-        }
-        x += u.x * t_side;
-        y += u.y * t_side;
-        depth -= u.z * t_side;
-        left -= t_side;
-        if (tx <= ty)
-            x = u.x > 0.0 ? 0.0 : L;
-        else
-            y = u.y > 0.0 ? 0.0 : L;
-        t_near = 0.0;
-    }
-    return T;
+    const bool passed = marchTile(*lf.tile, x, y, depth, u, length, rays, [&](const FlakeHit& hit, double) {
+        T *= lf.kinds[static_cast<std::size_t>(hit.kind)].T(std::abs(dot(u, hit.normal)));
+        return T > 0.0;
+    });
+    return passed ? T : 0.0;
 }
 
 }  // namespace
+
+TileHit firstFlakeAlong(const LayerFlakes& lf, double x, double y, double depth, const Vec3& u, double length,
+                        std::int64_t* rays) {
+    TileHit first;
+    const bool passed =
+        marchTile(*lf.tile, x, y, depth, u, length, rays, [&](const FlakeHit& hit, double travelled) {
+            first = {hit, x + u.x * hit.t, y + u.y * hit.t};
+            first.hit.t += travelled;
+            return false;
+        });
+    if (passed) first = {{}, x, y};
+    return first;
+}
+
+double layerOpticalDepth(const PaintStack& stack, int layer, double depth_a, double depth_b, double abs_mu) {
+    const double lo = std::min(depth_a, depth_b);
+    const double hi = std::max(depth_a, depth_b);
+    double tau = 0.0;
+    for (const auto& s : stack.slices) {
+        if (s.layer != layer) continue;
+        const double overlap = std::min(hi, s.bottom_um) - std::max(lo, s.top_um);
+        if (overlap > 0.0) tau += (s.sigma_a_per_um + s.sigma_s_per_um) * overlap;
+    }
+    return tau / abs_mu;
+}
 
 std::size_t sliceAt(const PaintStack& stack, int layer, double depth) {
     std::size_t j = 0;

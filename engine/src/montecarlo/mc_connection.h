@@ -51,8 +51,11 @@
 #include "mc_random.h"
 #include "mc_stack.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -79,10 +82,12 @@ struct LastFlakeLaw;
 struct LayerFlakes {
     const FlakeTile* tile = nullptr;
     std::vector<FlakeKind> kinds;
-    const TiltIndex* tilts = nullptr;     // the tile's flakes by tilt (azimuthGlintSets; null: none)
-    const FlakeGroups* groups = nullptr;  // by tilt, azimuth and depth (first_flake.h; null: none)
-    const LastFlakeLaw* last_flake =
-        nullptr;  // the tiles' law (last_flake.h; null: no last-flake connections)
+    const TiltIndex* tilts = nullptr;          // the tile's flakes by tilt (azimuthGlintSets; null: none)
+    const FlakeGroups* groups = nullptr;       // by tilt, azimuth and depth (first_flake.h; null: none)
+    const LastFlakeLaw* last_flake = nullptr;  // the tiles' law (last_flake.h; null: no chain connections)
+    // Which chain connections run in this layer (McSettings; only with a law).
+    bool last_flake_connections = false;
+    bool cavity_connections = false;
 };
 
 // A path's class by its last direction change (the histogram's classes, McSettings::histogram_classes).
@@ -134,6 +139,72 @@ struct TopArrival {
 TopArrival straightToTop(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
                          double depth, double x, double y, Vec3 u, std::int64_t* rays = nullptr,
                          PathRng* roulette = nullptr);
+
+// The straight segment from (x, y, depth) along u of `length` µm through one
+// layer's periodic tile (wrapping at its sides): on_hit(hit, travelled) for
+// each flake it meets, in order (hit.t from the current point, x, y, depth;
+// travelled before it), returns whether the segment goes on past it. Returns
+// false when on_hit stopped it, else true with x, y advanced to the end
+// (depth is not). The one march of the connections' shadow rays.
+template <class OnHit> bool marchTile(const FlakeTile& tile, double& x, double& y, double& depth,
+                                      const Vec3& u, double length, std::int64_t* rays, const OnHit& on_hit) {
+    const double L = tile.sideUm();
+    const double inf = std::numeric_limits<double>::infinity();
+    double t_near = kTileEpsilonUm;
+    double travelled = 0.0;
+    for (int step = 0; step < kMaxCrossings; ++step) {
+        const double left = length - travelled;
+        if (!(left > 0.0)) return true;
+        if (x < 0.0 || x > L) x -= L * std::floor(x / L);
+        if (y < 0.0 || y > L) y -= L * std::floor(y / L);
+        const double tx = u.x > 0.0 ? (L - x) / u.x : (u.x < 0.0 ? -x / u.x : inf);
+        const double ty = u.y > 0.0 ? (L - y) / u.y : (u.y < 0.0 ? -y / u.y : inf);
+        const double t_side = std::min(tx, ty);
+        const FlakeHit hit = tile.intersect({x, y, -depth}, u, t_near, std::min(left, t_side));
+        if (rays != nullptr) ++*rays;
+        if (hit.kind >= 0) {
+            if (!on_hit(hit, travelled)) return false;
+            x += u.x * hit.t;
+            y += u.y * hit.t;
+            depth -= u.z * hit.t;
+            travelled += hit.t;
+            t_near = kTileEpsilonUm;
+            continue;
+        }
+        if (t_side >= left) {
+            x += u.x * left;
+            y += u.y * left;
+            return true;
+        }
+        x += u.x * t_side;
+        y += u.y * t_side;
+        depth -= u.z * t_side;
+        travelled += t_side;
+        if (tx <= ty)
+            x = u.x > 0.0 ? 0.0 : L;
+        else
+            y = u.y > 0.0 ? 0.0 : L;
+        t_near = 0.0;
+    }
+    return true;
+}
+
+// The first flake of one layer's tile along the segment from (x, y, depth) of
+// `length` µm in direction u (wrapping at the tile's sides): the hit (kind -1:
+// none; t from the start) and the lateral position reached (at the hit, or
+// at the segment's end), wrapped into the tile.
+struct TileHit {
+    FlakeHit hit;
+    double x = 0.0;
+    double y = 0.0;
+};
+TileHit firstFlakeAlong(const LayerFlakes& lf, double x, double y, double depth, const Vec3& u, double length,
+                        std::int64_t* rays = nullptr);
+
+// Pigment optical depth of the straight segment between two depths of one
+// layer along a direction of cosine |mu| (the slices of a depth profile each
+// at their own extinction; tiled layers carry no continuum flakes).
+double layerOpticalDepth(const PaintStack& stack, int layer, double depth_a, double depth_b, double abs_mu);
 
 // The slice of `layer` that holds `depth`; stack.slices.size() if none (a point
 // of a flake tilted in a film thinner than it pokes out of the layer, which the

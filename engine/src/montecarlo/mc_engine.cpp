@@ -174,12 +174,18 @@ McEngine::Band McEngine::band(double wavelength_nm) const {
         for (std::size_t l = 0; l < m_tiles[b].size(); ++l) {
             const TiltIndex& tilts = m_tilts[b][l];
             const FlakeGroups& groups = m_groups[b][l];
-            // The last-flake connections assume independently placed flakes (last_flake.h).
-            const bool last_flake = m_settings.last_flake_connections && !m_settings.reject_overlaps &&
-                                    l < m_last_flake.size() && !m_last_flake[l].kinds.empty();
+            // The chain connections assume independently placed flakes (last_flake.h).
+            const bool mirrors =
+                !kinds[l].empty() && std::none_of(kinds[l].begin(), kinds[l].end(),
+                                                  [](const FlakeKind& k) { return k.interference; });
+            const bool auto_on = m_settings.mirror_chain_connections && mirrors;
+            const bool last_on = m_settings.last_flake_connections || auto_on;
+            const bool cavity_on = m_settings.cavity_connections || auto_on;
+            const bool law = (last_on || cavity_on) && !m_settings.reject_overlaps &&
+                             l < m_last_flake.size() && !m_last_flake[l].kinds.empty();
             layers.push_back({m_tiles[b][l].get(), kinds[l], tilts.order.empty() ? nullptr : &tilts,
-                              groups.flakes.empty() ? nullptr : &groups,
-                              last_flake ? &m_last_flake[l] : nullptr});
+                              groups.flakes.empty() ? nullptr : &groups, law ? &m_last_flake[l] : nullptr,
+                              law && last_on, law && cavity_on});
         }
         band.explicit_flakes.push_back(std::move(layers));
     }

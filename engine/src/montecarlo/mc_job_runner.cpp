@@ -115,6 +115,10 @@ JobRunner::JobRunner(const McEngine::Band& band, const JobSpec& job, const McSet
     m_walk.connection_weight = 1.0 / m_connection_fraction;
     m_walk.split_branches = settings.explicit_flakes && settings.split_branches;
     m_walk.connection_roulette = settings.connection_roulette;
+    m_walk.forward_chain_connections =
+        m_connections && settings.connection_parts.forward_chains &&
+        std::any_of(band.explicit_flakes[0].begin(), band.explicit_flakes[0].end(),
+                    [](const LayerFlakes& lf) { return lf.last_flake != nullptr; });
     buildViews(settings);
     if (m_azimuths) {
         m_azimuth_glints.resize(band.explicit_flakes.size());

@@ -20,61 +20,18 @@ namespace {
 // little beyond t_flake for the same reason.
 double transmittanceToFlake(const LayerFlakes& lf, double x, double y, double depth, const Vec3& u,
                             double t_flake, std::size_t target, std::int64_t* rays) {
-    const FlakeTile& tile = *lf.tile;
-    const double L = tile.sideUm();
-    const double inf = std::numeric_limits<double>::infinity();
     const double slack = 1e-3 + 1e-4 * t_flake;  // µm: far above float rounding, far below a flake's size
     double T = 1.0;
-    double travelled = 0.0;
-    double t_near = kTileEpsilonUm;
-    for (int step = 0; step < kMaxCrossings; ++step) {
-        if (x < 0.0 || x > L) x -= L * std::floor(x / L);
-        if (y < 0.0 || y > L) y -= L * std::floor(y / L);
-        const double tx = u.x > 0.0 ? (L - x) / u.x : (u.x < 0.0 ? -x / u.x : inf);
-        const double ty = u.y > 0.0 ? (L - y) / u.y : (u.y < 0.0 ? -y / u.y : inf);
-        const double t_side = std::min(tx, ty);
-        const double left = t_flake + slack - travelled;
-        if (!(left > 0.0)) return 0.0;
-        const double t_far = std::min(left, t_side);
-        const FlakeHit hit = tile.intersect({x, y, -depth}, u, t_near, t_far);
-        if (rays != nullptr) ++*rays;
-        if (hit.kind >= 0) {
-            if (hit.flake == static_cast<std::int64_t>(target)) return T;
-            T *= lf.kinds[static_cast<std::size_t>(hit.kind)].T(std::abs(dot(u, hit.normal)));
-            if (!(T > 0.0)) return 0.0;
-            x += u.x * hit.t;
-            y += u.y * hit.t;
-            depth -= u.z * hit.t;
-            travelled += hit.t;
-            t_near = kTileEpsilonUm;
-            continue;
+    bool reached = false;
+    marchTile(*lf.tile, x, y, depth, u, t_flake + slack, rays, [&](const FlakeHit& hit, double) {
+        if (hit.flake == static_cast<std::int64_t>(target)) {
+            reached = true;
+            return false;
         }
-        if (t_side >= left) return 0.0;
-        x += u.x * t_side;
-        y += u.y * t_side;
-        depth -= u.z * t_side;
-        travelled += t_side;
-        if (tx <= ty)
-            x = u.x > 0.0 ? 0.0 : L;
-        else
-            y = u.y > 0.0 ? 0.0 : L;
-        t_near = 0.0;
-    }
-    return 0.0;
-}
-
-// Pigment optical depth of the straight segment between two depths of one
-// layer along a direction of cosine |mu| (the slices of a depth profile each at their own extinction).
-double layerOpticalDepth(const PaintStack& stack, int layer, double depth_a, double depth_b, double abs_mu) {
-    const double lo = std::min(depth_a, depth_b);
-    const double hi = std::max(depth_a, depth_b);
-    double tau = 0.0;
-    for (const auto& s : stack.slices) {
-        if (s.layer != layer) continue;
-        const double overlap = std::min(hi, s.bottom_um) - std::max(lo, s.top_um);
-        if (overlap > 0.0) tau += (s.sigma_a_per_um + s.sigma_s_per_um) * overlap;
-    }
-    return tau / abs_mu;
+        T *= lf.kinds[static_cast<std::size_t>(hit.kind)].T(std::abs(dot(u, hit.normal)));
+        return T > 0.0;
+    });
+    return reached ? T : 0.0;
 }
 
 // Calls hit(t, rel) for each periodic image of `flake` whose reflected column

@@ -20,6 +20,7 @@ PathOutcome tracePath(const PathContext& context, Vec3 v, double weight, double 
     walker.nee_weights = context.nee_weights;
     walker.nee_out = context.nee_out;
     walker.nee_boost = context.nee_boost;
+    if (walker.chainRecording()) walker.markVertex();  // the entry point
     const double escaped = walker.run() + walker.tally.escaped_extra;
     if (connect && !context.glints.empty())
         scoreGlints(context.stack, context.explicit_flakes, context.glints, context.bins,

@@ -50,6 +50,12 @@ struct WalkSettings {
     // Delta-chain walks: the beam's reflections off explicit flakes end the
     // branch (the first-flake walks score those chains; McSettings::first_flake_walks).
     bool skip_beam_flake_reflections = false;
+    // The chain connections of the layers that run them (LayerFlakes,
+    // McSettings::mirror_chain_connections) on the forward walk's flights
+    // too, for the escapes its histogram scores (after a smooth vertex:
+    // substrate -> flake -> cone); the walk then records its legs and the
+    // flakes it meets as the delta-chain walks do.
+    bool forward_chain_connections = false;
     // Delta-chain walks: a branch's roulette by its promise (chain_promise.h;
     // null: by weight alone). It survives with probability
     // clamp(w promise / (promise_threshold w_0), promise_floor, 1), w_0 the

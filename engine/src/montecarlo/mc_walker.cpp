@@ -156,15 +156,25 @@ int Walker::traceTile(const Slice& s, double sigma, double t, double to_boundary
     const double t_far = std::min({t, to_boundary, t_side});
     const FlakeHit hit = lf.tile->intersect({x, y, -depth}, v, kTileEpsilonUm, t_far);
     ++tally.rays;
-    if (mode == Mode::DeltaChain && last_flake_connections && lf.last_flake != nullptr &&
-        history.path_class != PathClass::Beam)
-        lastFlakeConnections(s, lf, hit.kind >= 0 ? hit.t : t_far, sigma);
+    if (chainRecording() && last_flake_connections && lf.last_flake != nullptr) {
+        const double flight = hit.kind >= 0 ? hit.t : t_far;
+        // The forward walk's flight ends at its sampled collision: the
+        // connections on it need no e^(-sigma t) (a track-length estimate).
+        const double sigma_flight = mode == Mode::DeltaChain ? sigma : 0.0;
+        if (lf.last_flake_connections && history.path_class != PathClass::Beam &&
+            (mode == Mode::DeltaChain || forwardScoresAfter(s.layer, 1)))
+            lastFlakeConnections(s, lf, flight, sigma_flight);
+        if (lf.cavity_connections && change_count > 0 && changeBack(0).chain.flake_id >= 0 &&
+            changeBack(0).chain.flake_id % 64 == s.layer &&
+            (mode == Mode::DeltaChain || forwardScoresAfter(s.layer, 2)))
+            cavityConnections(s, lf, flight, sigma_flight);
+    }
     if (hit.kind >= 0) {
         move(hit.t);
         depth = std::clamp(depth - v.z * hit.t, s.top_um, s.bottom_um);
         if (mode == Mode::DeltaChain) weight *= std::exp(-sigma * hit.t);
         return explicitFlakeEvent(lf.kinds[static_cast<std::size_t>(hit.kind)], hit.normal, s.layer,
-                                  hit.flake)
+                                  hit.flake, hit.kind)
                    ? 1
                    : -1;
     }
@@ -181,13 +191,14 @@ int Walker::traceTile(const Slice& s, double sigma, double t, double to_boundary
     return 0;
 }
 
-bool Walker::explicitFlakeEvent(const FlakeKind& f, const Vec3& n, int layer, std::int64_t flake) {
+bool Walker::explicitFlakeEvent(const FlakeKind& f, const Vec3& n, int layer, std::int64_t flake, int kind) {
     if (history.path_class == PathClass::Beam) history.beam_flake_layer = layer;
     // The last-flake connections take the escapes after a reflection off a flake
     // met for the first time whose orientation law has a density (not the
     // delta); the walk keeps the others (escape, last_flake.h).
-    const bool met_before = mode == Mode::DeltaChain && flake >= 0 && meetFlake(layer, flake);
+    const bool met_before = chainRecording() && flake >= 0 && meetFlake(layer, flake);
     const int flake_layer = f.orientation.isDelta() || met_before ? -1 : layer;
+    const std::int64_t flake_id = flake >= 0 ? flake * 64 + layer : -1;
     const double vn = dot(v, n);
     const double c = std::abs(vn);
     const double R = f.R(c);
@@ -210,14 +221,14 @@ bool Walker::explicitFlakeEvent(const FlakeKind& f, const Vec3& n, int layer, st
         weight *= R;
         v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
         history.flakeReflection(layer);
-        changedAtVertex(flake_layer);
+        changedAtVertex(flake_layer, flake_id, n, kind);
         return roulette() && promiseRoulette();
     }
     const double u = rng.uniform();
     if (u < R) {
         v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
         history.flakeReflection(layer);
-        changedAtVertex(flake_layer);
+        changedAtVertex(flake_layer, flake_id, n, kind);
         return roulette() && promiseRoulette();
     }
     return u < R + f.T(c);
@@ -243,6 +254,7 @@ bool Walker::flakeEvent(const FlakeKind& f) {
             history.deltaChange(false);  // not a tile's flake: never a flake image's end
         else
             history.smoothChange();
+        changedAtVertex();
         return true;
     }
     return u < R + T;  // transmitted light goes straight on
@@ -271,6 +283,7 @@ bool Walker::collide(const Slice& s, double sigma, double flake_rate) {
         }
         v = directionAround(v, sampleHgCos(g, rng.uniform()), 2.0 * kPi * rng.uniform());
         history.pigmentScatter(s.layer, tiled(s.layer));
+        changedAtVertex();
     } else {
         u -= s.sigma_s_per_um;
         std::size_t k = 0;
@@ -293,7 +306,7 @@ bool Walker::crossInterface(double n_from, double n_to, bool top) {
         return false;
     }
     v = refract(v, n_from, n_to);
-    if (mode == Mode::DeltaChain) markVertex();  // the leg bends; the class stays
+    if (chainRecording()) markVertex();  // the leg bends; the class stays
     return true;
 }
 
@@ -312,6 +325,7 @@ bool Walker::substrate(const Slice& s) {
         }
         scoreLambert(s);
         history.smoothChange();
+        changedAtVertex();
         if (stack.substrate == SubstrateKind::Operator) {
             double factor = 0.0;
             v = stack.bottom->sample(v, rng, factor);

@@ -6,6 +6,7 @@
 // substrate, collisions, splitting and roulette); mc_walker_scores.cpp scores
 // it (histogram, projection, next-event estimates and connections).
 
+#include "cavity_chain.h"
 #include "mc_path_history.h"
 #include "mc_walk.h"
 
@@ -125,16 +126,62 @@ struct Walker {
     std::array<Vec3, kLegVertices> vertices{};
     int vertex_count = 0;
     int last_flake_layer = -1;
-    bool last_flake_connections = true;  // false: the walk scores every escape (first-flake walks)
+    // false: the walk scores every escape (first-flake walks, whose legs before
+    // their first flake are not recorded); true: the connections that
+    // WalkSettings turns on take their escapes.
+    bool last_flake_connections = true;
+    // Whether this walk runs the chain connections (last-flake, cavity) and so
+    // records its legs and the flakes it meets.
+    bool chainRecording() const {
+        return mode == Mode::DeltaChain || (mode == Mode::Forward && settings.forward_chain_connections);
+    }
+    // Their random numbers: the forward walk's connection stream (the walk
+    // draws the same numbers with and without them), else the walk's own.
+    PathRng& chainRng() const {
+        return mode == Mode::Forward && connection_rng != nullptr ? *connection_rng : rng;
+    }
+    // Forward walk: whether its histogram would score an escape after
+    // `reflections` more reflections off flakes of `layer` (the chain
+    // connections take only those).
+    bool forwardScoresAfter(int layer, int reflections) const {
+        PathHistory after = history;
+        for (int i = 0; i < reflections; ++i) after.flakeReflection(layer);
+        return after.path_class == PathClass::Other &&
+               after.histogramScores(settings.histogram_classes, settings.histogram_other);
+    }
     void markVertex() {
         vertices[static_cast<std::size_t>(vertex_count % kLegVertices)] = {ux, uy, -depth};
         ++vertex_count;
     }
-    // A direction change here: by a reflection off a flake of `flake_layer`, or (-1) another.
-    void changedAtVertex(int flake_layer = -1) {
-        last_flake_layer = flake_layer;
-        if (mode == Mode::DeltaChain) markVertex();
+    // The latest direction changes (a ring of kChangeRing): the flake
+    // reflected and whether it was met for the first time
+    // (cavity_chain.h), with the flake's normal and kind.
+    static constexpr int kChangeRing = 16;
+    struct Change {
+        ChainChange chain;
+        Vec3 normal{0.0, 0.0, 1.0};
+        int kind = -1;
+    };
+    std::array<Change, kChangeRing> changes{};
+    int change_count = 0;
+    // Change i back (0: the latest); i < min(change_count, kChangeRing).
+    const Change& changeBack(int i) const {
+        return changes[static_cast<std::size_t>((change_count - 1 - i) % kChangeRing)];
     }
+    // A direction change here: by a reflection off a flake of `flake_layer`
+    // met for the first time, or (-1) another; `flake_id` (flake * 64 +
+    // layer), `normal` and `kind` name the flake reflected, met before or
+    // not (-1: not a tile's flake).
+    void changedAtVertex(int flake_layer = -1, std::int64_t flake_id = -1, const Vec3& normal = {},
+                         int kind = -1) {
+        last_flake_layer = flake_layer;
+        changes[static_cast<std::size_t>(change_count % kChangeRing)] = {
+            {flake_id, flake_layer >= 0}, normal, kind};
+        ++change_count;
+        if (chainRecording()) markVertex();
+    }
+    // The layer whose cavity connections take the escape now (cavityChainLayer), or -1.
+    int cavityChainLayerNow() const;
 
     // The weight that leaves through the top; 0 when the path is absorbed or lost.
     double run();
@@ -151,7 +198,8 @@ struct Walker {
     // wrapped at the tile's side, 0 = nothing in the way, -1 = the path ended.
     int traceTile(const Slice& s, double sigma, double t, double to_boundary);
     // An explicit flake hit with unit normal n: reflect, pass or absorb.
-    bool explicitFlakeEvent(const FlakeKind& f, const Vec3& n, int layer, std::int64_t flake = -1);
+    bool explicitFlakeEvent(const FlakeKind& f, const Vec3& n, int layer, std::int64_t flake = -1,
+                            int kind = -1);
     // A flake collision: sample a normal from D weighted by |v.n| (the flakes a
     // ray meets), then reflect, pass (interference flakes) or absorb.
     bool flakeEvent(const FlakeKind& f);
@@ -177,6 +225,40 @@ struct Walker {
     // Delta-chain walk: the last-flake connections from the flight of `length`
     // µm ahead (no real flake on it) in slice s of a layer with a law (last_flake.h).
     void lastFlakeConnections(const Slice& s, const LayerFlakes& lf, double length, double sigma);
+    // A chain connection's draw on the flight of `length` µm ahead: one cone
+    // drawn uniformly (a flight's draws for all six cost more than the walk
+    // itself), a point at t uniform on the flight, a direction uniform in the
+    // cone (u: in slice s), and the factors every such connection carries:
+    // the flight's length and transmittance e^(-sigma t), the radiance law
+    // (n_0 / n)^2, 1 / u_z, the cone's w_z Omega / Omega_proj and the number
+    // of cones (the drawn cone's weight). ok false: no connection.
+    struct ChainDraw {
+        std::size_t k = 0;
+        double t = 0.0;
+        Vec3 u;
+        double point_depth = 0.0;
+        double factor = 0.0;
+        bool ok = false;
+    };
+    ChainDraw drawChainCone(const Slice& s, double length, double sigma, PathRng& chain_rng) const;
+    // Its kernel per kind (the layer's first 4) for c's normal h: A D(h)
+    // `geometric` R(cos_vh) (before rho), after a Russian roulette below
+    // settings.roulette_weight on the value with R = 1 (a mirror's complex
+    // Fresnel is evaluated for the survivors only); q its survival
+    // probability, 0 when the connection ends.
+    struct ChainKernel {
+        std::array<double, 4> per_kind{};
+        double q = 0.0;
+    };
+    ChainKernel chainKernel(const LayerFlakes& lf, const Vec3& h, double cos_vh, double geometric,
+                            double factor, PathRng& chain_rng);
+    // Delta-chain walk: the cavity connections (cavity_chain.h) from the
+    // flight of `length` µm ahead, which began at a reflection off a flake of
+    // this layer (changeBack(0)).
+    void cavityConnections(const Slice& s, const LayerFlakes& lf, double length, double sigma);
+    // Their chain from the drawn flake c (mc_walker_cavity.cpp).
+    struct CavityLeg;
+    double traceCavityChain(const Slice& s, const LayerFlakes& lf, const CavityLeg& leg) const;
     // Whether one of the path's previous legs crosses the disk (centre, unit normal n, radius) within
     // the layer's depths [top_um, bottom_um].
     bool legsCross(const Vec3& centre, const Vec3& n, double radius_um, double top_um,

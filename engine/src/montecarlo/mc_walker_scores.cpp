@@ -119,14 +119,25 @@ void Walker::reverseReflectedBeams(const Slice& s, double factor) {
 }
 
 void Walker::escape() {
-    // Delta-chain walks: an escape right after a reflection off a flake of a
-    // layer with a law (and an earlier change: class Other) is the
-    // last-flake connections' (lastFlakeConnections).
-    if (mode == Mode::DeltaChain && last_flake_connections && last_flake_layer >= 0 &&
-        history.path_class == PathClass::Other &&
-        explicit_flakes[static_cast<std::size_t>(last_flake_layer)].last_flake != nullptr)
-        return;
-    if (history.histogramScores(settings.histogram_classes, settings.histogram_other))
+    // An escape right after a reflection off a flake met for the first time,
+    // of a layer with a law (and an earlier change: class Other), is the
+    // last-flake connections' (lastFlakeConnections); one that ends a cavity
+    // chain the cavity connections' (cavityConnections). They run on the
+    // delta-chain walks and, for what its histogram scores, the forward walk.
+    bool taken = false;
+    if (chainRecording() && last_flake_connections) {
+        if (last_flake_layer >= 0 && history.path_class == PathClass::Other &&
+            explicit_flakes[static_cast<std::size_t>(last_flake_layer)].last_flake_connections)
+            taken = true;
+        // (A cavity chain ends at a flake of its layer: the ring is searched only then.)
+        const std::int64_t latest = change_count > 0 ? changeBack(0).chain.flake_id : -1;
+        if (!taken && latest >= 0 &&
+            explicit_flakes[static_cast<std::size_t>(latest % 64)].cavity_connections) {
+            const int layer = cavityChainLayerNow();
+            taken = layer >= 0 && explicit_flakes[static_cast<std::size_t>(layer)].cavity_connections;
+        }
+    }
+    if (!taken && history.histogramScores(settings.histogram_classes, settings.histogram_other))
         for (std::size_t k = 0; k < bins.size(); ++k)
             if (dot(v, bins[k].wo) >= bins[k].cos_cone) brdf_out[k] += weight / bins[k].projected_solid_angle;
     if (fourier != nullptr) project(*fourier);
@@ -220,6 +231,44 @@ void Walker::connectFromPigment(const Slice& s, double sigma) {
     }
 }
 
+Walker::ChainKernel Walker::chainKernel(const LayerFlakes& lf, const Vec3& h, double cos_vh, double geometric,
+                                        double factor, PathRng& chain_rng) {
+    ChainKernel out;
+    const std::size_t kinds = std::min(lf.last_flake->kinds.size(), lf.kinds.size());
+    double bare = 0.0;
+    for (std::size_t i = 0; i < kinds && i < out.per_kind.size(); ++i) {
+        out.per_kind[i] = lf.last_flake->kinds[i].geometry.area_density_per_um *
+                          lf.kinds[i].orientation.pdf(h.z) * geometric;
+        bare += out.per_kind[i];
+    }
+    ++tally.nee_attempts;
+    if (!(bare * factor > 0.0)) return out;
+    const double q = std::min(1.0, bare * factor / settings.roulette_weight);
+    if (q < 1.0 && chain_rng.uniform() >= q) return out;
+    for (std::size_t i = 0; i < kinds && i < out.per_kind.size(); ++i)
+        if (out.per_kind[i] > 0.0) out.per_kind[i] *= lf.kinds[i].R(cos_vh);
+    out.q = q;
+    return out;
+}
+
+Walker::ChainDraw Walker::drawChainCone(const Slice& s, double length, double sigma,
+                                        PathRng& chain_rng) const {
+    ChainDraw draw;
+    draw.k = std::min(bins.size() - 1,
+                      static_cast<std::size_t>(chain_rng.uniform() * static_cast<double>(bins.size())));
+    const HistogramBin& bin = bins[draw.k];
+    draw.t = length * chain_rng.uniform();
+    const double u1 = chain_rng.uniform();
+    const Vec3 w = sampleInCone(bin, u1, chain_rng.uniform());
+    if (!(w.z > 0.0) || !refractPlanar(w, stack.ambient_n, s.n, draw.u) || !(draw.u.z > 0.0)) return draw;
+    draw.point_depth = std::clamp(depth - v.z * draw.t, s.top_um, s.bottom_um);
+    const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
+    draw.factor = length * weight * std::exp(-sigma * draw.t) / draw.u.z * scale * w.z * bin.solid_angle /
+                  bin.projected_solid_angle * static_cast<double>(bins.size());
+    draw.ok = true;
+    return draw;
+}
+
 // Next-event estimation through a flake on the flight ahead (last_flake.h):
 // per cone, a point uniform on the flight (t in [0, length), weight length),
 // a direction w uniform in the cone (u in the slice), the flake normal h that
@@ -232,53 +281,40 @@ void Walker::connectFromPigment(const Slice& s, double sigma) {
 void Walker::lastFlakeConnections(const Slice& s, const LayerFlakes& lf, double length, double sigma) {
     const LastFlakeLaw& law = *lf.last_flake;
     if (!(length > 0.0) || bins.empty()) return;
-    const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
+    PathRng& chain_rng = chainRng();
     const std::size_t kinds = std::min(law.kinds.size(), lf.kinds.size());
-    for (std::size_t k = 0; k < bins.size(); ++k) {
-        const HistogramBin& bin = bins[k];
-        const double t = length * rng.uniform();
-        const double u1 = rng.uniform();
-        const Vec3 w = sampleInCone(bin, u1, rng.uniform());
-        Vec3 u;
-        if (!(w.z > 0.0) || !refractPlanar(w, stack.ambient_n, s.n, u) || !(u.z > 0.0)) continue;
-        Vec3 h{u.x - v.x, u.y - v.y, u.z - v.z};
-        const double len = std::sqrt(dot(h, h));
-        if (len < 1e-12) continue;
-        h = {h.x / len, h.y / len, h.z / len};
-        const double cos_vh = std::abs(dot(v, h));
-        const double point_depth = std::clamp(depth - v.z * t, s.top_um, s.bottom_um);
-        const Vec3 point{ux + v.x * t, uy + v.y * t, -point_depth};
-        // The kernel per kind before rho (A R D / 4), and the roulette on the
-        // value it gives at rho = 1, before the flakes are drawn and traced.
-        const double factor = length * weight * std::exp(-sigma * t) / u.z * scale * w.z * bin.solid_angle /
-                              bin.projected_solid_angle;
-        std::array<double, 4> per_kind{};
-        double bare = 0.0;
-        for (std::size_t i = 0; i < kinds && i < per_kind.size(); ++i) {
-            const FlakeKind& kind = lf.kinds[i];
-            per_kind[i] =
-                0.25 * law.kinds[i].geometry.area_density_per_um * kind.R(cos_vh) * kind.orientation.pdf(h.z);
-            bare += per_kind[i];
-        }
-        ++tally.nee_attempts;
-        if (!(bare * factor > 0.0)) continue;
-        const double q = std::min(1.0, bare * factor / settings.roulette_weight);
-        if (q < 1.0 && rng.uniform() >= q) continue;
-        double kernel = 0.0;
-        for (std::size_t i = 0; i < kinds && i < per_kind.size(); ++i) {
-            if (!(per_kind[i] > 0.0)) continue;
-            const VirtualFlake flake = drawVirtualFlake(law, i, h, point_depth, rng);
-            if (!(flake.rho > 0.0)) continue;
-            const Vec3 centre{point.x + flake.centre_offset.x, point.y + flake.centre_offset.y,
-                              point.z + flake.centre_offset.z};
-            if (legsCross(centre, h, flake.radius_um, law.top_um, law.bottom_um)) continue;
-            kernel += per_kind[i] * flake.rho;
-        }
-        if (!(kernel > 0.0)) continue;
-        brdf_out[k] += kernel * factor / q *
-                       straightToAmbient(stack, explicit_flakes, j, point_depth, x + v.x * t, y + v.y * t, u,
-                                         &tally.rays);
+    const ChainDraw draw = drawChainCone(s, length, sigma, chain_rng);
+    if (!draw.ok) return;
+    const std::size_t k = draw.k;
+    const double t = draw.t;
+    const Vec3 u = draw.u;
+    Vec3 h{u.x - v.x, u.y - v.y, u.z - v.z};
+    const double len = std::sqrt(dot(h, h));
+    if (len < 1e-12) return;
+    h = {h.x / len, h.y / len, h.z / len};
+    const double cos_vh = std::abs(dot(v, h));
+    const double point_depth = draw.point_depth;
+    const Vec3 point{ux + v.x * t, uy + v.y * t, -point_depth};
+    const double factor = draw.factor;
+    // The kernel per kind before rho: A R D / 4.
+    const ChainKernel kernels = chainKernel(lf, h, cos_vh, 0.25, factor, chain_rng);
+    if (!(kernels.q > 0.0)) return;
+    const double q = kernels.q;
+    const auto& per_kind = kernels.per_kind;
+    double kernel = 0.0;
+    for (std::size_t i = 0; i < kinds && i < per_kind.size(); ++i) {
+        if (!(per_kind[i] > 0.0)) continue;
+        const VirtualFlake flake = drawVirtualFlake(law, i, h, point_depth, chain_rng);
+        if (!(flake.rho > 0.0)) continue;
+        const Vec3 centre{point.x + flake.centre_offset.x, point.y + flake.centre_offset.y,
+                          point.z + flake.centre_offset.z};
+        if (legsCross(centre, h, flake.radius_um, law.top_um, law.bottom_um)) continue;
+        kernel += per_kind[i] * flake.rho;
     }
+    if (!(kernel > 0.0)) return;
+    brdf_out[k] +=
+        kernel * factor / q *
+        straightToAmbient(stack, explicit_flakes, j, point_depth, x + v.x * t, y + v.y * t, u, &tally.rays);
 }
 
 bool Walker::legsCross(const Vec3& centre, const Vec3& n, double radius_um, double top_um,

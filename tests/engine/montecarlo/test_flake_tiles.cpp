@@ -26,9 +26,6 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 mc::Vec3 sub(const mc::Vec3& a, const mc::Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-mc::Vec3 cross(const mc::Vec3& a, const mc::Vec3& b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
 
 // Independent of disksIntersect: two non-coplanar disks meet iff the boundary
 // circle of one crosses the other disk (the ends of their common chord lie on

@@ -53,7 +53,10 @@ struct ConnectionParts {
     bool reverse_walks = true;  // reverse walks from the cones (McSettings::reverse_walks)
     bool delta_walks = true;    // delta-chain walks (McSettings::delta_walks)
     bool flake_images = true;   // forward connections through one flake (McSettings::flake_images)
-    static constexpr ConnectionParts none() { return {false, false, false, false, false}; }
+    // the chain connections on the forward walk's flights (McSettings::mirror_chain_connections;
+    // on the delta-chain walks they are part of delta_walks)
+    bool forward_chains = true;
+    static constexpr ConnectionParts none() { return {false, false, false, false, false, false}; }
 };
 
 // The path classes, by their last direction change, whose escapes the
@@ -187,15 +190,29 @@ struct McSettings {
     bool chain_promise = true;
     double chain_promise_threshold = 1.4e-4;  // of the walk's start weight (mc_walk.h)
     double chain_promise_floor = 0.2;         // the lowest survival probability
-    // Delta-chain walks: the escapes whose last change is a reflection off an
-    // explicit flake met for the first time (after an earlier change) are
-    // scored by next-event estimation through a flake drawn on each flight
-    // with the tiles' law (mc/last_flake.h) instead of by the walk reaching a
-    // cone; ignored with reject_overlaps (the law assumes independently
-    // placed flakes). Off by default: same mean, and it lowers the error of
-    // the fast-vs-full grid's aluminium points, but on silver metallic the
-    // time to 1 % rose (docs/PERFORMANCE.md, issue 30).
+    // Chain connections (issue 30), for the chains of mirror reflections that
+    // a walk would have to land in a 5 degree cone by chance:
+    //  - last-flake connections: the escapes whose last change is a reflection
+    //    off an explicit flake met for the first time (after an earlier change)
+    //    are scored by next-event estimation through a flake drawn on each
+    //    flight with the tiles' law (mc/last_flake.h);
+    //  - cavity connections: the escapes in which light caught between two
+    //    flakes leaves the way it came (mc/cavity_chain.h: after c, the last
+    //    flake met for the first time, round trips between c and the flake
+    //    before it, then back over the flakes before that) by a flake c drawn
+    //    on the flight, its normal solved for the cone.
+    // Both run on the delta-chain walks and on the forward walk (for the
+    // escapes its histogram scores: substrate -> flake -> cone), one cone per
+    // flight, and take those escapes from the walks; ignored with
+    // reject_overlaps (the law assumes independently placed flakes).
+    // mirror_chain_connections turns both on for the layers whose flakes are
+    // all mirror flakes (the default: on silver metallic the time to 1 % at
+    // the worst geometry fell by half, docs/PERFORMANCE.md); the other two
+    // turn one on for every flake layer (interference flakes too, where they
+    // cost more than they gain on the demos).
+    bool mirror_chain_connections = true;
     bool last_flake_connections = false;
+    bool cavity_connections = false;
     // Connections (next-event into the cones, the reverse walks' towards the
     // beam): Russian roulette of those whose transmittance before the first
     // flake tile is below 1e-3 (mc_connection.h, kConnectionRouletteT);

@@ -1,0 +1,71 @@
+#pragma once
+// Cavity connections (McSettings::cavity_connections, issue 30): the
+// delta-chain walks' escapes in which light caught between two flakes
+// leaves the way it came. With c the last flake the chain met for the first
+// time and x_1, x_2, ... the flake reflections just before it (x_1 the
+// latest), the chain ends
+//   x_m ... x_2 x_1 c (x_1 c)^j x_1 x_2 ... x_m -> cone,   j >= 0, m >= 1:
+// j round trips between c and x_1, then back over x_2 ... x_m (m = 1, j = 0
+// is x c x: back to the flake it came from). On silver metallic these
+// were most of the flop's error once the last-flake connections took the
+// chains whose last flake is met once (docs/PERFORMANCE.md).
+//
+// Planar mirrors make the exit direction a function of the normals alone:
+// u = Q (M_1 M_h)^(j+1) d, with d the flight's direction towards c, M_v the
+// mirror through the plane normal to v, M_1 = M_{n(x_1)}, h c's normal and
+// Q = M_m ... M_2 fixed by the path so far. M_1 M_h turns about the axis
+// e = n_1 x h / |n_1 x h| by twice the angle between n_1 and h, so its power
+// k = j + 1 takes d to Q^T u only about the e normal to both n_1 and
+// Q^T u - d, and h = n_1 turned about that e by (phi + 2 pi i) / (2k) for
+// the angle phi from d to Q^T u: k normals at most (cavityNormals). The
+// connection draws c on the flight with the tiles' law (last_flake.h:
+// Mecke's formula, its kernel A |d.h| D(h) rho per µm and sr of h), so per
+// sr of u the kernel is A |d.h| D(h) rho / J, J = dOmega_u / dOmega_h
+// (4 |d.h| at k = 1, where it is the last-flake connection's; numerical
+// beyond), times the reflectances and extinction along the chain, whose
+// legs are traced through the real tile and the drawn c (Walker::cavityConnections).
+
+#include "mc_stack.h"
+
+#include <array>
+#include <cstdint>
+#include <span>
+
+namespace paintlab::mc {
+
+// The round trips (j) and the flakes gone back over (m) that the connections take; the walk keeps longer
+// chains.
+inline constexpr int kMaxCavityRoundTrips = 1;
+inline constexpr int kMaxCavityRetrace = 2;
+
+// v mirrored through the plane with unit normal n.
+inline Vec3 mirrored(const Vec3& v, const Vec3& n) {
+    const double vn = dot(v, n);
+    return {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
+}
+
+// (M_n M_h)^k d: k round trips of d between the flakes of normals h and n, h first.
+Vec3 cavityExit(const Vec3& d, const Vec3& n, const Vec3& h, int k);
+
+// The normals h (upper hemisphere) with cavityExit(d, n, h, k) = target, each
+// with J = dOmega_exit / dOmega_h; returns how many (at most k, k <= kMaxCavityRoundTrips + 1).
+struct CavityNormal {
+    Vec3 h;
+    double jacobian = 0.0;
+};
+using CavityNormals = std::array<CavityNormal, kMaxCavityRoundTrips + 1>;
+int cavityNormals(const Vec3& d, const Vec3& n, const Vec3& target, int k, CavityNormals& out);
+
+// The walk's side: a direction change of the path (latest first in the
+// spans below): the flake reflected (flake * 64 + layer; -1 another change)
+// and whether it was the first meeting of a flake whose law has a density.
+struct ChainChange {
+    std::int64_t flake_id = -1;
+    bool first_meeting = false;
+};
+// Whether the changes so far (latest first; every change the ring still
+// holds) end in a cavity chain with j <= kMaxCavityRoundTrips and
+// m <= kMaxCavityRetrace, all of its flakes in one layer; that layer, or -1.
+int cavityChainLayer(std::span<const ChainChange> latest_first);
+
+}  // namespace paintlab::mc

@@ -1,0 +1,192 @@
+// The delta-chain walks' cavity connections (cavity_chain.h): the draw of a
+// flake c on a flight, its normals for each cone, and the chain's legs
+// traced through the real tile and c.
+
+#include "last_flake.h"
+#include "mc_walker.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace paintlab::mc {
+
+namespace {
+
+// The first t in (kTileEpsilonUm, length] where the ray from o along the unit
+// d meets the disk (centre, unit normal n, radius) or one of its eight
+// periodic copies at the tile's side L; infinity if none.
+double diskHit(const Vec3& o, const Vec3& d, double length, const Vec3& centre, const Vec3& n,
+               double radius_um, double L) {
+    double best = std::numeric_limits<double>::infinity();
+    const double dn = dot(d, n);
+    if (std::abs(dn) < 1e-12) return best;
+    for (int i = -1; i <= 1; ++i)
+        for (int k = -1; k <= 1; ++k) {
+            const Vec3 c{centre.x + i * L, centre.y + k * L, centre.z};
+            const double t = dot({c.x - o.x, c.y - o.y, c.z - o.z}, n) / dn;
+            if (!(t > kTileEpsilonUm) || t > length || t >= best) continue;
+            const Vec3 p{o.x + d.x * t - c.x, o.y + d.y * t - c.y, o.z + d.z * t - c.z};
+            if (dot(p, p) < radius_um * radius_um) best = t;
+        }
+    return best;
+}
+
+}  // namespace
+
+int Walker::cavityChainLayerNow() const {
+    std::array<ChainChange, kChangeRing> latest_first{};
+    const int stored = std::min(change_count, kChangeRing);
+    for (int i = 0; i < stored; ++i) latest_first[static_cast<std::size_t>(i)] = changeBack(i).chain;
+    return cavityChainLayer(
+        std::span<const ChainChange>(latest_first.data(), static_cast<std::size_t>(stored)));
+}
+
+// One chain to trace: c drawn through the flight's point, the round trips
+// and the flakes gone back over (x_1 .. x_m: changeBack(0 .. m - 1)).
+struct Walker::CavityLeg {
+    Vec3 start;      // c's point on the flight (unwrapped, z = -depth)
+    double x = 0.0;  // ... wrapped into the tile
+    double y = 0.0;
+    Vec3 direction;  // leaving c (M_h v)
+    Vec3 h;          // c's normal
+    Vec3 centre;     // c's centre (unwrapped)
+    double radius_um = 0.0;
+    const FlakeKind* kind_c = nullptr;
+    int round_trips = 0;  // j
+    int retrace = 1;      // m
+    double top_um = 0.0;  // the layer's depths
+    double bottom_um = 0.0;
+};
+
+double Walker::traceCavityChain(const Slice& s, const LayerFlakes& lf, const CavityLeg& leg) const {
+    const double L = lf.tile->sideUm();
+    Vec3 at = leg.start;
+    double wx = leg.x;
+    double wy = leg.y;
+    Vec3 dir = leg.direction;
+    double value = 1.0;
+    double tau = 0.0;
+    // The flakes met in order: x_1 and c alternately (2j + 1 of them), then x_2 .. x_m.
+    const int legs = 2 * leg.round_trips + leg.retrace;
+    for (int i = 0; i < legs; ++i) {
+        const double at_depth = -at.z;
+        if (std::abs(dir.z) < 1e-12) return 0.0;
+        const double to_side =
+            dir.z > 0.0 ? (at_depth - leg.top_um) / dir.z : (leg.bottom_um - at_depth) / -dir.z;
+        const double t_c = diskHit(at, dir, to_side, leg.centre, leg.h, leg.radius_um, L);
+        const bool to_c = i < 2 * leg.round_trips && i % 2 == 1;
+        double t = 0.0;
+        Vec3 n;
+        double R = 0.0;
+        if (to_c) {
+            if (!std::isfinite(t_c)) return 0.0;  // the light passes c: another chain
+            const TileHit hit = firstFlakeAlong(lf, wx, wy, at_depth, dir, t_c);
+            if (hit.hit.kind >= 0) return 0.0;  // a real flake in the way
+            t = t_c;
+            wx = hit.x;
+            wy = hit.y;
+            n = leg.h;
+            R = leg.kind_c->R(std::abs(dot(dir, n)));
+        } else {
+            const Change& target = changeBack(i < 2 * leg.round_trips + 1 ? 0 : i - 2 * leg.round_trips);
+            const TileHit hit = firstFlakeAlong(lf, wx, wy, at_depth, dir, to_side);
+            if (hit.hit.kind < 0 || hit.hit.flake != target.chain.flake_id / 64 || !(hit.hit.t < t_c))
+                return 0.0;
+            t = hit.hit.t;
+            wx = hit.x;
+            wy = hit.y;
+            n = target.normal;
+            R = lf.kinds[static_cast<std::size_t>(hit.hit.kind)].R(std::abs(dot(dir, n)));
+        }
+        const double new_depth = std::clamp(at_depth - dir.z * t, leg.top_um, leg.bottom_um);
+        tau += layerOpticalDepth(stack, s.layer, at_depth, new_depth, std::abs(dir.z));
+        value *= R;
+        if (!(value > 0.0)) return 0.0;
+        at = {at.x + dir.x * t, at.y + dir.y * t, -new_depth};
+        dir = mirrored(dir, n);
+    }
+    // Out: c must not stand in the way up to the layer's top (the real flakes are straightToAmbient's).
+    const double out_depth = -at.z;
+    if (!(dir.z > 0.0)) return 0.0;
+    if (std::isfinite(
+            diskHit(at, dir, (out_depth - leg.top_um) / dir.z, leg.centre, leg.h, leg.radius_um, L)))
+        return 0.0;
+    const std::size_t j_out = sliceAt(stack, s.layer, out_depth);
+    if (j_out >= stack.slices.size()) return 0.0;
+    return value * std::exp(-tau) * straightToAmbient(stack, explicit_flakes, j_out, out_depth, wx, wy, dir);
+}
+
+// For a direction w uniform in the cone (u in the slice), each chain (j, m)
+// and each normal h that sends the flight's v to u through it
+// (cavityNormals, after undoing the mirrors of x_2 .. x_m), a flake c drawn
+// through a point uniform on the flight (last_flake.h's law): per sr of u
+// the kernel A |v.h| D(h) rho R_c / J, the flight's factors as the
+// last-flake connections', times the traced chain.
+void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double length, double sigma) {
+    const LastFlakeLaw& law = *lf.last_flake;
+    if (!(length > 0.0) || bins.empty()) return;
+    // x_1, x_2, ...: the latest changes, reflections off flakes of this layer.
+    int available = 0;
+    const int stored = std::min(change_count, kChangeRing);
+    while (available < kMaxCavityRetrace && available < stored) {
+        const Change& before = changeBack(available);
+        if (before.chain.flake_id < 0 || before.chain.flake_id % 64 != s.layer || before.kind < 0) break;
+        ++available;
+    }
+    if (available == 0) return;
+    const Vec3 n_1 = changeBack(0).normal;
+    PathRng& chain_rng = chainRng();
+    const std::size_t kinds = std::min(law.kinds.size(), lf.kinds.size());
+    const ChainDraw draw = drawChainCone(s, length, sigma, chain_rng);
+    if (!draw.ok) return;
+    const std::size_t k = draw.k;
+    const double t = draw.t;
+    const Vec3 u = draw.u;
+    const double point_depth = draw.point_depth;
+    const double factor = draw.factor;
+    for (int m = 1; m <= available; ++m) {
+        // Before the way back over x_m .. x_2: M_2 ... M_m u.
+        Vec3 target = u;
+        for (int i = m; i >= 2; --i) target = mirrored(target, changeBack(i - 1).normal);
+        for (int trips = 0; trips <= kMaxCavityRoundTrips; ++trips) {
+            CavityNormals normals;
+            const int count = cavityNormals(v, n_1, target, trips + 1, normals);
+            for (int c = 0; c < count; ++c) {
+                const Vec3 h = normals[static_cast<std::size_t>(c)].h;
+                const double cos_vh = std::abs(dot(v, h));
+                // The kernel per kind before rho: A R D |v.h| / J.
+                const ChainKernel kernels = chainKernel(
+                    lf, h, cos_vh, cos_vh / normals[static_cast<std::size_t>(c)].jacobian, factor, chain_rng);
+                if (!(kernels.q > 0.0)) continue;
+                const double q = kernels.q;
+                const auto& per_kind = kernels.per_kind;
+                CavityLeg leg;
+                leg.start = {ux + v.x * t, uy + v.y * t, -point_depth};
+                leg.x = x + v.x * t;
+                leg.y = y + v.y * t;
+                leg.direction = mirrored(v, h);
+                leg.h = h;
+                leg.round_trips = trips;
+                leg.retrace = m;
+                leg.top_um = law.top_um;
+                leg.bottom_um = law.bottom_um;
+                double sum = 0.0;
+                for (std::size_t i = 0; i < kinds && i < per_kind.size(); ++i) {
+                    if (!(per_kind[i] > 0.0)) continue;
+                    const VirtualFlake flake = drawVirtualFlake(law, i, h, point_depth, chain_rng);
+                    if (!(flake.rho > 0.0)) continue;
+                    leg.centre = {leg.start.x + flake.centre_offset.x, leg.start.y + flake.centre_offset.y,
+                                  leg.start.z + flake.centre_offset.z};
+                    if (legsCross(leg.centre, h, flake.radius_um, law.top_um, law.bottom_um)) continue;
+                    leg.radius_um = flake.radius_um;
+                    leg.kind_c = &lf.kinds[i];
+                    sum += per_kind[i] * flake.rho * traceCavityChain(s, lf, leg);
+                }
+                if (sum > 0.0) brdf_out[k] += sum * factor / q;
+            }
+        }
+    }
+}
+
+}  // namespace paintlab::mc
