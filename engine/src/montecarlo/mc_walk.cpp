@@ -116,7 +116,7 @@ PathOutcome traceFromFirstFlake(const PathContext& context, const Vec3& v_top, d
     // The chain's flakes met before its first are not known here (the beam's
     // leg down to it is traced by straightToTop): the walk scores all of its
     // escapes itself (last_flake.h).
-    walker.last_flake_connections = false;
+    walker.chain_connections = false;
     if (!walker.roulette()) return outcome;
     outcome.escaped = walker.run() + walker.tally.escaped_extra;
     outcome.transmitted = walker.tally.transmitted;

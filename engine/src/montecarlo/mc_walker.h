@@ -127,9 +127,9 @@ struct Walker {
     int vertex_count = 0;
     int last_flake_layer = -1;
     // false: the walk scores every escape (first-flake walks, whose legs before
-    // their first flake are not recorded); true: the connections that
-    // WalkSettings turns on take their escapes.
-    bool last_flake_connections = true;
+    // their first flake are not recorded); true: the chain connections of the
+    // layers that run them (LayerFlakes) take their escapes.
+    bool chain_connections = true;
     // Whether this walk runs the chain connections (last-flake, cavity) and so
     // records its legs and the flakes it meets.
     bool chainRecording() const {
@@ -175,10 +175,11 @@ struct Walker {
     void changedAtVertex(int flake_layer = -1, std::int64_t flake_id = -1, const Vec3& normal = {},
                          int kind = -1) {
         last_flake_layer = flake_layer;
+        if (!chainRecording()) return;  // the ring serves the chain connections only
         changes[static_cast<std::size_t>(change_count % kChangeRing)] = {
             {flake_id, flake_layer >= 0}, normal, kind};
         ++change_count;
-        if (chainRecording()) markVertex();
+        markVertex();
     }
     // The layer whose cavity connections take the escape now (cavityChainLayer), or -1.
     int cavityChainLayerNow() const;

@@ -125,7 +125,7 @@ void Walker::escape() {
     // chain the cavity connections' (cavityConnections). They run on the
     // delta-chain walks and, for what its histogram scores, the forward walk.
     bool taken = false;
-    if (chainRecording() && last_flake_connections) {
+    if (chainRecording() && chain_connections) {
         if (last_flake_layer >= 0 && history.path_class == PathClass::Other &&
             explicit_flakes[static_cast<std::size_t>(last_flake_layer)].last_flake_connections)
             taken = true;

@@ -135,7 +135,8 @@ TEST(CavityChain, WhichEscapesEndACavityChain) {
     EXPECT_EQ(layer(history({top, a, b, again(a)})), 1);
     // Not cavity chains: ends at c; a top reflection after c; another flake
     // after x; the last change a first meeting (the last-flake
-    // connections'); no flake before c; three round trips (beyond the bound).
+    // connections'); no flake before c; two round trips (j = 2, beyond the bound
+    // kMaxCavityRoundTrips = 1).
     EXPECT_EQ(layer(history({a, b, again(a), again(b)})), -1);
     EXPECT_EQ(layer(history({a, b, top, again(a)})), -1);
     EXPECT_EQ(layer(history({a, b, again(a), top})), -1);
