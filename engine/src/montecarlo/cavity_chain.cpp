@@ -5,19 +5,31 @@
 
 namespace paintlab::mc {
 
-namespace {
-
-Vec3 normalized(const Vec3& v) {
-    const double len = std::sqrt(dot(v, v));
-    return {v.x / len, v.y / len, v.z / len};
-}
-
-}  // namespace
-
 Vec3 cavityExit(const Vec3& d, const Vec3& n, const Vec3& h, int k) {
     Vec3 v = d;
     for (int i = 0; i < k; ++i) v = mirrored(mirrored(v, h), n);
     return v;
+}
+
+double cavityJacobian(const Vec3& n, const Vec3& e, double theta, int k, const Vec3& u) {
+    // h = Rot(phi) n for phi = theta e in the plane normal to n (dOmega_h =
+    // |sin theta / theta| dA_phi), u = Rot(omega) d for omega = -2 k phi
+    // (dA_omega = 4 k^2 dA_phi), and du = (J_l(omega) delta) x u with J_l
+    // SO(3)'s left Jacobian, so dOmega_u / dA_omega = |u . (J_l p_1 x J_l p_2)|
+    // for an orthonormal basis p_1, p_2 of that plane.
+    const Vec3 omega{-2.0 * k * theta * e.x, -2.0 * k * theta * e.y, -2.0 * k * theta * e.z};
+    const double a = 2.0 * k * std::abs(theta);
+    // (1 - cos a) / a^2 and (a - sin a) / a^3, by their series near 0.
+    const double c1 = a < 1e-4 ? 0.5 - a * a / 24.0 : (1.0 - std::cos(a)) / (a * a);
+    const double c2 = a < 1e-4 ? 1.0 / 6.0 - a * a / 120.0 : (a - std::sin(a)) / (a * a * a);
+    const auto leftJacobian = [&](const Vec3& p) {
+        const Vec3 wp = cross(omega, p);
+        const Vec3 wwp = cross(omega, wp);
+        return Vec3{p.x + c1 * wp.x + c2 * wwp.x, p.y + c1 * wp.y + c2 * wwp.y, p.z + c1 * wp.z + c2 * wwp.z};
+    };
+    const double area = std::abs(dot(u, cross(leftJacobian(e), leftJacobian(cross(e, n)))));
+    const double stretch = std::abs(theta) < 1e-8 ? 1.0 : std::abs(theta / std::sin(theta));
+    return area * 4.0 * k * k * stretch;
 }
 
 int cavityNormals(const Vec3& d, const Vec3& n, const Vec3& target, int k, CavityNormals& out) {
@@ -44,39 +56,21 @@ int cavityNormals(const Vec3& d, const Vec3& n, const Vec3& target, int k, Cavit
         const double s = std::sin(theta);
         Vec3 h{c * n.x + s * en.x, c * n.y + s * en.y, c * n.z + s * en.z};
         if (h.z < 0.0) h = {-h.x, -h.y, -h.z};
-        // J = dOmega_exit / dOmega_h: 4 |d.h| for one round trip (M_n keeps
-        // solid angles; the mirror M_h doubles angles), else by finite
-        // differences on the tangent plane (eps 1e-6 rad: truncation ~1e-6
-        // relative, rounding ~1e-10).
-        if (k == 1) {
-            out[static_cast<std::size_t>(count++)] = {h, 4.0 * std::abs(dot(d, h))};
-            continue;
-        }
-        constexpr double eps = 1e-6;
-        const Vec3 exit = cavityExit(d, n, h, k);
-        Vec3 t1;
-        Vec3 t2;
-        orthonormalBasis(h, t1, t2);
-        const Vec3 e1 =
-            cavityExit(d, n, normalized({h.x + eps * t1.x, h.y + eps * t1.y, h.z + eps * t1.z}), k);
-        const Vec3 e2 =
-            cavityExit(d, n, normalized({h.x + eps * t2.x, h.y + eps * t2.y, h.z + eps * t2.z}), k);
-        const Vec3 area = cross({e1.x - exit.x, e1.y - exit.y, e1.z - exit.z},
-                                {e2.x - exit.x, e2.y - exit.y, e2.z - exit.z});
-        const double jacobian = std::sqrt(dot(area, area)) / (eps * eps);
+        // J = dOmega_exit / dOmega_h in closed form (cavityJacobian).
+        const double jacobian = cavityJacobian(n, e, theta, k, target);
         if (!(jacobian > 0.0)) continue;
         out[static_cast<std::size_t>(count++)] = {h, jacobian};
     }
     return count;
 }
 
-int cavityChainLayer(std::span<const ChainChange> latest_first) {
+CavityForm cavityChainForm(std::span<const ChainChange> latest_first) {
     const auto size = static_cast<int>(latest_first.size());
     int ic = 0;
     while (ic < size && !latest_first[static_cast<std::size_t>(ic)].first_meeting) ++ic;
-    if (ic == 0 || ic >= size) return -1;  // no suffix after c, or no c in the ring
+    if (ic == 0 || ic >= size) return {};  // no suffix after c, or no c in the ring
     const std::int64_t c = latest_first[static_cast<std::size_t>(ic)].flake_id;
-    if (c < 0) return -1;
+    if (c < 0) return {};
     const std::int64_t layer = c % 64;
     // x_i = latest_first[ic + i] (i >= 1); suffix entry s (1-based, in time order) = latest_first[ic - s].
     const auto x = [&](int i) {
@@ -89,16 +83,16 @@ int cavityChainLayer(std::span<const ChainChange> latest_first) {
     const int length = ic;
     for (int j = 0; j <= kMaxCavityRoundTrips; ++j) {
         const int m = length - 2 * j;
-        if (m < 1 || m > kMaxCavityRetrace) continue;
+        if (m < 0 || m > kMaxCavityRetrace || (m == 0 && j == 0)) continue;
         const std::int64_t x1 = x(1);
         if (x1 < 0) continue;
         bool match = true;
         for (int t = 0; t < j && match; ++t) match = s(2 * t + 1) == x1 && s(2 * t + 2) == c;
-        match = match && s(2 * j + 1) == x1;
+        match = match && (m == 0 || s(2 * j + 1) == x1);
         for (int i = 2; i <= m && match; ++i) match = x(i) >= 0 && s(2 * j + i) == x(i);
-        if (match) return static_cast<int>(layer);
+        if (match) return {static_cast<int>(layer), j, m};
     }
-    return -1;
+    return {};
 }
 
 }  // namespace paintlab::mc

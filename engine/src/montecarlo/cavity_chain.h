@@ -6,14 +6,17 @@
 // latest), the chain ends
 //   x_m ... x_2 x_1 c (x_1 c)^j x_1 x_2 ... x_m -> cone,   j >= 0, m >= 1:
 // j round trips between c and x_1, then back over x_2 ... x_m (m = 1, j = 0
-// is x c x: back to the flake it came from). On silver metallic these
-// were most of the flop's error once the last-flake connections took the
-// chains whose last flake is met once (docs/PERFORMANCE.md).
+// is x c x: back to the flake it came from), or, m = 0, j >= 1, at c itself:
+//   x_1 c (x_1 c)^j -> cone.
+// On silver metallic these were most of the flop's error once the
+// last-flake connections took the chains whose last flake is met once
+// (docs/PERFORMANCE.md).
 //
 // Planar mirrors make the exit direction a function of the normals alone:
 // u = Q (M_1 M_h)^(j+1) d, with d the flight's direction towards c, M_v the
 // mirror through the plane normal to v, M_1 = M_{n(x_1)}, h c's normal and
-// Q = M_m ... M_2 fixed by the path so far. M_1 M_h turns about the axis
+// Q = M_m ... M_2 fixed by the path so far (Q = M_1 when the chain ends at
+// c, m = 0: M_1 u = (M_1 M_h)^(j+1) d). M_1 M_h turns about the axis
 // e = n_1 x h / |n_1 x h| by twice the angle between n_1 and h, so its power
 // k = j + 1 takes d to Q^T u only about the e normal to both n_1 and
 // Q^T u - d, and h = n_1 turned about that e by (phi + 2 pi i) / (2k) for
@@ -21,11 +24,14 @@
 // connection draws c on the flight with the tiles' law (last_flake.h:
 // Mecke's formula, its kernel A |d.h| D(h) rho per µm and sr of h), so per
 // sr of u the kernel is A |d.h| D(h) rho / J, J = dOmega_u / dOmega_h
-// (4 |d.h| at k = 1, where it is the last-flake connection's; numerical
-// beyond), times the reflectances and extinction along the chain, whose
-// legs are traced through the real tile and the drawn c (Walker::cavityConnections).
+// (4 |d.h| at k = 1, where it is the last-flake connection's; in closed
+// form at every k: cavityJacobian), times the reflectances and extinction
+// along the chain, whose legs are traced through the real tile and the
+// drawn c (Walker::cavityConnections).
 
 #include "mc_stack.h"
+
+#include "paintlab/engine/montecarlo/monte_carlo.h"
 
 #include <array>
 #include <cstdint>
@@ -33,10 +39,14 @@
 
 namespace paintlab::mc {
 
-// The round trips (j) and the flakes gone back over (m) that the connections take; the walk keeps longer
-// chains.
-inline constexpr int kMaxCavityRoundTrips = 1;
+// The round trips (j) and the flakes gone back over (m) that the connections
+// take; the walk keeps longer chains. Every flight runs the chains with
+// j <= kCavityEveryFlightTrips, m >= 1 (the commonest); the others (more
+// round trips, or ending at c) are rarer and each costs up to j + 1 normals,
+// so a flight runs one of them, drawn uniformly and weighted by their count.
+inline constexpr int kMaxCavityRoundTrips = 3;
 inline constexpr int kMaxCavityRetrace = 2;
+inline constexpr int kCavityEveryFlightTrips = 1;
 
 // v mirrored through the plane with unit normal n.
 inline Vec3 mirrored(const Vec3& v, const Vec3& n) {
@@ -46,6 +56,11 @@ inline Vec3 mirrored(const Vec3& v, const Vec3& n) {
 
 // (M_n M_h)^k d: k round trips of d between the flakes of normals h and n, h first.
 Vec3 cavityExit(const Vec3& d, const Vec3& n, const Vec3& h, int k);
+
+// J = dOmega_u / dOmega_h at the normal h = n turned about the unit e
+// (normal to n) by theta, for u = cavityExit(d, n, h, k): k round trips turn
+// d about e by -2 k theta (4 |d.h| at k = 1).
+double cavityJacobian(const Vec3& n, const Vec3& e, double theta, int k, const Vec3& u);
 
 // The normals h (upper hemisphere) with cavityExit(d, n, h, k) = target, each
 // with J = dOmega_exit / dOmega_h; returns how many (at most k, k <= kMaxCavityRoundTrips + 1).
@@ -65,7 +80,23 @@ struct ChainChange {
 };
 // Whether the changes so far (latest first; every change the ring still
 // holds) end in a cavity chain with j <= kMaxCavityRoundTrips and
-// m <= kMaxCavityRetrace, all of its flakes in one layer; that layer, or -1.
-int cavityChainLayer(std::span<const ChainChange> latest_first);
+// m <= kMaxCavityRetrace (m = 0: at c, j >= 1), all of its flakes in one
+// layer: that chain (cavityChainForm), its layer or -1 (cavityChainLayer).
+struct CavityForm {
+    int layer = -1;   // -1: no cavity chain
+    int trips = 0;    // j
+    int retrace = 0;  // m (0: ending at c)
+    // Whether a flight runs this chain only when it is drawn (cavity_chain.h's limits).
+    bool drawn() const { return retrace == 0 || trips > kCavityEveryFlightTrips; }
+};
+CavityForm cavityChainForm(std::span<const ChainChange> latest_first);
+inline int cavityChainLayer(std::span<const ChainChange> latest_first) {
+    return cavityChainForm(latest_first).layer;
+}
+
+// Whether the connections take a matched chain (McSettings::cavity_forms).
+inline bool cavityFormTaken(const CavityForms& forms, const CavityForm& form) {
+    return form.layer >= 0 && (form.drawn() ? forms.drawn : forms.every_flight);
+}
 
 }  // namespace paintlab::mc

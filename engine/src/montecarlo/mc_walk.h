@@ -56,6 +56,7 @@ struct WalkSettings {
     // substrate -> flake -> cone); the walk then records its legs and the
     // flakes it meets as the delta-chain walks do.
     bool forward_chain_connections = false;
+    CavityForms cavity_forms;  // McSettings::cavity_forms
     // Delta-chain walks: a branch's roulette by its promise (chain_promise.h;
     // null: by weight alone). It survives with probability
     // clamp(w promise / (promise_threshold w_0), promise_floor, 1), w_0 the

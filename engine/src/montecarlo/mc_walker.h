@@ -181,8 +181,8 @@ struct Walker {
         ++change_count;
         markVertex();
     }
-    // The layer whose cavity connections take the escape now (cavityChainLayer), or -1.
-    int cavityChainLayerNow() const;
+    // The cavity chain the escape now ends (cavityChainForm; layer -1: none).
+    CavityForm cavityFormNow() const;
 
     // The weight that leaves through the top; 0 when the path is absorbed or lost.
     double run();
@@ -257,6 +257,10 @@ struct Walker {
     // flight of `length` µm ahead, which began at a reflection off a flake of
     // this layer (changeBack(0)).
     void cavityConnections(const Slice& s, const LayerFlakes& lf, double length, double sigma);
+    // One chain (j round trips, m flakes gone back over; m = 0: ending at c)
+    // of a cavity connection's draw, its score times form_weight.
+    void cavityFormConnection(const Slice& s, const LayerFlakes& lf, const ChainDraw& draw, int trips, int m,
+                              double form_weight, PathRng& chain_rng);
     // Their chain from the drawn flake c (mc_walker_cavity.cpp).
     struct CavityLeg;
     double traceCavityChain(const Slice& s, const LayerFlakes& lf, const CavityLeg& leg) const;

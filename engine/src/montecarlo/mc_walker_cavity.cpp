@@ -34,11 +34,11 @@ double diskHit(const Vec3& o, const Vec3& d, double length, const Vec3& centre, 
 
 }  // namespace
 
-int Walker::cavityChainLayerNow() const {
+CavityForm Walker::cavityFormNow() const {
     std::array<ChainChange, kChangeRing> latest_first{};
     const int stored = std::min(change_count, kChangeRing);
     for (int i = 0; i < stored; ++i) latest_first[static_cast<std::size_t>(i)] = changeBack(i).chain;
-    return cavityChainLayer(
+    return cavityChainForm(
         std::span<const ChainChange>(latest_first.data(), static_cast<std::size_t>(stored)));
 }
 
@@ -67,7 +67,8 @@ double Walker::traceCavityChain(const Slice& s, const LayerFlakes& lf, const Cav
     Vec3 dir = leg.direction;
     double value = 1.0;
     double tau = 0.0;
-    // The flakes met in order: x_1 and c alternately (2j + 1 of them), then x_2 .. x_m.
+    // The flakes met in order: x_1 and c alternately (2j + 1 of them, 2j when
+    // the chain ends at c, m = 0), then x_2 .. x_m.
     const int legs = 2 * leg.round_trips + leg.retrace;
     for (int i = 0; i < legs; ++i) {
         const double at_depth = -at.z;
@@ -119,12 +120,13 @@ double Walker::traceCavityChain(const Slice& s, const LayerFlakes& lf, const Cav
 
 // For a direction w uniform in the cone (u in the slice), each chain (j, m)
 // and each normal h that sends the flight's v to u through it
-// (cavityNormals, after undoing the mirrors of x_2 .. x_m), a flake c drawn
-// through a point uniform on the flight (last_flake.h's law): per sr of u
-// the kernel A |v.h| D(h) rho R_c / J, the flight's factors as the
-// last-flake connections', times the traced chain.
+// (cavityNormals, after undoing the mirrors of x_2 .. x_m, or of x_1 for a
+// chain that ends at c), a flake c drawn through a point uniform on the
+// flight (last_flake.h's law): per sr of u the kernel A |v.h| D(h) rho R_c / J,
+// the flight's factors as the last-flake connections', times the traced
+// chain. The chains with j <= kCavityEveryFlightTrips, m >= 1 run on every
+// flight; of the others one, drawn uniformly, weighted by their count.
 void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double length, double sigma) {
-    const LastFlakeLaw& law = *lf.last_flake;
     if (!(length > 0.0) || bins.empty()) return;
     // x_1, x_2, ...: the latest changes, reflections off flakes of this layer.
     int available = 0;
@@ -135,57 +137,73 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
         ++available;
     }
     if (available == 0) return;
-    const Vec3 n_1 = changeBack(0).normal;
     PathRng& chain_rng = chainRng();
-    const std::size_t kinds = std::min(law.kinds.size(), lf.kinds.size());
     const ChainDraw draw = drawChainCone(s, length, sigma, chain_rng);
     if (!draw.ok) return;
-    const std::size_t k = draw.k;
-    const double t = draw.t;
-    const Vec3 u = draw.u;
-    const double point_depth = draw.point_depth;
-    const double factor = draw.factor;
-    for (int m = 1; m <= available; ++m) {
-        // Before the way back over x_m .. x_2: M_2 ... M_m u.
-        Vec3 target = u;
+    const CavityForms& run = settings.cavity_forms;
+    if (run.every_flight)
+        for (int m = 1; m <= available; ++m)
+            for (int trips = 0; trips <= kCavityEveryFlightTrips; ++trips)
+                cavityFormConnection(s, lf, draw, trips, m, 1.0, chain_rng);
+    if (!run.drawn) return;
+    // The drawn chain: with more round trips (m >= 1), or ending at c (m = 0, j >= 1).
+    const int deeper = kMaxCavityRoundTrips - kCavityEveryFlightTrips;
+    const int at_c = kMaxCavityRoundTrips;
+    const int forms = deeper * available + at_c;
+    if (forms <= 0) return;
+    const int pick = std::min(forms - 1, static_cast<int>(chain_rng.uniform() * forms));
+    if (pick < at_c)
+        cavityFormConnection(s, lf, draw, pick + 1, 0, forms, chain_rng);
+    else
+        cavityFormConnection(s, lf, draw, kCavityEveryFlightTrips + 1 + (pick - at_c) % deeper,
+                             1 + (pick - at_c) / deeper, forms, chain_rng);
+}
+
+void Walker::cavityFormConnection(const Slice& s, const LayerFlakes& lf, const ChainDraw& draw, int trips,
+                                  int m, double form_weight, PathRng& chain_rng) {
+    const LastFlakeLaw& law = *lf.last_flake;
+    const std::size_t kinds = std::min(law.kinds.size(), lf.kinds.size());
+    const Vec3 n_1 = changeBack(0).normal;
+    // Before the way back over x_m .. x_2 (M_2 ... M_m u), or over x_1 for a chain ending at c (M_1 u).
+    Vec3 target = draw.u;
+    if (m == 0)
+        target = mirrored(target, n_1);
+    else
         for (int i = m; i >= 2; --i) target = mirrored(target, changeBack(i - 1).normal);
-        for (int trips = 0; trips <= kMaxCavityRoundTrips; ++trips) {
-            CavityNormals normals;
-            const int count = cavityNormals(v, n_1, target, trips + 1, normals);
-            for (int c = 0; c < count; ++c) {
-                const Vec3 h = normals[static_cast<std::size_t>(c)].h;
-                const double cos_vh = std::abs(dot(v, h));
-                // The kernel per kind before rho: A R D |v.h| / J.
-                const ChainKernel kernels = chainKernel(
-                    lf, h, cos_vh, cos_vh / normals[static_cast<std::size_t>(c)].jacobian, factor, chain_rng);
-                if (!(kernels.q > 0.0)) continue;
-                const double q = kernels.q;
-                const auto& per_kind = kernels.per_kind;
-                CavityLeg leg;
-                leg.start = {ux + v.x * t, uy + v.y * t, -point_depth};
-                leg.x = x + v.x * t;
-                leg.y = y + v.y * t;
-                leg.direction = mirrored(v, h);
-                leg.h = h;
-                leg.round_trips = trips;
-                leg.retrace = m;
-                leg.top_um = law.top_um;
-                leg.bottom_um = law.bottom_um;
-                double sum = 0.0;
-                for (std::size_t i = 0; i < kinds && i < per_kind.size(); ++i) {
-                    if (!(per_kind[i] > 0.0)) continue;
-                    const VirtualFlake flake = drawVirtualFlake(law, i, h, point_depth, chain_rng);
-                    if (!(flake.rho > 0.0)) continue;
-                    leg.centre = {leg.start.x + flake.centre_offset.x, leg.start.y + flake.centre_offset.y,
-                                  leg.start.z + flake.centre_offset.z};
-                    if (legsCross(leg.centre, h, flake.radius_um, law.top_um, law.bottom_um)) continue;
-                    leg.radius_um = flake.radius_um;
-                    leg.kind_c = &lf.kinds[i];
-                    sum += per_kind[i] * flake.rho * traceCavityChain(s, lf, leg);
-                }
-                if (sum > 0.0) brdf_out[k] += sum * factor / q;
-            }
+    const double factor = draw.factor * form_weight;
+    CavityNormals normals;
+    const int count = cavityNormals(v, n_1, target, trips + 1, normals);
+    for (int c = 0; c < count; ++c) {
+        const Vec3 h = normals[static_cast<std::size_t>(c)].h;
+        const double cos_vh = std::abs(dot(v, h));
+        // The kernel per kind before rho: A R D |v.h| / J.
+        const ChainKernel kernels = chainKernel(
+            lf, h, cos_vh, cos_vh / normals[static_cast<std::size_t>(c)].jacobian, factor, chain_rng);
+        if (!(kernels.q > 0.0)) continue;
+        const auto& per_kind = kernels.per_kind;
+        CavityLeg leg;
+        leg.start = {ux + v.x * draw.t, uy + v.y * draw.t, -draw.point_depth};
+        leg.x = x + v.x * draw.t;
+        leg.y = y + v.y * draw.t;
+        leg.direction = mirrored(v, h);
+        leg.h = h;
+        leg.round_trips = trips;
+        leg.retrace = m;
+        leg.top_um = law.top_um;
+        leg.bottom_um = law.bottom_um;
+        double sum = 0.0;
+        for (std::size_t i = 0; i < kinds && i < per_kind.size(); ++i) {
+            if (!(per_kind[i] > 0.0)) continue;
+            const VirtualFlake flake = drawVirtualFlake(law, i, h, draw.point_depth, chain_rng);
+            if (!(flake.rho > 0.0)) continue;
+            leg.centre = {leg.start.x + flake.centre_offset.x, leg.start.y + flake.centre_offset.y,
+                          leg.start.z + flake.centre_offset.z};
+            if (legsCross(leg.centre, h, flake.radius_um, law.top_um, law.bottom_um)) continue;
+            leg.radius_um = flake.radius_um;
+            leg.kind_c = &lf.kinds[i];
+            sum += per_kind[i] * flake.rho * traceCavityChain(s, lf, leg);
         }
+        if (sum > 0.0) brdf_out[draw.k] += sum * factor / kernels.q;
     }
 }
 

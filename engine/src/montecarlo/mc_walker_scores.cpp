@@ -125,19 +125,30 @@ void Walker::escape() {
     // chain the cavity connections' (cavityConnections). They run on the
     // delta-chain walks and, for what its histogram scores, the forward walk.
     bool taken = false;
-    if (chainRecording() && chain_connections) {
-        if (last_flake_layer >= 0 && history.path_class == PathClass::Other &&
+    using WalkScores = CavityForms::WalkScores;
+    const WalkScores walk_scores = settings.cavity_forms.walk_scores;
+    bool drawn_form = false;  // the escape ends a drawn cavity chain (WalkScores::DrawnOnly)
+    if (chainRecording() && (chain_connections || walk_scores == WalkScores::DrawnOnly)) {
+        if (chain_connections && last_flake_layer >= 0 && history.path_class == PathClass::Other &&
             explicit_flakes[static_cast<std::size_t>(last_flake_layer)].last_flake_connections)
             taken = true;
         // (A cavity chain ends at a flake of its layer: the ring is searched only then.)
         const std::int64_t latest = change_count > 0 ? changeBack(0).chain.flake_id : -1;
         if (!taken && latest >= 0 &&
-            explicit_flakes[static_cast<std::size_t>(latest % 64)].cavity_connections) {
-            const int layer = cavityChainLayerNow();
-            taken = layer >= 0 && explicit_flakes[static_cast<std::size_t>(layer)].cavity_connections;
+            (walk_scores == WalkScores::DrawnOnly ||
+             explicit_flakes[static_cast<std::size_t>(latest % 64)].cavity_connections)) {
+            const CavityForm form = cavityFormNow();
+            drawn_form = form.layer >= 0 && form.drawn();
+            taken = chain_connections &&
+                    explicit_flakes[static_cast<std::size_t>(latest % 64)].cavity_connections &&
+                    form.layer >= 0 &&
+                    explicit_flakes[static_cast<std::size_t>(form.layer)].cavity_connections &&
+                    cavityFormTaken(settings.cavity_forms, form);
         }
     }
-    if (!taken && history.histogramScores(settings.histogram_classes, settings.histogram_other))
+    const bool scored =
+        walk_scores == WalkScores::All || (walk_scores == WalkScores::DrawnOnly && drawn_form);
+    if (!taken && scored && history.histogramScores(settings.histogram_classes, settings.histogram_other))
         for (std::size_t k = 0; k < bins.size(); ++k)
             if (dot(v, bins[k].wo) >= bins[k].cos_cone) brdf_out[k] += weight / bins[k].projected_solid_angle;
     if (fourier != nullptr) project(*fourier);

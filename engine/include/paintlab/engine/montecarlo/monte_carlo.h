@@ -59,6 +59,19 @@ struct ConnectionParts {
     static constexpr ConnectionParts none() { return {false, false, false, false, false, false}; }
 };
 
+// Which cavity chains (McSettings::cavity_connections, engine/src/montecarlo/
+// cavity_chain.h) the connections take (diagnostics and tests; all by
+// default): those every flight runs, the drawn ones (more round trips, or
+// ending at c); the walks score the escapes of the others. walk_scores:
+// All, or only the escapes that end a drawn chain (a reference for the drawn
+// forms alone), or None (the connections alone).
+struct CavityForms {
+    bool every_flight = true;
+    bool drawn = true;
+    enum class WalkScores { All, DrawnOnly, None };
+    WalkScores walk_scores = WalkScores::All;
+};
+
 // The path classes, by their last direction change, whose escapes the
 // histogram scores (diagnostics; with connections, beam_flake and smooth are
 // scored by them and never by the histogram).
@@ -227,6 +240,7 @@ struct McSettings {
     bool bottom_operator = true;
     // Diagnostics for error budgets: what each estimator scores.
     ConnectionParts connection_parts;
+    CavityForms cavity_forms;
     HistogramClasses histogram_classes;
     HistogramOtherParts histogram_other;
 };
