@@ -11,7 +11,8 @@ Vec3 cavityExit(const Vec3& d, const Vec3& n, const Vec3& h, int k) {
     return v;
 }
 
-double cavityJacobian(const Vec3& n, const Vec3& e, double theta, int k, const Vec3& u) {
+double cavityJacobian(const Vec3& n, const Vec3& e, double theta, double cos_theta, double sin_theta, int k,
+                      const Vec3& u) {
     // h = Rot(phi) n for phi = theta e in the plane normal to n (dOmega_h =
     // |sin theta / theta| dA_phi), u = Rot(omega) d for omega = -2 k phi
     // (dA_omega = 4 k^2 dA_phi), and du = (J_l(omega) delta) x u with J_l
@@ -19,16 +20,27 @@ double cavityJacobian(const Vec3& n, const Vec3& e, double theta, int k, const V
     // for an orthonormal basis p_1, p_2 of that plane.
     const Vec3 omega{-2.0 * k * theta * e.x, -2.0 * k * theta * e.y, -2.0 * k * theta * e.z};
     const double a = 2.0 * k * std::abs(theta);
+    // cos and sin of 2 k theta as powers of e^(2 i theta) (no more calls to the library's trigonometry).
+    const double c2 = cos_theta * cos_theta - sin_theta * sin_theta;
+    const double s2 = 2.0 * cos_theta * sin_theta;
+    double cos_a = 1.0;
+    double sin_a = 0.0;
+    for (int i = 0; i < k; ++i) {
+        const double c = cos_a * c2 - sin_a * s2;
+        sin_a = sin_a * c2 + cos_a * s2;
+        cos_a = c;
+    }
+    if (theta < 0.0) sin_a = -sin_a;  // a = 2 k |theta|
     // (1 - cos a) / a^2 and (a - sin a) / a^3, by their series near 0.
-    const double c1 = a < 1e-4 ? 0.5 - a * a / 24.0 : (1.0 - std::cos(a)) / (a * a);
-    const double c2 = a < 1e-4 ? 1.0 / 6.0 - a * a / 120.0 : (a - std::sin(a)) / (a * a * a);
+    const double f1 = a < 1e-4 ? 0.5 - a * a / 24.0 : (1.0 - cos_a) / (a * a);
+    const double f2 = a < 1e-4 ? 1.0 / 6.0 - a * a / 120.0 : (a - sin_a) / (a * a * a);
     const auto leftJacobian = [&](const Vec3& p) {
         const Vec3 wp = cross(omega, p);
         const Vec3 wwp = cross(omega, wp);
-        return Vec3{p.x + c1 * wp.x + c2 * wwp.x, p.y + c1 * wp.y + c2 * wwp.y, p.z + c1 * wp.z + c2 * wwp.z};
+        return Vec3{p.x + f1 * wp.x + f2 * wwp.x, p.y + f1 * wp.y + f2 * wwp.y, p.z + f1 * wp.z + f2 * wwp.z};
     };
     const double area = std::abs(dot(u, cross(leftJacobian(e), leftJacobian(cross(e, n)))));
-    const double stretch = std::abs(theta) < 1e-8 ? 1.0 : std::abs(theta / std::sin(theta));
+    const double stretch = std::abs(theta) < 1e-8 ? 1.0 : std::abs(theta / sin_theta);
     return area * 4.0 * k * k * stretch;
 }
 
@@ -57,7 +69,7 @@ int cavityNormals(const Vec3& d, const Vec3& n, const Vec3& target, int k, Cavit
         Vec3 h{c * n.x + s * en.x, c * n.y + s * en.y, c * n.z + s * en.z};
         if (h.z < 0.0) h = {-h.x, -h.y, -h.z};
         // J = dOmega_exit / dOmega_h in closed form (cavityJacobian).
-        const double jacobian = cavityJacobian(n, e, theta, k, target);
+        const double jacobian = cavityJacobian(n, e, theta, c, s, k, target);
         if (!(jacobian > 0.0)) continue;
         out[static_cast<std::size_t>(count++)] = {h, jacobian};
     }

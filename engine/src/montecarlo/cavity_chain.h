@@ -58,9 +58,11 @@ inline Vec3 mirrored(const Vec3& v, const Vec3& n) {
 Vec3 cavityExit(const Vec3& d, const Vec3& n, const Vec3& h, int k);
 
 // J = dOmega_u / dOmega_h at the normal h = n turned about the unit e
-// (normal to n) by theta, for u = cavityExit(d, n, h, k): k round trips turn
-// d about e by -2 k theta (4 |d.h| at k = 1).
-double cavityJacobian(const Vec3& n, const Vec3& e, double theta, int k, const Vec3& u);
+// (normal to n) by theta (its cosine and sine given), for u =
+// cavityExit(d, n, h, k): k round trips turn d about e by -2 k theta
+// (4 |d.h| at k = 1).
+double cavityJacobian(const Vec3& n, const Vec3& e, double theta, double cos_theta, double sin_theta, int k,
+                      const Vec3& u);
 
 // The normals h (upper hemisphere) with cavityExit(d, n, h, k) = target, each
 // with J = dOmega_exit / dOmega_h; returns how many (at most k, k <= kMaxCavityRoundTrips + 1).

@@ -55,8 +55,9 @@ inline Vec3 directionAround(const Vec3& axis, double cos_theta, double phi) {
 
 // One kind of flake in a slice: area density (one face per unit volume),
 // orientation distribution and reflectance / transmittance at the local
-// cosine. Mirror flakes are evaluated exactly; interference flakes from a
-// table (the thin-film average is costly), linearly interpolated.
+// cosine, linearly interpolated in tables: kMirrorTableSize cosines for
+// mirror flakes (their complex Fresnel is costly in the walk's inner loops),
+// the interference flakes' (the thin-film average) as the caller asks.
 struct FlakeKind {
     double area_density_per_um = 0.0;
     FlakeOrientation orientation{0.0};
@@ -74,7 +75,11 @@ struct FlakeKind {
 
     double R(double cos_local) const;
     double T(double cos_local) const;  // 0 for mirror flakes
+    // A mirror flake's R from its Fresnel formula (what table_R holds).
+    double exactR(double cos_local) const;
 };
+
+inline constexpr int kMirrorTableSize = 4097;
 
 struct Slice {
     double top_um = 0.0;
