@@ -41,12 +41,14 @@ namespace paintlab::mc {
 
 // The round trips (j) and the flakes gone back over (m) that the connections
 // take; the walk keeps longer chains. Every flight runs the chains with
-// j <= kCavityEveryFlightTrips, m >= 1 (the commonest); the others (more
-// round trips, or ending at c) are rarer and each costs up to j + 1 normals,
-// so a flight runs one of them, drawn uniformly and weighted by their count.
+// j <= kCavityEveryFlightTrips and 1 <= m <= kCavityEveryFlightRetrace (the
+// commonest); the others (more round trips or flakes, or ending at c) are
+// rarer and each costs up to j + 1 normals, so a flight runs one of them,
+// drawn uniformly and weighted by their count.
 inline constexpr int kMaxCavityRoundTrips = 3;
-inline constexpr int kMaxCavityRetrace = 2;
+inline constexpr int kMaxCavityRetrace = 4;
 inline constexpr int kCavityEveryFlightTrips = 1;
+inline constexpr int kCavityEveryFlightRetrace = 2;
 
 // v mirrored through the plane with unit normal n.
 inline Vec3 mirrored(const Vec3& v, const Vec3& n) {
@@ -89,7 +91,9 @@ struct CavityForm {
     int trips = 0;    // j
     int retrace = 0;  // m (0: ending at c)
     // Whether a flight runs this chain only when it is drawn (cavity_chain.h's limits).
-    bool drawn() const { return retrace == 0 || trips > kCavityEveryFlightTrips; }
+    bool drawn() const {
+        return retrace == 0 || trips > kCavityEveryFlightTrips || retrace > kCavityEveryFlightRetrace;
+    }
 };
 CavityForm cavityChainForm(std::span<const ChainChange> latest_first);
 inline int cavityChainLayer(std::span<const ChainChange> latest_first) {

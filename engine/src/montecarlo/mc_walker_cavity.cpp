@@ -124,8 +124,9 @@ double Walker::traceCavityChain(const Slice& s, const LayerFlakes& lf, const Cav
 // chain that ends at c), a flake c drawn through a point uniform on the
 // flight (last_flake.h's law): per sr of u the kernel A |v.h| D(h) rho R_c / J,
 // the flight's factors as the last-flake connections', times the traced
-// chain. The chains with j <= kCavityEveryFlightTrips, m >= 1 run on every
-// flight; of the others one, drawn uniformly, weighted by their count.
+// chain. The chains with j <= kCavityEveryFlightTrips and 1 <= m <=
+// kCavityEveryFlightRetrace run on every flight; of the others one, drawn
+// uniformly, weighted by their count.
 void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double length, double sigma) {
     if (!(length > 0.0) || bins.empty()) return;
     // x_1, x_2, ...: the latest changes, reflections off flakes of this layer.
@@ -142,21 +143,24 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
     if (!draw.ok) return;
     const CavityForms& run = settings.cavity_forms;
     if (run.every_flight)
-        for (int m = 1; m <= available; ++m)
+        for (int m = 1; m <= std::min(available, kCavityEveryFlightRetrace); ++m)
             for (int trips = 0; trips <= kCavityEveryFlightTrips; ++trips)
                 cavityFormConnection(s, lf, draw, trips, m, 1.0, chain_rng);
     if (!run.drawn) return;
-    // The drawn chain: with more round trips (m >= 1), or ending at c (m = 0, j >= 1).
-    const int deeper = kMaxCavityRoundTrips - kCavityEveryFlightTrips;
-    const int at_c = kMaxCavityRoundTrips;
-    const int forms = deeper * available + at_c;
+    // The drawn chain, uniformly among the others: ending at c (m = 0, j >= 1),
+    // more round trips, or more flakes gone back over.
+    const auto drawnForm = [](int trips, int m) { return CavityForm{0, trips, m}.drawn(); };
+    int forms = 0;
+    for (int m = 0; m <= available; ++m)
+        for (int trips = m == 0 ? 1 : 0; trips <= kMaxCavityRoundTrips; ++trips) forms += drawnForm(trips, m);
     if (forms <= 0) return;
-    const int pick = std::min(forms - 1, static_cast<int>(chain_rng.uniform() * forms));
-    if (pick < at_c)
-        cavityFormConnection(s, lf, draw, pick + 1, 0, forms, chain_rng);
-    else
-        cavityFormConnection(s, lf, draw, kCavityEveryFlightTrips + 1 + (pick - at_c) % deeper,
-                             1 + (pick - at_c) / deeper, forms, chain_rng);
+    int pick = std::min(forms - 1, static_cast<int>(chain_rng.uniform() * forms));
+    for (int m = 0; m <= available; ++m)
+        for (int trips = m == 0 ? 1 : 0; trips <= kMaxCavityRoundTrips; ++trips)
+            if (drawnForm(trips, m) && pick-- == 0) {
+                cavityFormConnection(s, lf, draw, trips, m, forms, chain_rng);
+                return;
+            }
 }
 
 void Walker::cavityFormConnection(const Slice& s, const LayerFlakes& lf, const ChainDraw& draw, int trips,

@@ -182,6 +182,9 @@ TEST(CavityChain, WhichEscapesEndACavityChain) {
     EXPECT_EQ(layer(history({a, b, c, again(b), again(a)})), 1);
     EXPECT_EQ(layer(history({a, b, again(a), again(b), again(a)})), 1);
     EXPECT_EQ(layer(history({top, a, b, again(a)})), 1);
+    // Back over three flakes (j 0, m 3): x3 x2 x1 c x1 x2 x3.
+    const mc::ChainChange d{5 * 64 + 1, true};
+    EXPECT_EQ(layer(history({a, b, c, d, again(c), again(b), again(a)})), 1);
     // Ending at c (m 0): x c x c (j 1), x c x c x c x c (j 3); three round
     // trips then back over x_2 (j 3, m 2).
     EXPECT_EQ(layer(history({a, b, again(a), again(b)})), 1);
