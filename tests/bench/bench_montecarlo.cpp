@@ -299,6 +299,9 @@ BENCHMARK(BM_McDemoOnePercent)
 //     mirror_chain_connections, the estimator before them)
 //   33 the histogram's remainder in the default alone (class Beam and part
 //     delta_first of class Other: what no walk or connection takes)
+//   34 the default without the drawn cavity chains (McSettings::cavity_forms:
+//     only j <= 1, m <= 2, the cavity connections before they came; the walks
+//     score the rest)
 // The figures quoted in docs/PERFORMANCE.md: see there (each row names its
 // arguments). Prints f, its standard error and the relative error per band
 // and geometry (stdout) and reports the worst relative error, the time 1 %
@@ -365,6 +368,7 @@ void BM_McExplicitBudget(benchmark::State& state) {
         s.histogram_other = mc::HistogramOtherParts::none();
         s.histogram_other.delta_first = true;
     }
+    if (config == 34) s.cavity_forms.drawn = false;
     if (config == 28) s.bottom_operator = false;  // the walk through the flake-free bottom (issue 30)
     applyBenchOverlaps(s);
     s.seed = benchSeed();
@@ -433,7 +437,7 @@ BENCHMARK(BM_McExplicitBudget)
     // Three-layer (issue 30): the bottom operator off, against /5/4/8 and /5/20/8.
     ->ArgsProduct({{28}, {4}, {8}})
     // Silver (issue 30): without the chain connections; the histogram's remainder.
-    ->ArgsProduct({{29, 30, 33}, {20, 200}, {8}})
+    ->ArgsProduct({{29, 30, 33, 34}, {20, 100, 200}, {8}})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);
