@@ -44,7 +44,8 @@ namespace paintlab::mc {
 // j <= kCavityEveryFlightTrips and 1 <= m <= kCavityEveryFlightRetrace (the
 // commonest); the others (more round trips or flakes, or ending at c) are
 // rarer and each costs up to j + 1 normals, so a flight runs one of them,
-// drawn uniformly and weighted by their count.
+// drawn uniformly and weighted by their count, when McSettings::cavity_forms
+// asks (off by default: docs/PERFORMANCE.md).
 inline constexpr int kMaxCavityRoundTrips = 3;
 inline constexpr int kMaxCavityRetrace = 4;
 inline constexpr int kCavityEveryFlightTrips = 1;

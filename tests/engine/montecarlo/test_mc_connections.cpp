@@ -539,8 +539,9 @@ TEST(MonteCarloConnections, CavityConnectionsAgreeWithTheDeltaWalksTheyReplace) 
     // next-event estimation through a flake c drawn on the flight from x;
     // the delta walks without them score the same escapes when a real c
     // happens to send the light back and x into a cone. stackedMirrorFilm,
-    // at the specular, normal and back-scatter exits; alone and with the
-    // last-flake connections (each takes its own escapes from the walk).
+    // at the specular, normal and back-scatter exits; alone, with the
+    // last-flake connections (each takes its own escapes from the walk), and
+    // with the drawn chains too (McSettings::cavity_forms).
     // Statistics as in LastFlakeConnectionsAgreeWithTheDeltaWalksTheyReplace
     // (kZ = 4, 16 batches each, independent seeds and tiles; the walks must
     // resolve the part: mean > 10 errors); the walks run 400k paths, the
@@ -558,15 +559,18 @@ TEST(MonteCarloConnections, CavityConnectionsAgreeWithTheDeltaWalksTheyReplace) 
     s.mirror_chain_connections = false;
     const auto walks = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
     s.max_paths = 100000;
-    for (const bool with_last_flake : {false, true}) {
+    for (const int run : {0, 1, 2}) {
         s.seed += 1;
         s.cavity_connections = true;
-        s.last_flake_connections = with_last_flake;
+        s.last_flake_connections = run >= 1;
+        s.cavity_forms.drawn = run == 2;
         const auto connected = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
         for (std::size_t k = 0; k < req[0].wo.size(); ++k) {
             const auto& a = connected.bands[0][0].brdf_per_sr[k];
             const auto& b = walks.bands[0][0].brdf_per_sr[k];
-            const std::string what = with_last_flake ? "cavity and last-flake" : "cavity";
+            const std::string what =
+                run == 0 ? "cavity"
+                         : (run == 1 ? "cavity and last-flake" : "every cavity chain and last-flake");
             std::printf("exit %zu: %s connections %.5g +- %.2g, delta walks %.5g +- %.2g\n", k, what.c_str(),
                         a.mean, a.std_error, b.mean, b.std_error);
             EXPECT_GT(b.mean, 10.0 * b.std_error) << "exit " << k;

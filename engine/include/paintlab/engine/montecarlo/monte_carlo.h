@@ -60,14 +60,16 @@ struct ConnectionParts {
 };
 
 // Which cavity chains (McSettings::cavity_connections, engine/src/montecarlo/
-// cavity_chain.h) the connections take (diagnostics and tests; all by
-// default): those every flight runs, the drawn ones (more round trips, or
-// ending at c); the walks score the escapes of the others. walk_scores:
-// All, or only the escapes that end a drawn chain (a reference for the drawn
-// forms alone), or None (the connections alone).
+// cavity_chain.h) the connections take: those every flight runs, the drawn
+// ones (more round trips or flakes, or ending at c; off by default: on
+// silver metallic they save 5-22 % of the time to 1 %, on the fast-vs-full
+// grid's black-backed aluminium they cost up to 55 % more, docs/PERFORMANCE.md);
+// the walks score the escapes of the others. walk_scores (tests): All, or
+// only the escapes that end a drawn chain (a reference for the drawn forms
+// alone), or None (the connections alone).
 struct CavityForms {
     bool every_flight = true;
-    bool drawn = true;
+    bool drawn = false;
     enum class WalkScores { All, DrawnOnly, None };
     WalkScores walk_scores = WalkScores::All;
 };
