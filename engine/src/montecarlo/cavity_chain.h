@@ -86,7 +86,7 @@ struct ChainChange {
 // Whether the changes so far (latest first; every change the ring still
 // holds) end in a cavity chain with j <= kMaxCavityRoundTrips and
 // m <= kMaxCavityRetrace (m = 0: at c, j >= 1), all of its flakes in one
-// layer: that chain (cavityChainForm), its layer or -1 (cavityChainLayer).
+// layer: that chain (layer -1: none).
 struct CavityForm {
     int layer = -1;   // -1: no cavity chain
     int trips = 0;    // j
@@ -97,9 +97,6 @@ struct CavityForm {
     }
 };
 CavityForm cavityChainForm(std::span<const ChainChange> latest_first);
-inline int cavityChainLayer(std::span<const ChainChange> latest_first) {
-    return cavityChainForm(latest_first).layer;
-}
 
 // Whether the connections take a matched chain (McSettings::cavity_forms).
 inline bool cavityFormTaken(const CavityForms& forms, const CavityForm& form) {

@@ -63,9 +63,9 @@ FlakeKind mirrorKind(const MirrorFlakeContent& f, double binder_n, const FlakeKi
     k.has_metal_index = f.metal_index.has_value();
     if (f.metal_index) k.metal_index = *f.metal_index;
     k.reflectance_normal = f.reflectance.value_or(0.0);
-    // R on a fine table: the complex Fresnel (csqrt, complex division) was
-    // ~13 % of silver metallic's time; linear interpolation on 4096
-    // intervals is within ~1e-7 of it (FlakeKindTest).
+    // R from a table: the complex Fresnel (csqrt, complex division) is costly
+    // in the walk's inner loops; linear on 1024 intervals it is within ~1e-6
+    // of the formula (FlakeKindTest), and 8 kB stay in cache.
     k.table_R.resize(static_cast<std::size_t>(kMirrorTableSize));
     for (int i = 0; i < kMirrorTableSize; ++i) {
         const double c = static_cast<double>(i) / (kMirrorTableSize - 1);

@@ -79,7 +79,7 @@ struct FlakeKind {
     double exactR(double cos_local) const;
 };
 
-inline constexpr int kMirrorTableSize = 4097;
+inline constexpr int kMirrorTableSize = 1025;
 
 struct Slice {
     double top_um = 0.0;

@@ -149,18 +149,17 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
     if (!run.drawn) return;
     // The drawn chain, uniformly among the others: ending at c (m = 0, j >= 1),
     // more round trips, or more flakes gone back over.
-    const auto drawnForm = [](int trips, int m) { return CavityForm{0, trips, m}.drawn(); };
+    std::array<CavityForm, static_cast<std::size_t>((kMaxCavityRetrace + 1) * (kMaxCavityRoundTrips + 1))>
+        drawn{};
     int forms = 0;
     for (int m = 0; m <= available; ++m)
-        for (int trips = m == 0 ? 1 : 0; trips <= kMaxCavityRoundTrips; ++trips) forms += drawnForm(trips, m);
-    if (forms <= 0) return;
-    int pick = std::min(forms - 1, static_cast<int>(chain_rng.uniform() * forms));
-    for (int m = 0; m <= available; ++m)
         for (int trips = m == 0 ? 1 : 0; trips <= kMaxCavityRoundTrips; ++trips)
-            if (drawnForm(trips, m) && pick-- == 0) {
-                cavityFormConnection(s, lf, draw, trips, m, forms, chain_rng);
-                return;
-            }
+            if (const CavityForm form{s.layer, trips, m}; form.drawn())
+                drawn[static_cast<std::size_t>(forms++)] = form;
+    if (forms == 0) return;
+    const CavityForm& pick =
+        drawn[static_cast<std::size_t>(std::min(forms - 1, static_cast<int>(chain_rng.uniform() * forms)))];
+    cavityFormConnection(s, lf, draw, pick.trips, pick.retrace, forms, chain_rng);
 }
 
 void Walker::cavityFormConnection(const Slice& s, const LayerFlakes& lf, const ChainDraw& draw, int trips,

@@ -532,6 +532,18 @@ Recipe stackedMirrorFilm() {
     return r;
 }
 
+// On it, the delta walks alone (one per path, no chain connections), scoring
+// f at 10 degree cones from an 800-flake tile.
+mc::McSettings stackedMirrorDeltaWalks(std::int64_t paths, std::uint64_t seed) {
+    auto s = explicitSettings(paths, 10.0, seed);
+    s.tile_flakes = 800;
+    s.delta_rate = 1.0;
+    s.histogram_classes = mc::HistogramClasses::none();
+    s.connection_parts = onlyPart(&mc::ConnectionParts::delta_walks);
+    s.mirror_chain_connections = false;
+    return s;
+}
+
 TEST(MonteCarloConnections, CavityConnectionsAgreeWithTheDeltaWalksTheyReplace) {
     // The cavity connections (McSettings::cavity_connections, cavity_chain.h)
     // score the delta chains' escapes in which light caught between two
@@ -551,12 +563,7 @@ TEST(MonteCarloConnections, CavityConnectionsAgreeWithTheDeltaWalksTheyReplace) 
     // +6.8 / +6.6. ~20 CPU s.
     const Recipe r = stackedMirrorFilm();
     const std::vector<mc::IncidenceRequest> req = specularNormalAndBackscatter();
-    auto s = explicitSettings(400000, 10.0, 91);
-    s.tile_flakes = 800;
-    s.delta_rate = 1.0;
-    s.histogram_classes = mc::HistogramClasses::none();
-    s.connection_parts = onlyPart(&mc::ConnectionParts::delta_walks);
-    s.mirror_chain_connections = false;
+    auto s = stackedMirrorDeltaWalks(400000, 91);
     const auto walks = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
     s.max_paths = 100000;
     for (const int run : {0, 1, 2}) {
@@ -593,12 +600,7 @@ TEST(MonteCarloConnections, DrawnCavityChainsAgreeWithTheWalksEscapes) {
     // half or more fails (the forms' weight left out, /5 to /7: z -6 to -9).
     const Recipe r = stackedMirrorFilm();
     const std::vector<mc::IncidenceRequest> req = specularNormalAndBackscatter();
-    auto s = explicitSettings(800000, 10.0, 191);
-    s.tile_flakes = 800;
-    s.delta_rate = 1.0;
-    s.histogram_classes = mc::HistogramClasses::none();
-    s.connection_parts = onlyPart(&mc::ConnectionParts::delta_walks);
-    s.mirror_chain_connections = false;
+    auto s = stackedMirrorDeltaWalks(800000, 191);
     s.cavity_forms.walk_scores = mc::CavityForms::WalkScores::DrawnOnly;
     const auto walks = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
     s.seed += 1;

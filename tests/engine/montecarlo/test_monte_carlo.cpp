@@ -96,9 +96,10 @@ TEST(FlakeKindTest, MirrorTableFollowsTheFresnelFormula) {
     // the nodes, for aluminium at 380 nm and 550 nm (Rakic; the demo's
     // silver), a low-k metal (n 0.3, k 2.5: a steeper grazing dip) in a
     // binder of 1.5, and a mirror given by its normal reflectance. Tolerance
-    // 1e-6: the interpolation error h^2 / 8 max|R''| (h = 1 / 4096) stays
-    // below 1e-7 unless |R''| > 13 (measured: 7e-9 to 7e-8); the exact
-    // formula is what the fast model and the tests' references use.
+    // 1e-5: the interpolation error h^2 / 8 max|R''| (h = 1 / 1024) stays
+    // below it unless |R''| > 80, and is 1,000 times below the full model's
+    // 1 % target; the exact formula is what the fast model and the tests'
+    // references use. A table 4 times coarser fails it at aluminium.
     for (const auto& [n, k] : {std::pair{0.48787, 4.8355}, std::pair{1.0152, 6.6273}, std::pair{0.3, 2.5}}) {
         Recipe r = test::oneLayerRecipe(1.5, 10.0, BlackSubstrate{});
         MirrorFlake flake = test::mirrorFlake(0.04, 12.0, 0.9);
@@ -115,7 +116,7 @@ TEST(FlakeKindTest, MirrorTableFollowsTheFresnelFormula) {
             worst = std::max(worst, std::abs(kind.R(c) - kind.exactR(c)));
         }
         std::printf("metal %.3g + %.3gi: worst |R_table - R| %.2g\n", n, k, worst);
-        EXPECT_LT(worst, 1e-6);
+        EXPECT_LT(worst, 1e-5);
     }
     Recipe r = test::oneLayerRecipe(1.5, 10.0, BlackSubstrate{});
     r.layers[0].components = {test::mirrorFlake(0.04, 12.0, 0.9)};
@@ -123,7 +124,7 @@ TEST(FlakeKindTest, MirrorTableFollowsTheFresnelFormula) {
     const mc::FlakeKind& kind = stack.slices.front().flakes.front();
     for (int i = 0; i < 2000; ++i) {
         const double c = (i + 0.37) / 2000.0;
-        EXPECT_NEAR(kind.R(c), kind.exactR(c), 1e-6);
+        EXPECT_NEAR(kind.R(c), kind.exactR(c), 1e-5);
     }
 }
 

@@ -61,10 +61,9 @@ struct ConnectionParts {
 
 // Which cavity chains (McSettings::cavity_connections, engine/src/montecarlo/
 // cavity_chain.h) the connections take: those every flight runs, the drawn
-// ones (more round trips or flakes, or ending at c; off by default: on
-// silver metallic they save 5-22 % of the time to 1 %, on the fast-vs-full
-// grid's black-backed aluminium they cost up to 55 % more, docs/PERFORMANCE.md);
-// the walks score the escapes of the others. walk_scores (tests): All, or
+// ones (more round trips or flakes, or ending at c; off by default: they pay
+// on silver metallic but cost more than they give on black-backed aluminium,
+// docs/PERFORMANCE.md); the walks score the escapes of the others. walk_scores (tests): All, or
 // only the escapes that end a drawn chain (a reference for the drawn forms
 // alone), or None (the connections alone).
 struct CavityForms {
