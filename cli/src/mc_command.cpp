@@ -100,7 +100,8 @@ mc::McSettings mcSettings(const McOptions& o) {
     s.tile_views = o.tile_views;
     s.batches = o.batches;
     s.bottom_operator = o.bottom_operator == "on";
-    s.mirror_chain_connections = o.chain_connections == "on";
+    s.mirror_chain_connections = o.chain_connections != "off";
+    s.last_flake_connections = s.cavity_connections = o.chain_connections == "all";
     s.histogram_cone_deg = o.cone_deg > 0.0 ? o.cone_deg : (o.explicit_flakes ? 5.0 : 0.0);
     s.max_paths = has_samples ? o.samples : kDefaultSamples;
     if (has_rel_error) {
@@ -160,6 +161,9 @@ ordered_json settingsJson(const mc::McSettings& s, const mc::McResult& r) {
             {"batches", s.batches},
             {"bottom_operator", s.bottom_operator},
             {"chain_connections", s.mirror_chain_connections},
+            {"chain_connections_layers", s.last_flake_connections && s.cavity_connections ? "all flake layers"
+                                         : s.mirror_chain_connections                     ? "mirror-flake layers"
+                                                                                          : "none"},
             {"connections", s.explicit_flakes && s.connections},
             {"tile_views", s.explicit_flakes ? s.tile_views : 1},
             {"glint_azimuths", s.explicit_flakes && s.connections && s.glint_azimuths},
@@ -441,8 +445,9 @@ void addStopOptions(CLI::App* command, McOptions& o) {
                      "With --explicit-flakes: on: the chains of mirror reflections in layers of mirror "
                      "flakes whose last flake is met once, or that leave a cavity between two flakes the "
                      "way they came, are scored by connections through a flake drawn with the tiles' law; "
+                     "all: the same on every flake layer, interference flakes too; "
                      "off: the walks land them in the cones by chance")
-        ->check(CLI::IsMember({"on", "off"}))
+        ->check(CLI::IsMember({"on", "all", "off"}))
         ->capture_default_str();
     command
         ->add_option("--batches", o.batches,

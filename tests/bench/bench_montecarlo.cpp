@@ -368,6 +368,7 @@ void BM_McExplicitBudget(benchmark::State& state) {
         s.histogram_other.delta_first = true;
     }
     if (config == 34) s.cavity_forms.drawn = true;
+    if (config == 35) s.last_flake_connections = s.cavity_connections = true;
     if (config == 28) s.bottom_operator = false;  // the walk through the flake-free bottom (issue 30)
     applyBenchOverlaps(s);
     s.seed = benchSeed();
@@ -436,7 +437,7 @@ BENCHMARK(BM_McExplicitBudget)
     // Three-layer (issue 30): the bottom operator off, against /5/4/8 and /5/20/8.
     ->ArgsProduct({{28}, {4}, {8}})
     // Silver (issue 30): without the chain connections; the histogram's remainder.
-    ->ArgsProduct({{29, 30, 33, 34}, {20, 100, 200}, {8}})
+    ->ArgsProduct({{29, 30, 33, 34, 35}, {20, 100, 200}, {8}})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);

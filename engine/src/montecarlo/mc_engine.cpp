@@ -24,6 +24,8 @@ using Clock = std::chrono::steady_clock;
 constexpr double kRoundShare = 0.5;
 // Paths per chunk of the pilot round behind an error target (the budget a safety net).
 constexpr std::int64_t kPilotChunkPaths = 16;
+// Behind an error target, the first round after the pilot is this fraction of a full round.
+constexpr std::int64_t kFirstTargetRoundShare = 4;
 
 // The estimates of a job from its batches' sums: over the batches' means
 // when the batches trace different tiles, else over paths.
@@ -61,16 +63,35 @@ JobResult finish(const JobRunner& runner, const std::vector<Sums>& batches, bool
     return r;
 }
 
-// The stop rule's error target: the albedo, every f and the projection's order-0 entries.
-bool converged(const JobResult& r, double target, int orders) {
-    if (!(target > 0.0)) return false;
+// The stop rule's error: the largest relative error of the albedo, every f
+// and the projection's order-0 entries.
+double worstRelError(const JobResult& r, int orders) {
     const IncidenceResult& inc = r.incidence;
-    if (inc.albedo.relError() > target) return false;
-    for (const auto& e : inc.brdf_per_sr)
-        if (e.relError() > target) return false;
+    double worst = inc.albedo.relError();
+    for (const auto& e : inc.brdf_per_sr) worst = std::max(worst, e.relError());
     for (std::size_t k = 0; k < r.projection.size(); k += static_cast<std::size_t>(std::max(1, orders)))
-        if (r.projection[k].relError() > target) return false;
-    return true;
+        worst = std::max(worst, r.projection[k].relError());
+    return worst;
+}
+
+bool converged(const JobResult& r, double target, int orders) {
+    return target > 0.0 && worstRelError(r, orders) <= target;
+}
+
+// Behind an error target: the paths of the next round, from those the
+// estimates so far predict (errors fall as 1 / sqrt(paths)), 10 % over so
+// that a round seldom ends just short, within [first_round / 4, full_round].
+// The first round after the pilot is `first_round`: the stop rule reads the
+// batches' spread only from there on (fixed rounds of a full round's paths
+// had run the paints that converge within one well past the target).
+std::int64_t targetRoundPaths(const JobResult& current, double target, int orders, std::int64_t kept,
+                              std::int64_t first_round, std::int64_t full_round) {
+    if (kept <= 0) return first_round;
+    const double ratio = worstRelError(current, orders) / target;
+    const double needed = static_cast<double>(kept) * (1.1 * ratio * ratio - 1.0);
+    const std::int64_t min_round = std::max<std::int64_t>(1, first_round / 4);
+    if (!(needed < static_cast<double>(full_round))) return full_round;  // NaN too
+    return std::clamp<std::int64_t>(static_cast<std::int64_t>(needed), min_round, full_round);
 }
 
 }  // namespace
@@ -210,6 +231,8 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
     Sums seen(runner.entries(), runner.coneStats());  // every path so far, for the adaptive rates
     bool pilot_dropped = false;
     const std::int64_t full_round = chunk * std::max(1, m_settings.chunks_per_round);
+    // Behind an error target: the first round after the pilot, and the paths the stop rule waits for.
+    const std::int64_t first_target_round = std::max<std::int64_t>(1, full_round / kFirstTargetRoundShare);
     const auto paths_start = Clock::now();  // the pace leaves out the estimators' set-up above
     while (started < max_paths) {
         // One round of chunks in parallel; summed in chunk order (deterministic).
@@ -217,7 +240,8 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
         std::int64_t round_chunk = chunk;
         std::int64_t round_chunks =
             std::min<std::int64_t>(std::max(1, m_settings.chunks_per_round), (remaining + chunk - 1) / chunk);
-        if (budget_seconds > 0.0) {
+        const bool target = m_settings.target_rel_error > 0.0;
+        if (budget_seconds > 0.0 || target) {
             // A time budget: the stop is checked between rounds only, and a
             // path's cost varies ~100x between paints and between the normal
             // and the oblique incidence (whose reverse walks run a deep white
@@ -229,21 +253,27 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
             // whole budget) and half the time left (kRoundShare: the pace of a
             // shared machine drifts within a job, and only the rounds after an
             // overrun can absorb it). Behind an error target the budget is a
-            // safety net, and the full rounds of before keep the adaptive
-            // rates' first fit on a full round of paths.
-            const bool budget_stops = !(m_settings.target_rel_error > 0.0);
-            const double elapsed = std::chrono::duration<double>(Clock::now() - job_start).count();
-            std::int64_t paths = round_chunks * (budget_stops ? 1 : std::min(chunk, kPilotChunkPaths));
+            // safety net, and the rounds are sized to the paths the errors so
+            // far predict (targetRoundPaths).
+            std::int64_t paths = round_chunks * (target ? std::min(chunk, kPilotChunkPaths) : 1);
             if (started > 0) {
-                const double seconds_per_path =
-                    std::chrono::duration<double>(Clock::now() - paths_start).count() /
-                    static_cast<double>(started);
-                const double affordable = std::max(0.0, budget_seconds - elapsed) / seconds_per_path;
-                // Not one more path within the budget (unless the pilot's paths were just dropped).
-                if (affordable < 1.0 && current.incidence.paths > 0) break;
-                double cap = std::min(affordable, static_cast<double>(remaining));
-                if (budget_stops)
-                    cap = std::min({cap, kRoundShare * affordable, 2.0 * static_cast<double>(started)});
+                double cap = static_cast<double>(remaining);
+                if (budget_seconds > 0.0) {
+                    const double elapsed = std::chrono::duration<double>(Clock::now() - job_start).count();
+                    const double seconds_per_path =
+                        std::chrono::duration<double>(Clock::now() - paths_start).count() /
+                        static_cast<double>(started);
+                    const double affordable = std::max(0.0, budget_seconds - elapsed) / seconds_per_path;
+                    // Not one more path within the budget (unless the pilot's paths were just dropped).
+                    if (affordable < 1.0 && current.incidence.paths > 0) break;
+                    cap = std::min(cap, affordable);
+                    if (!target)
+                        cap = std::min({cap, kRoundShare * affordable, 2.0 * static_cast<double>(started)});
+                }
+                if (target)
+                    cap = std::min(cap, static_cast<double>(targetRoundPaths(
+                                            current, m_settings.target_rel_error, job.orders,
+                                            current.incidence.paths, first_target_round, full_round)));
                 paths = std::max<std::int64_t>(1, static_cast<std::int64_t>(cap));
             }
             round_chunks = std::min(round_chunks, std::max<std::int64_t>(1, paths));
@@ -290,10 +320,13 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
         // The stop rule reads the spread of the batches: only once every batch has paths
         // (a spread over a few batches of one chunk each is itself too uncertain to stop on),
         // and not before one full round's paths (a budget's first rounds are small: an
-        // error read off a few dozen paths could stop the job on a low draw).
+        // error read off a few dozen paths could stop the job on a low draw), or
+        // behind an error target the first round's kept paths.
         const bool every_batch = !over_batches || std::all_of(batches.begin(), batches.end(),
                                                               [](const Sums& b) { return b.paths > 0; });
-        const bool enough = started >= std::min(max_paths, full_round);
+        const bool enough = m_settings.target_rel_error > 0.0
+                                ? current.incidence.paths >= std::min(max_paths, first_target_round)
+                                : started >= std::min(max_paths, full_round);
         if (out_of_time || (!dropped_now && every_batch && enough &&
                             converged(current, m_settings.target_rel_error, job.orders)))
             break;
