@@ -53,10 +53,11 @@ struct McOptions {
     bool histogram_only = false;  // explicit flakes: the cone histogram alone (no connections)
     int tile_views = 32;          // explicit flakes: azimuths each tile is traced at
     int batches = mc::McSettings{}.batches;
-    std::string bottom_operator = "on";    // the flake-free bottom as one reflecting surface (mc_bottom.h)
-    std::string chain_connections = "on";  // last-flake and cavity connections on mirror-flake layers
-    bool table = false;                    // mc: tabulate on the fast model's basis (mc_table.h)
-    double step_deg = 5.0;                 // mc --table: angular step of the written table
+    std::string bottom_operator = "on";  // the flake-free bottom as one reflecting surface (mc_bottom.h)
+    std::string chain_connections =
+        "all";              // last-flake and cavity connections: on = mirror-flake layers only
+    bool table = false;     // mc: tabulate on the fast model's basis (mc_table.h)
+    double step_deg = 5.0;  // mc --table: angular step of the written table
 };
 
 constexpr std::int64_t kDefaultSamples = 20000;
@@ -101,7 +102,7 @@ mc::McSettings mcSettings(const McOptions& o) {
     s.batches = o.batches;
     s.bottom_operator = o.bottom_operator == "on";
     s.mirror_chain_connections = o.chain_connections != "off";
-    s.last_flake_connections = s.cavity_connections = o.chain_connections == "all";
+    s.interference_chain_connections = o.chain_connections == "all";
     s.histogram_cone_deg = o.cone_deg > 0.0 ? o.cone_deg : (o.explicit_flakes ? 5.0 : 0.0);
     s.max_paths = has_samples ? o.samples : kDefaultSamples;
     if (has_rel_error) {
@@ -160,10 +161,10 @@ ordered_json settingsJson(const mc::McSettings& s, const mc::McResult& r) {
                                                        : std::to_string(s.flake_polygon_sides) + "-gon"},
             {"batches", s.batches},
             {"bottom_operator", s.bottom_operator},
-            {"chain_connections", s.mirror_chain_connections},
-            {"chain_connections_layers", s.last_flake_connections && s.cavity_connections ? "all flake layers"
-                                         : s.mirror_chain_connections                     ? "mirror-flake layers"
-                                                                                          : "none"},
+            {"chain_connections", s.mirror_chain_connections || s.interference_chain_connections},
+            {"chain_connections_layers", s.interference_chain_connections ? "all flake layers"
+                                         : s.mirror_chain_connections     ? "mirror-flake layers"
+                                                                          : "none"},
             {"connections", s.explicit_flakes && s.connections},
             {"tile_views", s.explicit_flakes ? s.tile_views : 1},
             {"glint_azimuths", s.explicit_flakes && s.connections && s.glint_azimuths},

@@ -356,7 +356,7 @@ void BM_McExplicitBudget(benchmark::State& state) {
         s.histogram_classes = mc::HistogramClasses::none();
     }
     if (config == 26 || config == 27) s.last_flake_connections = true;
-    if (config == 29 || config == 30) s.mirror_chain_connections = false;
+    if (config == 29 || config == 30) s.mirror_chain_connections = s.interference_chain_connections = false;
     if (config == 33) {
         // The histogram's remainder in the default: class Beam and the part of
         // class Other that no walk or connection takes (delta_first).
@@ -368,7 +368,8 @@ void BM_McExplicitBudget(benchmark::State& state) {
         s.histogram_other.delta_first = true;
     }
     if (config == 34) s.cavity_forms.drawn = true;
-    if (config == 35) s.last_flake_connections = s.cavity_connections = true;
+    if (config == 35) s.interference_chain_connections = false;  // before 2026-12-05 (nineteenth session)
+    if (config == 36) s.connection_parts.forward_chains = false;
     if (config == 28) s.bottom_operator = false;  // the walk through the flake-free bottom (issue 30)
     applyBenchOverlaps(s);
     s.seed = benchSeed();
@@ -431,13 +432,13 @@ BENCHMARK(BM_McExplicitBudget)
     ->ArgsProduct({{5, 19, 20, 21, 22, 23, 24}, {20, 200}, {8}})
     ->Args({5, 4, 8})  // with 25: /5/20/8 and /5/200/8 are registered once, above
     ->ArgsProduct({{25}, {4, 20, 200}, {8}})
-    ->ArgsProduct({{26, 27}, {20, 200}, {8}})
+    ->ArgsProduct({{26, 27}, {20, 100, 200}, {8}})
     // Silver (issue 30): one tile, the first-flake walks, no roulette by promise.
     ->ArgsProduct({{6, 17, 18}, {200}, {8}})
     // Three-layer (issue 30): the bottom operator off, against /5/4/8 and /5/20/8.
     ->ArgsProduct({{28}, {4}, {8}})
     // Silver (issue 30): without the chain connections; the histogram's remainder.
-    ->ArgsProduct({{29, 30, 33, 34, 35}, {20, 100, 200}, {8}})
+    ->ArgsProduct({{29, 30, 33, 34, 35, 36}, {20, 100, 200}, {8}})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);

@@ -35,11 +35,13 @@
 // dOmega_u = 4 |v.h| dOmega_h, so the connection's kernel is the continuum's,
 // A R(|v.h|) D(h) rho / 4 per sr and µm (Slice::kernel), times the straight
 // transmittance from the flake to the ambient through the real tiles
-// (straightToAmbient). A flake c that the path itself would have met earlier
-// (one of its previous legs crosses c's polygon) would have changed the path:
-// such a path meets c twice, which is the walk's part, not this one's
-// (Walker::lastFlakeConnections tests the legs; Walker::meetFlake sorts the
-// walk's escapes). Mecke's formula holds for each of the two parts alone.
+// (straightToAmbient). Where one of the path's previous legs crosses c's
+// polygon, the path with c in the tile is the branch that passed c there:
+// the score carries c's T at each such crossing (0 for a mirror flake:
+// Walker::legsTransmittance). A path that reflected off a flake before and
+// does again is the walk's part, not this one's (Walker::meetFlake records
+// reflections only, and sorts the walk's escapes). Mecke's formula holds for
+// each of the two parts alone.
 //
 // Where the tiles differ from independent flakes, so does this estimate:
 // a tile has exactly N flakes (one more than the Palm law's N - 1: a relative

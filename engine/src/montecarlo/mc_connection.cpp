@@ -39,6 +39,23 @@ TileHit firstFlakeAlong(const LayerFlakes& lf, double x, double y, double depth,
     return first;
 }
 
+TileHit targetFlakeAlong(const LayerFlakes& lf, double x, double y, double depth, const Vec3& u,
+                         double length, std::int64_t target, double& T, std::int64_t* rays) {
+    TileHit found;
+    const bool passed =
+        marchTile(*lf.tile, x, y, depth, u, length, rays, [&](const FlakeHit& hit, double travelled) {
+            if (hit.flake == target) {
+                found = {hit, x + u.x * hit.t, y + u.y * hit.t};
+                found.hit.t += travelled;
+                return false;
+            }
+            T *= lf.kinds[static_cast<std::size_t>(hit.kind)].T(std::abs(dot(u, hit.normal)));
+            return T > 0.0;
+        });
+    if (passed) found = {{}, x, y};
+    return found;
+}
+
 double layerOpticalDepth(const PaintStack& stack, int layer, double depth_a, double depth_b, double abs_mu) {
     const double lo = std::min(depth_a, depth_b);
     const double hi = std::max(depth_a, depth_b);

@@ -199,7 +199,8 @@ McEngine::Band McEngine::band(double wavelength_nm) const {
             const bool mirrors =
                 !kinds[l].empty() && std::none_of(kinds[l].begin(), kinds[l].end(),
                                                   [](const FlakeKind& k) { return k.interference; });
-            const bool auto_on = m_settings.mirror_chain_connections && mirrors;
+            const bool auto_on = mirrors ? m_settings.mirror_chain_connections
+                                         : !kinds[l].empty() && m_settings.interference_chain_connections;
             const bool last_on = m_settings.last_flake_connections || auto_on;
             const bool cavity_on = m_settings.cavity_connections || auto_on;
             const bool law = (last_on || cavity_on) && !m_settings.reject_overlaps &&

@@ -194,10 +194,13 @@ int Walker::traceTile(const Slice& s, double sigma, double t, double to_boundary
 bool Walker::explicitFlakeEvent(const FlakeKind& f, const Vec3& n, int layer, std::int64_t flake, int kind) {
     if (history.path_class == PathClass::Beam) history.beam_flake_layer = layer;
     // The last-flake connections take the escapes after a reflection off a flake
-    // met for the first time whose orientation law has a density (not the
-    // delta); the walk keeps the others (escape, last_flake.h).
-    const bool met_before = chainRecording() && flake >= 0 && meetFlake(layer, flake);
-    const int flake_layer = f.orientation.isDelta() || met_before ? -1 : layer;
+    // reflected off for the first time whose orientation law has a density (not
+    // the delta); the walk keeps the others (escape, last_flake.h). Passing a
+    // flake is not meeting it: the connections weigh such a flake by its T.
+    const auto reflected_layer = [&] {
+        const bool met_before = chainRecording() && flake >= 0 && meetFlake(layer, flake);
+        return f.orientation.isDelta() || met_before ? -1 : layer;
+    };
     const std::int64_t flake_id = flake >= 0 ? flake * 64 + layer : -1;
     const double vn = dot(v, n);
     const double c = std::abs(vn);
@@ -221,14 +224,14 @@ bool Walker::explicitFlakeEvent(const FlakeKind& f, const Vec3& n, int layer, st
         weight *= R;
         v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
         history.flakeReflection(layer);
-        changedAtVertex(flake_layer, flake_id, n, kind);
+        changedAtVertex(reflected_layer(), flake_id, n, kind);
         return roulette() && promiseRoulette();
     }
     const double u = rng.uniform();
     if (u < R) {
         v = {v.x - 2.0 * vn * n.x, v.y - 2.0 * vn * n.y, v.z - 2.0 * vn * n.z};
         history.flakeReflection(layer);
-        changedAtVertex(flake_layer, flake_id, n, kind);
+        changedAtVertex(reflected_layer(), flake_id, n, kind);
         return roulette() && promiseRoulette();
     }
     return u < R + f.T(c);

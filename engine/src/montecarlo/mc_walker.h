@@ -16,6 +16,8 @@
 
 namespace paintlab::mc {
 
+struct LastFlakeLaw;
+
 // What a walk (and the branches split off it) carried out and cost.
 struct WalkTally {
     double transmitted = 0.0;    // into a transparent substrate
@@ -105,13 +107,14 @@ struct Walker {
     // lateral position without the tile's wraps, the path's last vertices
     // (where its straight legs meet; a ring of the latest kLegVertices), and
     // the layer of the flake whose reflection was the last direction change
-    // (-1: another change, or a flake the path met before: the walk scores
-    // those escapes, the connections only the last flakes met once), and the
-    // flakes met so far (layer, index; a ring of the latest kLegVertices).
+    // (-1: another change, or a flake the path reflected off before: the walk
+    // scores those escapes, the connections only the last flakes met once), and
+    // the flakes reflected off so far (layer, index; a ring of the latest
+    // kLegVertices; passing a flake is not meeting it).
     static constexpr int kLegVertices = 32;
     std::array<std::int64_t, kLegVertices> met{};
     int met_count = 0;
-    // Records flake `flake` of `layer` as met; returns whether it was met before.
+    // Records a reflection off flake `flake` of `layer`; returns whether the path reflected off it before.
     bool meetFlake(int layer, std::int64_t flake) {
         const std::int64_t id = flake * 64 + layer;
         const int stored = met_count < kLegVertices ? met_count : kLegVertices;
@@ -264,10 +267,11 @@ struct Walker {
     // Their chain from the drawn flake c (mc_walker_cavity.cpp).
     struct CavityLeg;
     double traceCavityChain(const Slice& s, const LayerFlakes& lf, const CavityLeg& leg) const;
-    // Whether one of the path's previous legs crosses the disk (centre, unit normal n, radius) within
-    // the layer's depths [top_um, bottom_um].
-    bool legsCross(const Vec3& centre, const Vec3& n, double radius_um, double top_um,
-                   double bottom_um) const;
+    // The transmittance of a drawn flake c of `kind` (centre, unit normal n, radius) to the path's
+    // previous legs: the product of its T over the legs that cross it within the layer's depths
+    // (with c in the tile, the path so far is the branch that passed c there; a mirror: 0).
+    double legsTransmittance(const Vec3& centre, const Vec3& n, double radius_um, const FlakeKind& kind,
+                             const LastFlakeLaw& law) const;
     // Reverse walk: the estimates from a pigment collision and from the smooth substrate.
     void reverseFromPigment(const Slice& s, double sigma);
     void reverseFromLambert(const Slice& s);

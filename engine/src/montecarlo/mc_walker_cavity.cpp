@@ -80,10 +80,11 @@ double Walker::traceCavityChain(const Slice& s, const LayerFlakes& lf, const Cav
         double t = 0.0;
         Vec3 n;
         double R = 0.0;
+        // The real flakes in the way pass the light on with their T (a mirror's 0 ends the chain).
+        double T = 1.0;
         if (to_c) {
             if (!std::isfinite(t_c)) return 0.0;  // the light passes c: another chain
-            const TileHit hit = firstFlakeAlong(lf, wx, wy, at_depth, dir, t_c);
-            if (hit.hit.kind >= 0) return 0.0;  // a real flake in the way
+            const TileHit hit = targetFlakeAlong(lf, wx, wy, at_depth, dir, t_c, -1, T);
             t = t_c;
             wx = hit.x;
             wy = hit.y;
@@ -91,10 +92,11 @@ double Walker::traceCavityChain(const Slice& s, const LayerFlakes& lf, const Cav
             R = leg.kind_c->R(std::abs(dot(dir, n)));
         } else {
             const Change& target = changeBack(i < 2 * leg.round_trips + 1 ? 0 : i - 2 * leg.round_trips);
-            const TileHit hit = firstFlakeAlong(lf, wx, wy, at_depth, dir, to_side);
-            if (hit.hit.kind < 0 || hit.hit.flake != target.chain.flake_id / 64 || !(hit.hit.t < t_c))
-                return 0.0;
+            const TileHit hit =
+                targetFlakeAlong(lf, wx, wy, at_depth, dir, to_side, target.chain.flake_id / 64, T);
+            if (hit.hit.kind < 0) return 0.0;
             t = hit.hit.t;
+            if (t_c < t) T *= leg.kind_c->T(std::abs(dot(dir, leg.h)));  // c in the way
             wx = hit.x;
             wy = hit.y;
             n = target.normal;
@@ -102,17 +104,19 @@ double Walker::traceCavityChain(const Slice& s, const LayerFlakes& lf, const Cav
         }
         const double new_depth = std::clamp(at_depth - dir.z * t, leg.top_um, leg.bottom_um);
         tau += layerOpticalDepth(stack, s.layer, at_depth, new_depth, std::abs(dir.z));
-        value *= R;
+        value *= T * R;
         if (!(value > 0.0)) return 0.0;
         at = {at.x + dir.x * t, at.y + dir.y * t, -new_depth};
         dir = mirrored(dir, n);
     }
-    // Out: c must not stand in the way up to the layer's top (the real flakes are straightToAmbient's).
+    // Out: c in the way up to the layer's top passes the light on with its T (the real flakes are
+    // straightToAmbient's).
     const double out_depth = -at.z;
     if (!(dir.z > 0.0)) return 0.0;
     if (std::isfinite(
             diskHit(at, dir, (out_depth - leg.top_um) / dir.z, leg.centre, leg.h, leg.radius_um, L)))
-        return 0.0;
+        value *= leg.kind_c->T(std::abs(dot(dir, leg.h)));
+    if (!(value > 0.0)) return 0.0;
     const std::size_t j_out = sliceAt(stack, s.layer, out_depth);
     if (j_out >= stack.slices.size()) return 0.0;
     return value * std::exp(-tau) * straightToAmbient(stack, explicit_flakes, j_out, out_depth, wx, wy, dir);
@@ -201,10 +205,11 @@ void Walker::cavityFormConnection(const Slice& s, const LayerFlakes& lf, const C
             if (!(flake.rho > 0.0)) continue;
             leg.centre = {leg.start.x + flake.centre_offset.x, leg.start.y + flake.centre_offset.y,
                           leg.start.z + flake.centre_offset.z};
-            if (legsCross(leg.centre, h, flake.radius_um, law.top_um, law.bottom_um)) continue;
+            const double T_legs = legsTransmittance(leg.centre, h, flake.radius_um, lf.kinds[i], law);
+            if (!(T_legs > 0.0)) continue;
             leg.radius_um = flake.radius_um;
             leg.kind_c = &lf.kinds[i];
-            sum += per_kind[i] * flake.rho * traceCavityChain(s, lf, leg);
+            sum += per_kind[i] * flake.rho * T_legs * traceCavityChain(s, lf, leg);
         }
         if (sum > 0.0) brdf_out[draw.k] += sum * factor / kernels.q;
     }

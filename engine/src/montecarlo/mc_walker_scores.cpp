@@ -319,8 +319,9 @@ void Walker::lastFlakeConnections(const Slice& s, const LayerFlakes& lf, double 
         if (!(flake.rho > 0.0)) continue;
         const Vec3 centre{point.x + flake.centre_offset.x, point.y + flake.centre_offset.y,
                           point.z + flake.centre_offset.z};
-        if (legsCross(centre, h, flake.radius_um, law.top_um, law.bottom_um)) continue;
-        kernel += per_kind[i] * flake.rho;
+        const double T_legs = legsTransmittance(centre, h, flake.radius_um, lf.kinds[i], law);
+        if (!(T_legs > 0.0)) continue;
+        kernel += per_kind[i] * flake.rho * T_legs;
     }
     if (!(kernel > 0.0)) return;
     brdf_out[k] +=
@@ -328,8 +329,9 @@ void Walker::lastFlakeConnections(const Slice& s, const LayerFlakes& lf, double 
         straightToAmbient(stack, explicit_flakes, j, point_depth, x + v.x * t, y + v.y * t, u, &tally.rays);
 }
 
-bool Walker::legsCross(const Vec3& centre, const Vec3& n, double radius_um, double top_um,
-                       double bottom_um) const {
+double Walker::legsTransmittance(const Vec3& centre, const Vec3& n, double radius_um, const FlakeKind& kind,
+                                 const LastFlakeLaw& law) const {
+    double T = 1.0;
     const int stored = std::min(vertex_count, kLegVertices);
     for (int i = vertex_count - stored; i + 1 < vertex_count; ++i) {
         const Vec3& a = vertices[static_cast<std::size_t>(i % kLegVertices)];
@@ -341,10 +343,13 @@ bool Walker::legsCross(const Vec3& centre, const Vec3& n, double radius_um, doub
         const Vec3 p{a.x + f * (b.x - a.x) - centre.x, a.y + f * (b.y - a.y) - centre.y,
                      a.z + f * (b.z - a.z) - centre.z};
         const double p_depth = -(centre.z + p.z);
-        if (p_depth < top_um || p_depth > bottom_um) continue;
-        if (dot(p, p) < radius_um * radius_um) return true;
+        if (p_depth < law.top_um || p_depth > law.bottom_um) continue;
+        if (!(dot(p, p) < radius_um * radius_um)) continue;
+        const Vec3 leg{b.x - a.x, b.y - a.y, b.z - a.z};
+        T *= kind.T(std::abs(sa - sb) / std::sqrt(dot(leg, leg)));  // |cos| of the leg on c
+        if (!(T > 0.0)) return 0.0;
     }
-    return false;
+    return T;
 }
 
 void Walker::reverseFromPigment(const Slice& s, double sigma) {

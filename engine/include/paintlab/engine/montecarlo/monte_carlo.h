@@ -53,8 +53,8 @@ struct ConnectionParts {
     bool reverse_walks = true;  // reverse walks from the cones (McSettings::reverse_walks)
     bool delta_walks = true;    // delta-chain walks (McSettings::delta_walks)
     bool flake_images = true;   // forward connections through one flake (McSettings::flake_images)
-    // the chain connections on the forward walk's flights (McSettings::mirror_chain_connections;
-    // on the delta-chain walks they are part of delta_walks)
+    // the chain connections on the forward walk's flights (McSettings::mirror_chain_connections,
+    // interference_chain_connections; on the delta-chain walks they are part of delta_walks)
     bool forward_chains = true;
     static constexpr ConnectionParts none() { return {false, false, false, false, false, false}; }
 };
@@ -220,11 +220,15 @@ struct McSettings {
     // flight, and take those escapes from the walks; ignored with
     // reject_overlaps (the law assumes independently placed flakes).
     // mirror_chain_connections turns both on for the layers whose flakes are
-    // all mirror flakes (the default: on silver metallic the time to 1 % at
-    // the worst geometry fell by half, docs/PERFORMANCE.md); the other two
-    // turn one on for every flake layer (interference flakes too, where they
-    // cost more than they gain on the demos).
+    // all mirror flakes (on silver metallic the time to 1 % at the worst
+    // geometry fell by half), interference_chain_connections for the other
+    // flake layers (a pearl layer without pigment over black or a white
+    // ground coat: 3-4 times sooner to 1 %; the pearlescent demo, whose flop
+    // the base lights through the flakes, ~30 % more CPU for the same
+    // errors: docs/PERFORMANCE.md); both on by default. The other two turn one
+    // on for every flake layer.
     bool mirror_chain_connections = true;
+    bool interference_chain_connections = true;
     bool last_flake_connections = false;
     bool cavity_connections = false;
     // Connections (next-event into the cones, the reverse walks' towards the
