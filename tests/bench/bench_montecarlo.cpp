@@ -295,12 +295,16 @@ BENCHMARK(BM_McDemoOnePercent)
 //   28 the default walking the flake-free bottom instead of its reflection
 //     operator (McSettings::bottom_operator off, the estimator before it)
 //   29 / 30 the default / the delta-chain walks alone (22) without the
-//     chain connections on mirror-flake layers (McSettings::
-//     mirror_chain_connections, the estimator before them)
+//     chain connections (McSettings::mirror_chain_connections and
+//     interference_chain_connections, the estimator before them)
 //   33 the histogram's remainder in the default alone (class Beam and part
 //     delta_first of class Other: what no walk or connection takes)
 //   34 the default with the drawn cavity chains (McSettings::cavity_forms:
 //     beyond j <= 1, m <= 2, one drawn per flight; off by default)
+//   35 the default without the chain connections on interference-flake
+//     layers (McSettings::interference_chain_connections, before 2026-12-05)
+//   36 the default without the forward walk's chain connections
+//     (ConnectionParts::forward_chains)
 // The figures quoted in docs/PERFORMANCE.md: see there (each row names its
 // arguments). Prints f, its standard error and the relative error per band
 // and geometry (stdout) and reports the worst relative error, the time 1 %

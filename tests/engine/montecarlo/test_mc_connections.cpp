@@ -448,7 +448,7 @@ TEST(MonteCarloConnections, DeltaWalksMatchTheHistogramOnChainsFromTheBeam) {
     expectPartMatchesHistogram(r, req, s, &mc::ConnectionParts::delta_walks, chains, 600000,
                                "delta walks with last-flake connections");
     s.last_flake_connections = false;
-    // With the chain connections of mirror-flake layers (the default: last-flake and cavity).
+    // With the chain connections of mirror-flake layers (on by default: last-flake and cavity).
     s.mirror_chain_connections = true;
     expectPartMatchesHistogram(r, req, s, &mc::ConnectionParts::delta_walks, chains, 600000,
                                "delta walks with the chain connections");
