@@ -53,11 +53,10 @@ struct McOptions {
     bool histogram_only = false;  // explicit flakes: the cone histogram alone (no connections)
     int tile_views = 32;          // explicit flakes: azimuths each tile is traced at
     int batches = mc::McSettings{}.batches;
-    std::string bottom_operator = "on";  // the flake-free bottom as one reflecting surface (mc_bottom.h)
-    std::string chain_connections =
-        "all";              // last-flake and cavity connections: on = mirror-flake layers only
-    bool table = false;     // mc: tabulate on the fast model's basis (mc_table.h)
-    double step_deg = 5.0;  // mc --table: angular step of the written table
+    std::string bottom_operator = "on";     // the flake-free bottom as one reflecting surface (mc_bottom.h)
+    std::string chain_connections = "all";  // chain connections: all flake layers, on: mirror ones, off
+    bool table = false;                     // mc: tabulate on the fast model's basis (mc_table.h)
+    double step_deg = 5.0;                  // mc --table: angular step of the written table
 };
 
 constexpr std::int64_t kDefaultSamples = 20000;

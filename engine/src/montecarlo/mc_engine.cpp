@@ -24,8 +24,8 @@ using Clock = std::chrono::steady_clock;
 constexpr double kRoundShare = 0.5;
 // Paths per chunk of the pilot round behind an error target (the budget a safety net).
 constexpr std::int64_t kPilotChunkPaths = 16;
-// Behind an error target, the first round after the pilot is this fraction of a full round.
-constexpr std::int64_t kFirstTargetRoundShare = 4;
+// Behind an error target, the first round after the pilot is a full round divided by this.
+constexpr std::int64_t kFirstTargetRoundDivisor = 4;
 
 // The estimates of a job from its batches' sums: over the batches' means
 // when the batches trace different tiles, else over paths.
@@ -233,7 +233,7 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
     bool pilot_dropped = false;
     const std::int64_t full_round = chunk * std::max(1, m_settings.chunks_per_round);
     // Behind an error target: the first round after the pilot, and the paths the stop rule waits for.
-    const std::int64_t first_target_round = std::max<std::int64_t>(1, full_round / kFirstTargetRoundShare);
+    const std::int64_t first_target_round = std::max<std::int64_t>(1, full_round / kFirstTargetRoundDivisor);
     const auto paths_start = Clock::now();  // the pace leaves out the estimators' set-up above
     while (started < max_paths) {
         // One round of chunks in parallel; summed in chunk order (deterministic).

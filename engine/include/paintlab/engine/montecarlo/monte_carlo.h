@@ -220,13 +220,11 @@ struct McSettings {
     // flight, and take those escapes from the walks; ignored with
     // reject_overlaps (the law assumes independently placed flakes).
     // mirror_chain_connections turns both on for the layers whose flakes are
-    // all mirror flakes (on silver metallic the time to 1 % at the worst
-    // geometry fell by half), interference_chain_connections for the other
-    // flake layers (a pearl layer without pigment over black or a white
-    // ground coat: 3-4 times sooner to 1 %; the pearlescent demo, whose flop
-    // the base lights through the flakes, ~30 % more CPU for the same
-    // errors: docs/PERFORMANCE.md); both on by default. The other two turn one
-    // on for every flake layer.
+    // all mirror flakes, interference_chain_connections for the other flake
+    // layers (where a drawn flake that the path crossed before scores with its
+    // T, last_flake.h); both on by default, as every demo paint and the
+    // fast-vs-full grid's flake points reach 1 % sooner with them
+    // (docs/PERFORMANCE.md). The other two turn one on for every flake layer.
     bool mirror_chain_connections = true;
     bool interference_chain_connections = true;
     bool last_flake_connections = false;
