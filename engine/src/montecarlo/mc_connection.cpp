@@ -9,11 +9,6 @@
 
 namespace paintlab::mc {
 
-namespace {
-
-// Transmittance along the segment from (x, y, depth) of length `length` in
-// direction u through one layer's tile (wrapping at its sides): the product
-// of T(|u.n|) over the flakes crossed. x, y are advanced to the segment's end.
 double tileTransmittance(const LayerFlakes& lf, double& x, double& y, double depth, const Vec3& u,
                          double length, std::int64_t* rays) {
     double T = 1.0;
@@ -23,8 +18,6 @@ double tileTransmittance(const LayerFlakes& lf, double& x, double& y, double dep
     });
     return passed ? T : 0.0;
 }
-
-}  // namespace
 
 TileHit firstFlakeAlong(const LayerFlakes& lf, double x, double y, double depth, const Vec3& u, double length,
                         std::int64_t* rays) {

@@ -200,11 +200,17 @@ struct TileHit {
 };
 TileHit firstFlakeAlong(const LayerFlakes& lf, double x, double y, double depth, const Vec3& u, double length,
                         std::int64_t* rays = nullptr);
-// The same for flake `target` (its index in the tile; -1: none): the light
-// passes the other flakes before it, each multiplying `T` by its
-// transmittance (a mirror flake's 0 ends the march: kind -1, T 0).
+// The same for flake `target` (its index in the tile): the light passes the
+// other flakes before it, each multiplying `T` by its transmittance (a mirror
+// flake's 0 ends the march: kind -1, T 0).
 TileHit targetFlakeAlong(const LayerFlakes& lf, double x, double y, double depth, const Vec3& u,
                          double length, std::int64_t target, double& T, std::int64_t* rays = nullptr);
+
+// Transmittance along the segment from (x, y, depth) of `length` µm in
+// direction u through one layer's tile (wrapping at its sides): the product
+// of T(|u.n|) over the flakes crossed. x, y are advanced to the segment's end.
+double tileTransmittance(const LayerFlakes& lf, double& x, double& y, double depth, const Vec3& u,
+                         double length, std::int64_t* rays = nullptr);
 
 // Pigment optical depth of the straight segment between two depths of one
 // layer along a direction of cosine |mu| (the slices of a depth profile each

@@ -325,9 +325,8 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
         // behind an error target the first round's kept paths.
         const bool every_batch = !over_batches || std::all_of(batches.begin(), batches.end(),
                                                               [](const Sums& b) { return b.paths > 0; });
-        const bool enough = m_settings.target_rel_error > 0.0
-                                ? current.incidence.paths >= std::min(max_paths, first_target_round)
-                                : started >= std::min(max_paths, full_round);
+        const bool enough = target ? current.incidence.paths >= std::min(max_paths, first_target_round)
+                                   : started >= std::min(max_paths, full_round);
         if (out_of_time || (!dropped_now && every_batch && enough &&
                             converged(current, m_settings.target_rel_error, job.orders)))
             break;

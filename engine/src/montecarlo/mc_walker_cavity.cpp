@@ -84,10 +84,8 @@ double Walker::traceCavityChain(const Slice& s, const LayerFlakes& lf, const Cav
         double T = 1.0;
         if (to_c) {
             if (!std::isfinite(t_c)) return 0.0;  // the light passes c: another chain
-            const TileHit hit = targetFlakeAlong(lf, wx, wy, at_depth, dir, t_c, -1, T);
+            T = tileTransmittance(lf, wx, wy, at_depth, dir, t_c);
             t = t_c;
-            wx = hit.x;
-            wy = hit.y;
             n = leg.h;
             R = leg.kind_c->R(std::abs(dot(dir, n)));
         } else {

@@ -222,8 +222,8 @@ struct McSettings {
     // mirror_chain_connections turns both on for the layers whose flakes are
     // all mirror flakes, interference_chain_connections for the other flake
     // layers (where a drawn flake that the path crossed before scores with its
-    // T, last_flake.h); both on by default, as every demo paint and the
-    // fast-vs-full grid's flake points reach 1 % sooner with them
+    // T, last_flake.h); both on by default, as the pearl demos and the
+    // fast-vs-full grid's pearl points measured reach 1 % sooner with them
     // (docs/PERFORMANCE.md). The other two turn one on for every flake layer.
     bool mirror_chain_connections = true;
     bool interference_chain_connections = true;
