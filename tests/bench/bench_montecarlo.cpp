@@ -305,6 +305,10 @@ BENCHMARK(BM_McDemoOnePercent)
 //     layers (McSettings::interference_chain_connections, before 2026-12-05)
 //   36 the default without the forward walk's chain connections
 //     (ConnectionParts::forward_chains)
+//   37 / 38 the delta-chain walks (22) split in two: their escapes that no
+//     chain connection takes, the walks running none (ConnectionParts::
+//     delta_chains off) / the chain connections alone (CavityForms::
+//     WalkScores::None)
 // The figures quoted in docs/PERFORMANCE.md: see there (each row names its
 // arguments). Prints f, its standard error and the relative error per band
 // and geometry (stdout) and reports the worst relative error, the time 1 %
@@ -354,7 +358,7 @@ void BM_McExplicitBudget(benchmark::State& state) {
         if (config != 24) s.histogram_classes = mc::HistogramClasses::none();
     }
     if (config == 25) s.connection_roulette = false;
-    if (config == 27 || config == 30) {
+    if (config == 27 || config == 30 || config == 37 || config == 38) {
         s.connection_parts = mc::ConnectionParts::none();
         s.connection_parts.delta_walks = true;
         s.histogram_classes = mc::HistogramClasses::none();
@@ -374,6 +378,8 @@ void BM_McExplicitBudget(benchmark::State& state) {
     if (config == 34) s.cavity_forms.drawn = true;
     if (config == 35) s.interference_chain_connections = false;  // before 2026-12-05 (nineteenth session)
     if (config == 36) s.connection_parts.forward_chains = false;
+    if (config == 37) s.connection_parts.delta_chains = false;
+    if (config == 38) s.cavity_forms.walk_scores = mc::CavityForms::WalkScores::None;
     if (config == 28) s.bottom_operator = false;  // the walk through the flake-free bottom (issue 30)
     applyBenchOverlaps(s);
     s.seed = benchSeed();
@@ -441,8 +447,9 @@ BENCHMARK(BM_McExplicitBudget)
     ->ArgsProduct({{6, 17, 18}, {200}, {8}})
     // Three-layer (issue 30): the bottom operator off, against /5/4/8 and /5/20/8.
     ->ArgsProduct({{28}, {4}, {8}})
-    // Silver (issue 30): without the chain connections; the histogram's remainder.
-    ->ArgsProduct({{29, 30, 33, 34, 35, 36}, {20, 100, 200}, {8}})
+    // Silver (issue 30): without the chain connections; the histogram's remainder; the delta walks' escapes
+    // and connections apart.
+    ->ArgsProduct({{29, 30, 33, 34, 35, 36, 37, 38}, {20, 100, 200}, {8}})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);

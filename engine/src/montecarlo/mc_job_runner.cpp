@@ -116,6 +116,7 @@ JobRunner::JobRunner(const McEngine::Band& band, const JobSpec& job, const McSet
     m_walk.split_branches = settings.explicit_flakes && settings.split_branches;
     m_walk.connection_roulette = settings.connection_roulette;
     m_walk.cavity_forms = settings.cavity_forms;
+    m_walk.delta_chain_connections = settings.connection_parts.delta_chains;
     m_walk.forward_chain_connections =
         m_connections && settings.connection_parts.forward_chains &&
         std::any_of(band.explicit_flakes[0].begin(), band.explicit_flakes[0].end(),

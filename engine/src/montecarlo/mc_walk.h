@@ -56,6 +56,8 @@ struct WalkSettings {
     // substrate -> flake -> cone); the walk then records its legs and the
     // flakes it meets as the delta-chain walks do.
     bool forward_chain_connections = false;
+    // The delta-chain walks run them (ConnectionParts::delta_chains).
+    bool delta_chain_connections = true;
     CavityForms cavity_forms;  // McSettings::cavity_forms
     // Delta-chain walks: a branch's roulette by its promise (chain_promise.h;
     // null: by weight alone). It survives with probability

@@ -156,7 +156,8 @@ int Walker::traceTile(const Slice& s, double sigma, double t, double to_boundary
     const double t_far = std::min({t, to_boundary, t_side});
     const FlakeHit hit = lf.tile->intersect({x, y, -depth}, v, kTileEpsilonUm, t_far);
     ++tally.rays;
-    if (chainRecording() && chain_connections && lf.last_flake != nullptr) {
+    if (chainRecording() && chain_connections && lf.last_flake != nullptr &&
+        (mode != Mode::DeltaChain || settings.delta_chain_connections)) {
         const double flight = hit.kind >= 0 ? hit.t : t_far;
         // The forward walk's flight ends at its sampled collision: the
         // connections on it need no e^(-sigma t) (a track-length estimate).

@@ -604,6 +604,45 @@ TEST(MonteCarloConnections, CavityConnectionsAgreeWithTheDeltaWalksTheyReplace) 
     }
 }
 
+TEST(MonteCarloConnections, TheDeltaWalksEscapesAndConnectionsAddUpToTheirPart) {
+    // The account of the delta walks' error (docs/PERFORMANCE.md, bench
+    // configs 37 and 38) splits their part of f in two: the escapes that no
+    // chain connection takes, scored by walks that run none
+    // (ConnectionParts::delta_chains off), and the chain connections alone
+    // (CavityForms::WalkScores::None). Each escape is the connections' or
+    // the walk's, never both, so the halves must add up to the whole (the
+    // default delta walks). stackedMirrorFilm (cavity chains common), three
+    // independent runs of 100k paths, kZ = 4 in the combined errors (as the
+    // file's other comparisons; seed 141 reads |z| < 1, seeds 131 and 151 at
+    // most 2.9 and 2.2). Mutation (2026-12-05): the walks without connections
+    // scoring every escape, the connections' too (counted twice), z = +21 /
+    // +26 / +24 at the three exits. ~10 CPU s.
+    const Recipe r = stackedMirrorFilm();
+    const std::vector<mc::IncidenceRequest> req = specularNormalAndBackscatter();
+    auto s = stackedMirrorDeltaWalks(100000, 141);
+    s.mirror_chain_connections = true;
+    const auto whole = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
+    s.seed += 1;
+    s.connection_parts.delta_chains = false;
+    const auto escapes = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
+    s.seed += 1;
+    s.connection_parts.delta_chains = true;
+    s.cavity_forms.walk_scores = mc::CavityForms::WalkScores::None;
+    const auto connections = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
+    for (std::size_t k = 0; k < req[0].wo.size(); ++k) {
+        const auto& w = whole.bands[0][0].brdf_per_sr[k];
+        const auto& e = escapes.bands[0][0].brdf_per_sr[k];
+        const auto& c = connections.bands[0][0].brdf_per_sr[k];
+        std::printf("exit %zu: escapes %.5g +- %.2g + connections %.5g +- %.2g, whole %.5g +- %.2g\n", k,
+                    e.mean, e.std_error, c.mean, c.std_error, w.mean, w.std_error);
+        // Both halves carry a resolved share of the whole (else the sum says nothing of the partition).
+        EXPECT_GT(e.mean, 4.0 * e.std_error) << "exit " << k;
+        EXPECT_GT(c.mean, 4.0 * c.std_error) << "exit " << k;
+        expectClose(e.mean + c.mean, std::hypot(e.std_error, c.std_error), w.mean, w.std_error,
+                    "escapes + connections, f exit " + std::to_string(k));
+    }
+}
+
 TEST(MonteCarloConnections, DrawnCavityChainsAgreeWithTheWalksEscapes) {
     // The cavity chains a flight runs only when drawn (cavity_chain.h: three
     // round trips or more, x c x c x c x, and those ending at c, x c x c)

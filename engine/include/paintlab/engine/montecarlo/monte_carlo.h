@@ -56,7 +56,10 @@ struct ConnectionParts {
     // the chain connections on the forward walk's flights (McSettings::mirror_chain_connections,
     // interference_chain_connections; on the delta-chain walks they are part of delta_walks)
     bool forward_chains = true;
-    static constexpr ConnectionParts none() { return {false, false, false, false, false, false}; }
+    // within delta_walks (so none() keeps it): the chain connections on their flights (off: the
+    // walks score only the escapes those connections leave them; an account, not an estimate of f)
+    bool delta_chains = true;
+    static constexpr ConnectionParts none() { return {false, false, false, false, false, false, true}; }
 };
 
 // Which cavity chains (McSettings::cavity_connections, engine/src/montecarlo/
