@@ -40,6 +40,7 @@ struct McOptions {
     // Unset: -1 and NaN (so that an explicit 0 is rejected, not ignored).
     std::int64_t samples = -1;
     double rel_error = std::numeric_limits<double>::quiet_NaN();
+    double abs_error = std::numeric_limits<double>::quiet_NaN();  // 1/sr, with --rel-error
     double seconds = std::numeric_limits<double>::quiet_NaN();
     std::uint64_t seed = 1;
     int bands = 8;
@@ -75,6 +76,11 @@ mc::McSettings mcSettings(const McOptions& o) {
         throw InputError("<argument>", "--samples", std::to_string(o.samples) + " must be in [1, 1e9]");
     if (has_rel_error && !(o.rel_error >= 1e-4 && o.rel_error < 1.0))
         throw InputError("<argument>", "--rel-error", std::to_string(o.rel_error) + " must be in [1e-4, 1)");
+    const bool has_abs_error = !std::isnan(o.abs_error);
+    if (has_abs_error && !has_rel_error) throw InputError("<argument>", "--abs-error", "needs --rel-error");
+    if (has_abs_error && !(o.abs_error > 0.0 && o.abs_error <= 1.0))
+        throw InputError("<argument>", "--abs-error",
+                         std::to_string(o.abs_error) + " must be in (0, 1] 1/sr");
     if (has_seconds && !(o.seconds > 0.0 && o.seconds <= 86400.0))
         throw InputError("<argument>", "--seconds", std::to_string(o.seconds) + " must be in (0, 86400]");
     if (!(o.cone_deg >= 0.0 && o.cone_deg <= 30.0))
@@ -107,6 +113,7 @@ mc::McSettings mcSettings(const McOptions& o) {
     if (has_rel_error) {
         s.max_paths = kMaxSamples;
         s.target_rel_error = o.rel_error;
+        if (has_abs_error) s.target_abs_error_per_sr = o.abs_error;
         s.max_seconds = 600.0;  // a safety net, reported in the settings
     }
     if (has_seconds) {
@@ -184,6 +191,7 @@ ordered_json settingsJson(const mc::McSettings& s, const mc::McResult& r) {
             {"flake_images", s.explicit_flakes && s.connections && s.glint_azimuths && s.flake_images},
             {"max_paths", s.max_paths},
             {"target_rel_error", s.target_rel_error},
+            {"target_abs_error_per_sr", s.target_abs_error_per_sr},
             {"max_seconds", s.max_seconds},
             {"paths", r.total_paths},
             {"compute_seconds", r.seconds}};
@@ -411,6 +419,9 @@ void addStopOptions(CLI::App* command, McOptions& o) {
     command->add_option("recipe", o.recipe, "Recipe JSON file")->required();
     command->add_option("--samples", o.samples, "Paths per band and incidence (default 20000)");
     command->add_option("--rel-error", o.rel_error, "Stop at this relative standard error of every estimate");
+    command->add_option("--abs-error", o.abs_error,
+                        "With --rel-error: an f (1/sr) also counts as converged once its standard error is "
+                        "at or below this (near-black values, whose 1 % no instrument resolves)");
     command->add_option("--seconds", o.seconds,
                         "Time budget in seconds (shared evenly by bands and incidences)");
     command->add_option("--seed", o.seed, "Random seed (same seed, same numbers)")->capture_default_str();

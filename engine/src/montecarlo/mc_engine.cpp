@@ -63,19 +63,30 @@ JobResult finish(const JobRunner& runner, const std::vector<Sums>& batches, bool
     return r;
 }
 
-// The stop rule's error: the largest relative error of the albedo, every f
-// and the projection's order-0 entries.
-double worstRelError(const JobResult& r, int orders) {
+// The stop rule's target (McSettings::target_rel_error, target_abs_error_per_sr).
+struct ErrorTarget {
+    double rel = 0.0;
+    double abs_per_sr = 0.0;
+};
+
+// The stop rule's error: the largest standard error over its tolerance of the
+// albedo (relative), every f and the projection's order-0 entries (relative,
+// or the absolute floor where that is larger); 1 or less: converged.
+double worstErrorRatio(const JobResult& r, const ErrorTarget& target, int orders) {
+    const auto ratio = [&target](const Estimate& e, double floor) {
+        const double tolerance = std::max(target.rel * std::abs(e.mean), floor);
+        return tolerance > 0.0 ? e.std_error / tolerance : 0.0;  // a zero estimate without a floor: exact
+    };
     const IncidenceResult& inc = r.incidence;
-    double worst = inc.albedo.relError();
-    for (const auto& e : inc.brdf_per_sr) worst = std::max(worst, e.relError());
+    double worst = ratio(inc.albedo, 0.0);
+    for (const auto& e : inc.brdf_per_sr) worst = std::max(worst, ratio(e, target.abs_per_sr));
     for (std::size_t k = 0; k < r.projection.size(); k += static_cast<std::size_t>(std::max(1, orders)))
-        worst = std::max(worst, r.projection[k].relError());
+        worst = std::max(worst, ratio(r.projection[k], target.abs_per_sr));
     return worst;
 }
 
-bool converged(const JobResult& r, double target, int orders) {
-    return target > 0.0 && worstRelError(r, orders) <= target;
+bool converged(const JobResult& r, const ErrorTarget& target, int orders) {
+    return target.rel > 0.0 && worstErrorRatio(r, target, orders) <= 1.0;
 }
 
 // Behind an error target: the paths of the next round, from those the
@@ -84,10 +95,10 @@ bool converged(const JobResult& r, double target, int orders) {
 // The first round after the pilot is `first_round`: the stop rule reads the
 // batches' spread only from there on (fixed rounds of a full round's paths
 // had run the paints that converge within one well past the target).
-std::int64_t targetRoundPaths(const JobResult& current, double target, int orders, std::int64_t kept,
-                              std::int64_t first_round, std::int64_t full_round) {
+std::int64_t targetRoundPaths(const JobResult& current, const ErrorTarget& target, int orders,
+                              std::int64_t kept, std::int64_t first_round, std::int64_t full_round) {
     if (kept <= 0) return first_round;
-    const double ratio = worstRelError(current, orders) / target;
+    const double ratio = worstErrorRatio(current, target, orders);
     const double needed = static_cast<double>(kept) * (1.1 * ratio * ratio - 1.0);
     const std::int64_t min_round = std::max<std::int64_t>(1, first_round / 4);
     if (!(needed < static_cast<double>(full_round))) return full_round;  // NaN too
@@ -235,6 +246,7 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
     // Behind an error target: the first round after the pilot, and the paths the stop rule waits for.
     const std::int64_t first_target_round = std::max<std::int64_t>(1, full_round / kFirstTargetRoundDivisor);
     const auto paths_start = Clock::now();  // the pace leaves out the estimators' set-up above
+    const ErrorTarget error_target{m_settings.target_rel_error, m_settings.target_abs_error_per_sr};
     while (started < max_paths) {
         // One round of chunks in parallel; summed in chunk order (deterministic).
         const std::int64_t remaining = max_paths - started;
@@ -273,8 +285,8 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
                 }
                 if (target)
                     cap = std::min(cap, static_cast<double>(targetRoundPaths(
-                                            current, m_settings.target_rel_error, job.orders,
-                                            current.incidence.paths, first_target_round, full_round)));
+                                            current, error_target, job.orders, current.incidence.paths,
+                                            first_target_round, full_round)));
                 paths = std::max<std::int64_t>(1, static_cast<std::int64_t>(cap));
             }
             round_chunks = std::min(round_chunks, std::max<std::int64_t>(1, paths));
@@ -327,8 +339,8 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
                                                               [](const Sums& b) { return b.paths > 0; });
         const bool enough = target ? current.incidence.paths >= std::min(max_paths, first_target_round)
                                    : started >= std::min(max_paths, full_round);
-        if (out_of_time || (!dropped_now && every_batch && enough &&
-                            converged(current, m_settings.target_rel_error, job.orders)))
+        if (out_of_time ||
+            (!dropped_now && every_batch && enough && converged(current, error_target, job.orders)))
             break;
     }
     return current;

@@ -318,6 +318,46 @@ TEST(MonteCarloEnergy, LosslessInterferenceFlakesConserveEnergy) {
     for (const auto& inc : mc.bands[0]) EXPECT_NEAR(inc.albedo.mean, 1.0, 1e-9);
 }
 
+TEST(MonteCarloStopping, AbsoluteFloorStopsOnNearBlackValues) {
+    // McSettings::target_abs_error_per_sr: an f converges once its standard
+    // error is at or below max(target_rel_error f, floor); the albedo keeps
+    // the relative target. A weakly scattering coat over black (f 1e-3 to
+    // 3e-3 1/sr over the geometries): with a floor at 2 % of the largest f
+    // (so every f's tolerance is at least 2 % of it), the run stops sooner,
+    // every estimate within its tolerance, and the floor binds on some f
+    // (else the test would say nothing of it). Mutation (2026-12-05): the
+    // floor ignored, the same paths (fails).
+    Recipe r = oneLayerRecipe(1.5, 20.0, BlackSubstrate{});
+    r.layers[0].components = {rawMedium(0.9, 0.05, 0.3)};
+    const auto req = requests(kGeometries);
+    const std::vector<double> wavelengths{550.0};
+    auto s = mcSettings(100000000);
+    s.target_rel_error = 0.01;
+    const auto relative = mc::runMonteCarlo(r, wavelengths, req, s);
+    double f_min = std::numeric_limits<double>::infinity();
+    double f_max = 0.0;
+    for (const auto& inc : relative.bands[0])
+        for (const auto& e : inc.brdf_per_sr) {
+            EXPECT_LE(e.relError(), 0.01);
+            f_min = std::min(f_min, e.mean);
+            f_max = std::max(f_max, e.mean);
+        }
+    ASSERT_GT(f_max, 1.5 * f_min) << "the test needs f spread over the geometries";
+    s.target_abs_error_per_sr = 0.02 * f_max;
+    const auto floored = mc::runMonteCarlo(r, wavelengths, req, s);
+    bool binds = false;
+    for (std::size_t i = 0; i < floored.bands[0].size(); ++i) {
+        const auto& inc = floored.bands[0][i];
+        EXPECT_LT(inc.paths, relative.bands[0][i].paths) << "incidence " << i;
+        EXPECT_LE(inc.albedo.relError(), 0.01);
+        for (const auto& e : inc.brdf_per_sr) {
+            EXPECT_LE(e.std_error, std::max(0.01 * e.mean, s.target_abs_error_per_sr));
+            binds = binds || e.relError() > 0.01;
+        }
+    }
+    EXPECT_TRUE(binds) << "the floor relaxed no estimate";
+}
+
 TEST(MonteCarloStopping, RelativeErrorTimeBudgetAndCancel) {
     Recipe r = oneLayerRecipe(1.5, 20.0, LambertianSubstrate{Spectrum(0.5)});
     r.layers[0].components = {rawMedium(0.8, 1.0, 0.3)};
