@@ -110,7 +110,8 @@ struct McSettings {
     std::uint64_t seed = 1;
     // Each (band, incidence) stops at the first of: max_paths paths; every
     // estimate at or below target_rel_error (relative standard error, 0 = off,
-    // checked between rounds of chunks); its even share of what is left of
+    // checked between rounds of chunks; an f also at or below
+    // target_abs_error_per_sr); its even share of what is left of
     // max_seconds when it starts (0 = off), which covers the whole call, the
     // tiles' set-up included (tabulateMonteCarlo: the set-up comes on top).
     std::int64_t max_paths = 100000;
