@@ -118,8 +118,9 @@ struct McSettings {
     double target_rel_error = 0.0;
     // With target_rel_error: an f and a projection entry (1/sr) also count as
     // converged once their standard error is at or below this floor (0 = off).
-    // 1 % of a near-black flop (1e-5 1/sr) is below any instrument's noise and
-    // would take hours; the albedo keeps the relative target alone.
+    // 1 % of a near-black flop is below any instrument's noise and costs the
+    // most (docs/PERFORMANCE.md, the fast-vs-full grid); the albedo keeps the
+    // relative target alone.
     double target_abs_error_per_sr = 0.0;
     double max_seconds = 0.0;
     int chunk_paths = 1024;     // paths per deterministic chunk
