@@ -15,6 +15,7 @@ constexpr std::uint64_t kConnectionStream = 0x636f6e6e656374ULL;  // "connect"
 constexpr std::uint64_t kGlintStream = 0x676c696e74ULL;           // "glint"
 constexpr std::uint64_t kReverseStream = 0x72657665727365ULL;     // "reverse"
 constexpr std::uint64_t kDeltaStream = 0x64656c7461ULL;           // "delta"
+constexpr std::uint64_t kShareStream = 0x7368617265ULL;           // "share"
 
 }  // namespace
 
@@ -170,7 +171,10 @@ double JobRunner::firstFlakeWalk(const PathContext& context, const FirstFlakeTab
 // that do not begin at a flake when the first-flake walks run, and only if
 // the paint has such chains: otherDeltaStarts) plus a first-flake walk;
 // their escapes of class Other into every cone added to path j paths / S
-// with weight 1 / rate.
+// with weight 1 / rate. Without first-flake walks, a walk runs the chain
+// connections with probability delta_chain_share (its own stream's draw, made
+// only below 1), their scores weighted by its inverse; the split of its
+// score between escapes and connections goes into the cone statistics.
 void JobRunner::chunkDelta(std::size_t batch, std::int64_t first_path, std::int64_t paths,
                            std::vector<double>& added, Sums& sums) const {
     std::vector<ConeStats>& cones = sums.cones;
@@ -190,7 +194,14 @@ void JobRunner::chunkDelta(std::size_t batch, std::int64_t first_path, std::int6
     const auto count = static_cast<std::int64_t>(
         std::floor(m_rates.delta_rate * static_cast<double>(paths) + count_rng.uniform()));
     walk.skip_beam_flake_reflections = m_first_flake;
+    // The chain connections' share (the first-flake walks keep them on every walk).
+    const double share = m_first_flake ? 1.0 : m_rates.delta_chain_share;
+    const bool split = !m_first_flake && walk.delta_chain_connections;
+    WalkSettings walk_bare = walk;
+    walk_bare.delta_chain_connections = false;
+    walk.chain_connection_weight = 1.0 / share;
     std::vector<double> f(m_exits);
+    std::vector<double> f_chain(m_exits);
     std::vector<double> f_first(m_exits);
     std::vector<FirstFlakeTable> tables(m_first_flake ? m_view_count : 0);
     for (std::int64_t j = 0; j < count; ++j) {
@@ -202,14 +213,32 @@ void JobRunner::chunkDelta(std::size_t batch, std::int64_t first_path, std::int6
         const View& view = views[view_index];
         const double x = rng.uniform() * m_tile_side_um;
         const double y = rng.uniform() * m_tile_side_um;
-        const PathContext context{m_band.stack, {}, view.bins, tiles, walk, nullptr, {}, {}, {}};
+        bool chained = true;
+        if (share < 1.0) {
+            PathRng coin(m_settings.seed ^ kDeltaStream ^ kShareStream, m_band_key, m_incidence_key,
+                         static_cast<std::uint64_t>(4 * first_path + j));
+            chained = coin.uniform() < share;
+        }
         std::fill(f.begin(), f.end(), 0.0);
+        std::fill(f_chain.begin(), f_chain.end(), 0.0);
+        const PathContext context{m_band.stack,
+                                  {},
+                                  view.bins,
+                                  tiles,
+                                  chained ? walk : walk_bare,
+                                  nullptr,
+                                  {},
+                                  {},
+                                  {},
+                                  {},
+                                  split ? std::span<double>(f_chain) : std::span<double>()};
         double cost = 0.0;
+        double chain_cost = 0.0;
         if (m_uniform_delta) {
             const PathOutcome out = traceDeltaChains(context, view.v_in, m_entry_weight, x, y, rng, f);
             // A last-flake connection (a cone's draw, kernel and roulette) costs about two walk steps.
-            cost += kCostPerPath +
-                    kCostPerWalkStep * static_cast<double>(out.events + out.rays + 2 * out.nee_attempts);
+            chain_cost = kCostPerWalkStep * static_cast<double>(2 * out.nee_attempts);
+            cost += kCostPerPath + kCostPerWalkStep * static_cast<double>(out.events + out.rays) + chain_cost;
         }
         if (m_first_flake) {
             FirstFlakeTable& table = tables[view_index];
@@ -220,12 +249,22 @@ void JobRunner::chunkDelta(std::size_t batch, std::int64_t first_path, std::int6
         const auto path =
             static_cast<std::size_t>(std::min<std::int64_t>(paths - 1, (2 * j + 1) * paths / (2 * count)));
         for (std::size_t k = 0; k < m_exits; ++k) {
-            added[path * m_exits + k] += f[k] / m_rates.delta_rate;
+            const double escapes = f[k];
+            const double total = escapes + f_chain[k];
+            added[path * m_exits + k] += total / m_rates.delta_rate;
             if (cones.empty()) continue;
             cones[k].delta_samples += 1.0;
-            cones[k].delta_s1 += f[k];
-            cones[k].delta_s2 += f[k] * f[k];
+            cones[k].delta_s1 += total;
+            cones[k].delta_s2 += total * total;
             cones[k].delta_cost += cost;
+            if (!split) continue;
+            cones[k].escape_s2 += escapes * escapes;
+            if (!chained) continue;
+            const double chain = f_chain[k] * share;  // unweighted by the share
+            cones[k].chain_samples += 1.0;
+            cones[k].chain_s2 += chain * chain;
+            cones[k].chain_cross += escapes * chain;
+            cones[k].chain_cost += chain_cost;
         }
     }
 }

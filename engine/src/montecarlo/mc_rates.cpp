@@ -45,6 +45,60 @@ std::array<double, 3> cheapestRates(const std::array<RateTerm, 3>& terms, double
     return x;
 }
 
+DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double current_share) {
+    DeltaWalkModel model;
+    model.shares = {current_share};
+    const std::size_t exits = total.cones.size();
+    model.v1.assign(exits, 0.0);
+    model.chain_m2.assign(exits, 0.0);
+    if (!delta_walks || exits == 0 || !(total.cones[0].delta_samples > 1.0)) return model;
+    model.measured = true;
+    const ConeStats& c0 = total.cones[0];
+    const double n = c0.delta_samples;
+    const double n_chain = c0.chain_samples;
+    // Every walk so far ran the connections: D(1) is their measured variance as it is.
+    const bool all_chained = n_chain == n;
+    for (std::size_t k = 0; k < exits; ++k) {
+        const ConeStats& cs = total.cones[k];
+        const double mean = cs.delta_s1 / n;
+        const double measured = std::max(0.0, cs.delta_s2 / n - mean * mean);
+        if (n_chain > 1.0) {
+            model.chain_m2[k] = cs.chain_s2 / n_chain;
+            model.v1[k] = all_chained ? measured
+                                      : std::max(0.0, cs.escape_s2 / n + 2.0 * cs.chain_cross / n_chain +
+                                                          model.chain_m2[k] - mean * mean);
+        } else {
+            model.v1[k] = measured;
+        }
+    }
+    model.walk_cost = c0.delta_cost / n;
+    if (n_chain > 1.0) {
+        model.bare_cost = (c0.delta_cost - c0.chain_cost) / n;
+        model.chain_cost = c0.chain_cost / n_chain;
+        model.all_chained = all_chained;
+        model.shares.clear();
+        for (double s = 1.0; s >= kMinDeltaChainShare * 0.9999; s *= 0.5) model.shares.push_back(s);
+    }
+    return model;
+}
+
+double DeltaWalkModel::variance(std::size_t k, double share) const {
+    return share >= 1.0 ? v1[k] : v1[k] + chain_m2[k] * (1.0 / share - 1.0);
+}
+
+double DeltaWalkModel::cost(double share) const {
+    if (!(chain_cost > 0.0)) return walk_cost;
+    // With every walk chained so far, the cost at share 1 is the measured one as it is.
+    return all_chained ? walk_cost - (1.0 - share) * chain_cost : bare_cost + share * chain_cost;
+}
+
+std::vector<std::pair<double, double>> DeltaWalkModel::options(const std::vector<double>& rates) const {
+    std::vector<std::pair<double, double>> out;
+    for (const double d : rates)
+        for (const double s : shares) out.emplace_back(d, s);
+    return out;
+}
+
 RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool reverse_walks, bool delta_walks,
                    ConeRates& rates) {
     const std::size_t exits = total.cones.size();
@@ -80,25 +134,21 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
         f2[k] = f * f;
     }
     // The delta-chain walks serve every cone at once: one common rate d, scanned
-    // over powers of two, its variance D_k / d joining A.
-    std::vector<double> delta_variance(exits, 0.0);
-    double delta_cost = 0.0;
+    // over powers of two, its variance D_k / d joining A; with it the share s
+    // of them that run the chain connections (DeltaWalkModel).
+    const DeltaWalkModel delta = deltaWalkModel(total, delta_walks, rates.delta_chain_share);
     std::vector<double> delta_rates{rates.delta_rate};
-    if (delta_walks && total.cones[0].delta_samples > 1.0) {
+    if (delta.measured) {
         delta_rates.clear();
         for (double d = kMinDeltaRate; d <= kMaxDeltaRate * 1.0001; d *= 2.0) delta_rates.push_back(d);
-        for (std::size_t k = 0; k < exits; ++k) {
-            const ConeStats& cs = total.cones[k];
-            const double mean_d = cs.delta_s1 / cs.delta_samples;
-            delta_variance[k] = std::max(0.0, cs.delta_s2 / cs.delta_samples - mean_d * mean_d);
-        }
-        delta_cost = total.cones[0].delta_cost / total.cones[0].delta_samples;
     }
     double best = std::numeric_limits<double>::infinity();
+    double best_share = rates.delta_chain_share;
     std::vector<std::array<double, 3>> x(exits);
-    for (const double d : delta_rates) {
+    std::vector<double> delta_variance(exits, 0.0);
+    for (const auto& [d, share] : delta.options(delta_rates)) {
         std::vector<double> a_d(exits);
-        for (std::size_t k = 0; k < exits; ++k) a_d[k] = a[k] + delta_variance[k] / d;
+        for (std::size_t k = 0; k < exits; ++k) a_d[k] = a[k] + delta.variance(k, share) / d;
         const auto variance = [&](std::size_t k, const std::array<double, 3>& at) {
             double v = a_d[k];
             for (std::size_t t = 0; t < 3; ++t) v += terms[k][t].variance / at[t];
@@ -112,7 +162,7 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
         if (!(rho_min > 0.0)) continue;
         for (int step = 0; step < 200; ++step) {
             const double rho = rho_min * std::pow(1.06, step);
-            double cost = c_walk + d * delta_cost;
+            double cost = c_walk + d * delta.cost(share);
             double worst = 0.0;
             for (std::size_t k = 0; k < exits; ++k) {
                 if (f2[k] > 0.0) {
@@ -127,6 +177,7 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
             if (worst * cost < best) {
                 best = worst * cost;
                 rates.delta_rate = d;
+                best_share = share;
                 for (std::size_t k = 0; k < exits; ++k) {
                     rates.nee_fraction[k] = x[k][0];
                     rates.glint_rate[k] = x[k][1];
@@ -135,6 +186,8 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
             }
         }
     }
+    rates.delta_chain_share = best_share;
+    for (std::size_t k = 0; k < exits; ++k) delta_variance[k] = delta.variance(k, best_share);
     return {std::move(f2), std::move(delta_variance)};
 }
 

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace paintlab::mc {
@@ -19,6 +20,9 @@ inline constexpr double kMinReverseRate = 1.0 / 256.0;
 // Delta-chain walks per path (the same bound).
 inline constexpr double kMaxDeltaRate = 4.0;
 inline constexpr double kMinDeltaRate = 1.0 / 64.0;
+// The smallest share of the delta-chain walks that run the chain connections
+// (ConeRates::delta_chain_share): their scores then carry at most 8 times the weight.
+inline constexpr double kMinDeltaChainShare = 1.0 / 8.0;
 // Bounds of the adaptive fractions: next-event rate (the share of paths up to
 // 1, beyond it the boost of every collision's chance), glint samples per path.
 inline constexpr double kMinFraction = 1.0 / 64.0;
@@ -60,6 +64,11 @@ struct ConeRates {
     std::vector<double> glint_rate;    // glint samples per path
     std::vector<double> reverse_rate;  // reverse walks per path
     double delta_rate = 0.25;          // delta-chain walks per path
+    // The share of the delta-chain walks that run the chain connections (last
+    // flake, cavity), their scores divided by it; the others score only the
+    // escapes those connections leave (a walk without them costs about a
+    // third as much, and on mirror flakes the escapes carry most of the variance).
+    double delta_chain_share = 1.0;
 };
 
 // Per cone: f^2 and the delta walks' variance per walk (the promise's and the
@@ -82,11 +91,36 @@ struct RateFit {
 // The stop rule waits for the worst cone, so the fractions minimise
 // max_k V_k / f_k^2 x cost: for a common level rho of V_k / f_k^2 each cone
 // takes the cheapest (q, g, r) that reaches it (cheapestRates), and rho is
-// scanned over a geometric grid. Only the next paths' fractions change, so
-// each path's estimate stays unbiased.
+// scanned over a geometric grid. The delta walks' common rate d and the share s
+// of them that run the chain connections are scanned with it: per walk the
+// variance is D_k(s) = D_k(1) + E[C_k^2] (1 / s - 1) (C_k what the
+// connections score) at a cost of c_bare + s c_chain. Only the next paths'
+// fractions change, so each path's estimate stays unbiased.
 // Sets `rates` and returns the model's inputs that the job runner reuses.
 // `histogram_entries`: the index of the first histogram-part entry (one per
 // cone) in the sample vector; total.cones has one entry per cone.
+// The delta-chain walks' variance and cost per walk against the share s that
+// runs the chain connections, from their split sums (ConeStats): per cone
+// D_k(1) = E[E^2] + 2 E[E C] + E[C^2] - f_delta^2 and E[C^2] (C unweighted by
+// the share), and per walk c_bare + s c_chain. `shares`: those adaptRates
+// scans (1, 1/2, ... kMinDeltaChainShare once the split is measured, else the
+// current share alone).
+struct DeltaWalkModel {
+    bool measured = false;  // the walks have samples (else only the current rate and share)
+    std::vector<double> v1;
+    std::vector<double> chain_m2;
+    double walk_cost = 0.0;  // per walk, as run so far
+    double bare_cost = 0.0;
+    double chain_cost = 0.0;  // per walk that runs the connections
+    bool all_chained = false;
+    std::vector<double> shares;
+    double variance(std::size_t k, double share) const;
+    double cost(double share) const;
+    // Every (rate, share) pair, the rates outermost.
+    std::vector<std::pair<double, double>> options(const std::vector<double>& rates) const;
+};
+DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double current_share);
+
 RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool reverse_walks, bool delta_walks,
                    ConeRates& rates);
 

@@ -20,6 +20,11 @@ void ConeStats::add(const ConeStats& o) {
     delta_s1 += o.delta_s1;
     delta_s2 += o.delta_s2;
     delta_cost += o.delta_cost;
+    escape_s2 += o.escape_s2;
+    chain_samples += o.chain_samples;
+    chain_s2 += o.chain_s2;
+    chain_cross += o.chain_cross;
+    chain_cost += o.chain_cost;
     reverse_samples += o.reverse_samples;
     reverse_s1 += o.reverse_s1;
     reverse_s2 += o.reverse_s2;

@@ -39,6 +39,15 @@ struct ConeStats {
     double delta_s1 = 0.0;
     double delta_s2 = 0.0;
     double delta_cost = 0.0;
+    // The same walks' score X = E + C split (ConeRates::delta_chain_share):
+    // E what their escapes score, C what their chain connections score (C
+    // unweighted by the share; only over the walks that ran them), and the
+    // connections' part of their cost. Empty while nothing splits them.
+    double escape_s2 = 0.0;      // sum of E^2 over every walk
+    double chain_samples = 0.0;  // walks that ran the chain connections
+    double chain_s2 = 0.0;       // sum of C^2 over those
+    double chain_cross = 0.0;    // sum of E C over those
+    double chain_cost = 0.0;     // their connections' cost (in delta_cost too)
     void add(const ConeStats& o);
 };
 

@@ -49,6 +49,7 @@ Walker deltaWalker(const PathContext& context, const WalkSettings& settings, Pat
     Walker walker(context.stack, context.explicit_flakes, settings, rng, v, weight, x, y);
     walker.bins = context.bins;
     walker.brdf_out = f_out;
+    walker.chain_out = context.chain_out;
     walker.j = j;
     walker.depth = depth;
     walker.history.path_class = path_class;

@@ -56,8 +56,10 @@ struct WalkSettings {
     // substrate -> flake -> cone); the walk then records its legs and the
     // flakes it meets as the delta-chain walks do.
     bool forward_chain_connections = false;
-    // The delta-chain walks run them (ConnectionParts::delta_chains).
+    // The delta-chain walks run them (ConnectionParts::delta_chains), their
+    // scores times chain_connection_weight (1 / ConeRates::delta_chain_share).
     bool delta_chain_connections = true;
+    double chain_connection_weight = 1.0;
     CavityForms cavity_forms;  // McSettings::cavity_forms
     // Delta-chain walks: a branch's roulette by its promise (chain_promise.h;
     // null: by weight alone). It survives with probability
@@ -106,6 +108,8 @@ struct PathContext {
     // chance that it scatters (weighted by the inverse; Walker::connectFromPigment);
     // empty: 1 for all.
     std::span<const double> nee_boost = {};
+    // Where the chain connections' scores go (per bin); empty: f_out.
+    std::span<double> chain_out = {};
 };
 
 // What one path carries out of the paint (power per unit incident power),

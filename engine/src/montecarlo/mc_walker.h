@@ -49,6 +49,7 @@ struct Walker {
     std::span<double> brdf_out;
     std::span<const double> nee_weights;  // per bin (empty: settings.connection_weight)
     std::span<double> nee_out;            // per bin (empty: brdf_out)
+    std::span<double> chain_out;          // the chain connections' scores per bin (empty: brdf_out)
     // Per bin, the factor (>= 1) on a pigment collision's chance to run the
     // connections into it (PathContext::nee_boost); empty: 1.
     std::span<const double> nee_boost;
@@ -245,6 +246,7 @@ struct Walker {
         bool ok = false;
     };
     ChainDraw drawChainCone(const Slice& s, double length, double sigma, PathRng& chain_rng) const;
+    std::span<double> chainOut() const { return chain_out.empty() ? brdf_out : chain_out; }
     // Its kernel per kind (the layer's first 4) for c's normal h: A D(h)
     // `geometric` R(cos_vh) (before rho), after a Russian roulette below
     // settings.roulette_weight on the value with R = 1 (a mirror's complex

@@ -209,7 +209,7 @@ void Walker::cavityFormConnection(const Slice& s, const LayerFlakes& lf, const C
             leg.kind_c = &lf.kinds[i];
             sum += per_kind[i] * flake.rho * T_legs * traceCavityChain(s, lf, leg);
         }
-        if (sum > 0.0) brdf_out[draw.k] += sum * factor / kernels.q;
+        if (sum > 0.0) chainOut()[draw.k] += sum * factor / kernels.q;
     }
 }
 

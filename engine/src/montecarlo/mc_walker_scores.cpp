@@ -275,7 +275,8 @@ Walker::ChainDraw Walker::drawChainCone(const Slice& s, double length, double si
     draw.point_depth = std::clamp(depth - v.z * draw.t, s.top_um, s.bottom_um);
     const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
     draw.factor = length * weight * std::exp(-sigma * draw.t) / draw.u.z * scale * w.z * bin.solid_angle /
-                  bin.projected_solid_angle * static_cast<double>(bins.size());
+                  bin.projected_solid_angle * static_cast<double>(bins.size()) *
+                  settings.chain_connection_weight;
     draw.ok = true;
     return draw;
 }
@@ -324,7 +325,7 @@ void Walker::lastFlakeConnections(const Slice& s, const LayerFlakes& lf, double 
         kernel += per_kind[i] * flake.rho * T_legs;
     }
     if (!(kernel > 0.0)) return;
-    brdf_out[k] +=
+    chainOut()[k] +=
         kernel * factor / q *
         straightToAmbient(stack, explicit_flakes, j, point_depth, x + v.x * t, y + v.y * t, u, &tally.rays);
 }

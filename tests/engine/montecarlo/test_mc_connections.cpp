@@ -643,6 +643,29 @@ TEST(MonteCarloConnections, TheDeltaWalksEscapesAndConnectionsAddUpToTheirPart) 
     }
 }
 
+TEST(MonteCarloConnections, DeltaWalksThatRunTheirConnectionsOnAShareAgreeWithAllOfThem) {
+    // McSettings::delta_chain_share: a quarter of the delta walks run the
+    // chain connections, their scores times 4; the others score only the
+    // escapes the connections leave (as in the account above). The same
+    // expectation as every walk running them: stackedMirrorFilm, the
+    // connections' half resolved there (> 4 errors), 100k paths each,
+    // independent seeds and tiles, kZ = 4 in the combined errors (as the
+    // file's other comparisons). The rate model would change the share between
+    // rounds: off here. Mutation (2026-12-06, the weight 1 / share left
+    // out): the connections counted a quarter, z = -41 / -34 / -23 at the
+    // three exits. ~2 CPU s.
+    const Recipe r = stackedMirrorFilm();
+    const std::vector<mc::IncidenceRequest> req = specularNormalAndBackscatter();
+    auto s = stackedMirrorDeltaWalks(100000, 171);
+    s.mirror_chain_connections = true;
+    s.adaptive_fractions = false;
+    const auto every = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
+    s.seed += 1;
+    s.delta_chain_share = 0.25;
+    const auto share = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
+    expectSameAtEveryExit(share, every, "a quarter of the walks with connections", 10.0);
+}
+
 TEST(MonteCarloConnections, DrawnCavityChainsAgreeWithTheWalksEscapes) {
     // The cavity chains a flight runs only when drawn (cavity_chain.h: three
     // round trips or more, x c x c x c x, and those ending at c, x c x c)

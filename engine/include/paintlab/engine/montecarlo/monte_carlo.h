@@ -207,6 +207,13 @@ struct McSettings {
     // default: it lowers the variance per walk but not the time to a target.
     bool first_flake_walks = false;
     double delta_rate = 0.25;
+    // The share of the delta-chain walks (without first_flake_walks) that run
+    // the chain connections, their scores weighted by its inverse; the others
+    // score only the escapes those connections leave. The start: with
+    // adaptive_fractions the rate model chooses it after every round, from 1
+    // down to 1/8 (where the walks' escapes carry the variance, as on mirror
+    // flakes: docs/PERFORMANCE.md); clamped to [1/8, 1].
+    double delta_chain_share = 1.0;
     double delta_roulette_weight = 1e-3;
     // Delta-chain walks (with adaptive_fractions): a branch also survives with a
     // probability set by its promise of reaching a cone (chain_promise.h) and
