@@ -265,6 +265,7 @@ void JobRunner::chunkDelta(std::size_t batch, std::int64_t first_path, std::int6
             cones[k].chain_s2 += chain * chain;
             cones[k].chain_cross += escapes * chain;
             cones[k].chain_cost += chain_cost;
+            cones[k].chain_max2 = std::max(cones[k].chain_max2, chain * chain);
         }
     }
 }

@@ -72,12 +72,18 @@ DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double curren
         }
     }
     model.walk_cost = c0.delta_cost / n;
+    // Heavy tails (kMaxChainTermShare): E[C^2] is then no measure, and a
+    // thinned outlier would weigh 1 / s.
+    const bool heavy = std::any_of(total.cones.begin(), total.cones.end(), [](const ConeStats& cs) {
+        return cs.chain_s2 > 0.0 && cs.chain_max2 > kMaxChainTermShare * cs.chain_s2;
+    });
     if (n_chain > 1.0) {
         model.bare_cost = (c0.delta_cost - c0.chain_cost) / n;
         model.chain_cost = c0.chain_cost / n_chain;
         model.all_chained = all_chained;
         model.shares.clear();
-        for (double s = 1.0; s >= kMinDeltaChainShare * 0.9999; s *= 0.5) model.shares.push_back(s);
+        for (double s = 1.0; s >= kMinDeltaChainShare * 0.9999 && (s == 1.0 || !heavy); s *= 0.5)
+            model.shares.push_back(s);
     }
     return model;
 }

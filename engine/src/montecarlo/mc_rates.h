@@ -23,6 +23,12 @@ inline constexpr double kMinDeltaRate = 1.0 / 64.0;
 // The smallest share of the delta-chain walks that run the chain connections
 // (ConeRates::delta_chain_share): their scores then carry at most 8 times the weight.
 inline constexpr double kMinDeltaChainShare = 1.0 / 8.0;
+// ... and only while no single walk's connections carry more than this share
+// of any cone's sum of C^2: where they do (the grid's 50 µm mirror flakes,
+// 0.1-0.5, and a later outlier of 99 % at 45as-15 with the share at 1/4;
+// silver metallic and the 10 µm points 0.001-0.05 after the first rounds),
+// the mean square is no measure of the variance thinning adds.
+inline constexpr double kMaxChainTermShare = 0.1;
 // Bounds of the adaptive fractions: next-event rate (the share of paths up to
 // 1, beyond it the boost of every collision's chance), glint samples per path.
 inline constexpr double kMinFraction = 1.0 / 64.0;
@@ -103,8 +109,9 @@ struct RateFit {
 // runs the chain connections, from their split sums (ConeStats): per cone
 // D_k(1) = E[E^2] + 2 E[E C] + E[C^2] - f_delta^2 and E[C^2] (C unweighted by
 // the share), and per walk c_bare + s c_chain. `shares`: those adaptRates
-// scans (1, 1/2, ... kMinDeltaChainShare once the split is measured, else the
-// current share alone).
+// scans (1, 1/2, ... kMinDeltaChainShare once the split is measured and no
+// cone's largest C^2 is beyond kMaxChainTermShare of its sum; 1 when one is;
+// else the current share alone).
 struct DeltaWalkModel {
     bool measured = false;  // the walks have samples (else only the current rate and share)
     std::vector<double> v1;

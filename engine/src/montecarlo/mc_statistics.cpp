@@ -25,6 +25,7 @@ void ConeStats::add(const ConeStats& o) {
     chain_s2 += o.chain_s2;
     chain_cross += o.chain_cross;
     chain_cost += o.chain_cost;
+    chain_max2 = std::max(chain_max2, o.chain_max2);
     reverse_samples += o.reverse_samples;
     reverse_s1 += o.reverse_s1;
     reverse_s2 += o.reverse_s2;

@@ -67,6 +67,25 @@ TEST(McRates, FewWalksRunTheConnectionsWhereTheEscapesCarryTheVariance) {
     EXPECT_EQ(rates.delta_chain_share, mc::kMinDeltaChainShare);
 }
 
+TEST(McRates, HeavyTailedConnectionsKeepEveryWalkOnThem) {
+    // The case above, but one walk's connections carry 20 % of the cone's sum
+    // of C^2 (kMaxChainTermShare 10 %): E[C^2] is then no measure of what
+    // thinning would add (the grid's 50 µm mirror flakes), so share 1, also
+    // from a share below it; at 5 % the thinning stands.
+    mc::ConeRates rates;
+    rates.nee_fraction.assign(1, 1.0);
+    rates.glint_rate.assign(1, 1.0);
+    rates.reverse_rate.assign(1, 1.0);
+    rates.delta_chain_share = 0.25;
+    mc::Sums total = deltaOnly(1.0e4, 0.25, 50.0, 0.0475, 0.9525, 3.0, 7.0);
+    total.cones[0].chain_max2 = 0.2 * total.cones[0].chain_s2;
+    mc::adaptRates(total, mc::kFirstExit + 1, false, true, rates);
+    EXPECT_EQ(rates.delta_chain_share, 1.0);
+    total.cones[0].chain_max2 = 0.05 * total.cones[0].chain_s2;
+    mc::adaptRates(total, mc::kFirstExit + 1, false, true, rates);
+    EXPECT_EQ(rates.delta_chain_share, mc::kMinDeltaChainShare);
+}
+
 TEST(McRates, EveryWalkRunsTheConnectionsWhereTheyCarryTheVariance) {
     // The interference flakes' chains: the connections carry the cone and its
     // variance (E[C^2] = 20 f^2), the escapes almost nothing; thinning the
