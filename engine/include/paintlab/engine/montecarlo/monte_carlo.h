@@ -212,7 +212,8 @@ struct McSettings {
     // score only the escapes those connections leave. The start: with
     // adaptive_fractions the rate model chooses it after every round, from 1
     // down to 1/8 (where the walks' escapes carry the variance, as on mirror
-    // flakes: docs/PERFORMANCE.md); clamped to [1/8, 1].
+    // flakes), and 1 while the connections' scores are heavy-tailed (mc_rates.h,
+    // docs/PERFORMANCE.md); clamped to [1/8, 1].
     double delta_chain_share = 1.0;
     double delta_roulette_weight = 1e-3;
     // Delta-chain walks (with adaptive_fractions): a branch also survives with a
