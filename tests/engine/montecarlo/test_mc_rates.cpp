@@ -35,6 +35,16 @@ mc::Sums deltaOnly(double n, double share, double e2, double ec, double c2, doub
     return total;
 }
 
+// The rates of one cone, the delta walks' share at `share`.
+mc::ConeRates oneConeRates(double share) {
+    mc::ConeRates rates;
+    rates.nee_fraction.assign(1, 1.0);
+    rates.glint_rate.assign(1, 1.0);
+    rates.reverse_rate.assign(1, 1.0);
+    rates.delta_chain_share = share;
+    return rates;
+}
+
 TEST(McRates, TheChainShareRecoversTheWalksVarianceFromTheirSplit) {
     // D(1) = E[E^2] + 2 E[E C] + E[C^2] - f^2 whatever share the walks ran
     // at, and D(s) = D(1) + E[C^2] (1 / s - 1), the variance of E + B C / s
@@ -58,10 +68,7 @@ TEST(McRates, FewWalksRunTheConnectionsWhereTheEscapesCarryTheVariance) {
     // variance (E[E^2] = 50 f^2), the connections little (E[C^2] = 0.95 f^2)
     // but 70 % of a walk's cost. Variance x cost per walk: 50 x 10 at share
     // 1 against (50 + 0.95 x 7) x 3.875 = 220 at 1/8, the smallest.
-    mc::ConeRates rates;
-    rates.nee_fraction.assign(1, 1.0);
-    rates.glint_rate.assign(1, 1.0);
-    rates.reverse_rate.assign(1, 1.0);
+    mc::ConeRates rates = oneConeRates(1.0);
     const mc::Sums total = deltaOnly(1.0e4, 1.0, 50.0, 0.0475, 0.9525, 3.0, 7.0);
     mc::adaptRates(total, mc::kFirstExit + 1, false, true, rates);
     EXPECT_EQ(rates.delta_chain_share, mc::kMinDeltaChainShare);
@@ -72,11 +79,7 @@ TEST(McRates, HeavyTailedConnectionsKeepEveryWalkOnThem) {
     // of C^2 (kMaxChainTermShare 10 %): E[C^2] is then no measure of what
     // thinning would add (the grid's 50 µm mirror flakes), so share 1, also
     // from a share below it; at 5 % the thinning stands.
-    mc::ConeRates rates;
-    rates.nee_fraction.assign(1, 1.0);
-    rates.glint_rate.assign(1, 1.0);
-    rates.reverse_rate.assign(1, 1.0);
-    rates.delta_chain_share = 0.25;
+    mc::ConeRates rates = oneConeRates(0.25);
     mc::Sums total = deltaOnly(1.0e4, 0.25, 50.0, 0.0475, 0.9525, 3.0, 7.0);
     total.cones[0].chain_max2 = 0.2 * total.cones[0].chain_s2;
     mc::adaptRates(total, mc::kFirstExit + 1, false, true, rates);
@@ -90,11 +93,7 @@ TEST(McRates, EveryWalkRunsTheConnectionsWhereTheyCarryTheVariance) {
     // The interference flakes' chains: the connections carry the cone and its
     // variance (E[C^2] = 20 f^2), the escapes almost nothing; thinning the
     // connections would multiply their variance: share 1 (190 against 253 at 1/2).
-    mc::ConeRates rates;
-    rates.nee_fraction.assign(1, 1.0);
-    rates.glint_rate.assign(1, 1.0);
-    rates.reverse_rate.assign(1, 1.0);
-    rates.delta_chain_share = 0.25;  // from an earlier round
+    mc::ConeRates rates = oneConeRates(0.25);  // from an earlier round
     const mc::Sums total = deltaOnly(1.0e4, 0.25, 0.01, 0.001, 20.0, 3.0, 7.0);
     mc::adaptRates(total, mc::kFirstExit + 1, false, true, rates);
     EXPECT_EQ(rates.delta_chain_share, 1.0);
