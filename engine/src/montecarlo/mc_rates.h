@@ -24,10 +24,9 @@ inline constexpr double kMinDeltaRate = 1.0 / 64.0;
 // (ConeRates::delta_chain_share): their scores then carry at most 8 times the weight.
 inline constexpr double kMinDeltaChainShare = 1.0 / 8.0;
 // ... and only while no single walk's connections carry more than this share
-// of any cone's sum of C^2: where they do (the grid's 50 µm mirror flakes,
-// 0.1-0.5, and a later outlier of 99 % at 45as-15 with the share at 1/4;
-// silver metallic and the 10 µm points 0.001-0.05 after the first rounds),
-// the mean square is no measure of the variance thinning adds.
+// of any cone's sum of C^2: where one does (heavy tails, as on the grid's
+// 50 µm flakes; the measured shares in docs/PERFORMANCE.md), the mean square
+// is no measure of the variance thinning adds, and a thinned outlier weighs 1 / s.
 inline constexpr double kMaxChainTermShare = 0.1;
 // Bounds of the adaptive fractions: next-event rate (the share of paths up to
 // 1, beyond it the boost of every collision's chance), glint samples per path.
@@ -72,8 +71,9 @@ struct ConeRates {
     double delta_rate = 0.25;          // delta-chain walks per path
     // The share of the delta-chain walks that run the chain connections (last
     // flake, cavity), their scores divided by it; the others score only the
-    // escapes those connections leave (a walk without them costs about a
-    // third as much, and on mirror flakes the escapes carry most of the variance).
+    // escapes those connections leave (on mirror flakes a walk without them
+    // costs a quarter to a third as much, and the escapes carry most of the
+    // variance: docs/PERFORMANCE.md).
     double delta_chain_share = 1.0;
 };
 
