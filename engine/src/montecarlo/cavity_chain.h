@@ -44,12 +44,33 @@ namespace paintlab::mc {
 // j <= kCavityEveryFlightTrips and 1 <= m <= kCavityEveryFlightRetrace (the
 // commonest); the others (more round trips or flakes, or ending at c) are
 // rarer and each costs up to j + 1 normals, so a flight runs one of them,
-// drawn uniformly and weighted by their count, when McSettings::cavity_forms
-// asks (off by default: docs/PERFORMANCE.md).
+// drawn uniformly and weighted by their count (the delta walks: by learned
+// weights, below), when McSettings::cavity_forms asks (off by default:
+// docs/PERFORMANCE.md).
 inline constexpr int kMaxCavityRoundTrips = 3;
 inline constexpr int kMaxCavityRetrace = 4;
 inline constexpr int kCavityEveryFlightTrips = 1;
 inline constexpr int kCavityEveryFlightRetrace = 2;
+// The delta walks draw their drawn chain in proportion to learned weights
+// (JobRunner::learnCavityFormWeights) mixed with this share of the uniform
+// draw, so that every form keeps a chance and the estimate stays unbiased.
+inline constexpr double kUniformFormShare = 0.25;
+// A form's slot in the learned weights (CavityFormWeights): m (kMaxCavityRoundTrips + 1) + j.
+inline constexpr std::size_t kCavityFormSlots =
+    static_cast<std::size_t>(kMaxCavityRetrace + 1) * (kMaxCavityRoundTrips + 1);
+inline constexpr std::size_t cavityFormSlot(int trips, int retrace) {
+    return static_cast<std::size_t>(retrace) * (kMaxCavityRoundTrips + 1) + static_cast<std::size_t>(trips);
+}
+// The drawn chains' draw: per slot a weight (each flight draws among the
+// forms it can run, in proportion, mixed with the uniform draw); and what
+// the walks learn for it: per slot the sum of X^2 / p over the draws (X a
+// drawn chain's score before the draw's weight 1 / p) and the flights that
+// could draw it.
+using CavityFormWeights = std::array<double, kCavityFormSlots>;
+struct CavityFormLearning {
+    CavityFormWeights m2_over_p{};
+    CavityFormWeights available{};
+};
 
 // v mirrored through the plane with unit normal n.
 inline Vec3 mirrored(const Vec3& v, const Vec3& n) {

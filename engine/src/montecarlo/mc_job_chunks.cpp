@@ -200,6 +200,7 @@ void JobRunner::chunkDelta(std::size_t batch, std::int64_t first_path, std::int6
     WalkSettings walk_bare = walk;
     walk_bare.delta_chain_connections = false;
     walk.chain_connection_weight = 1.0 / share;
+    if (m_form_weights_learned) walk.cavity_form_weights = &m_form_weights;
     std::vector<double> f(m_exits);
     std::vector<double> f_chain(m_exits);
     std::vector<double> f_first(m_exits);
@@ -231,7 +232,8 @@ void JobRunner::chunkDelta(std::size_t batch, std::int64_t first_path, std::int6
                                   {},
                                   {},
                                   {},
-                                  split ? std::span<double>(f_chain) : std::span<double>()};
+                                  split ? std::span<double>(f_chain) : std::span<double>(),
+                                  &sums.form_learning};
         double cost = 0.0;
         double chain_cost = 0.0;
         if (m_uniform_delta) {

@@ -207,9 +207,24 @@ void JobRunner::buildViews(const McSettings& settings) {
 bool JobRunner::adapt(const Sums& total) {
     if (!m_adaptive || total.paths < 1024 || total.cones.size() != m_exits) return false;
     const RateFit fit = adaptRates(total, estimateEntries(), m_reverse, m_delta, m_rates);
+    learnCavityFormWeights(total);
     if (m_first_flake) learnFirstFlakeProposal(total, fit.f2);
     weighPromiseCones(total, fit.delta_variance, fit.f2);
     return true;
+}
+
+// The drawn cavity chains' weights (CavityFormWeights): each form's draw in
+// proportion to the root of its mean square, the variance-optimal share of
+// a one-of-many draw; a form never drawn keeps the uniform share alone.
+void JobRunner::learnCavityFormWeights(const Sums& total) {
+    const CavityFormLearning& learned = total.form_learning;
+    bool any = false;
+    for (std::size_t i = 0; i < m_form_weights.size(); ++i) {
+        const double flights = learned.available[i];
+        m_form_weights[i] = flights > 0.0 ? std::sqrt(learned.m2_over_p[i] / flights) : 0.0;
+        any = any || m_form_weights[i] > 0.0;
+    }
+    m_form_weights_learned = any;
 }
 
 // The promise's cone weights (chain_promise.h): a chain into cone k is

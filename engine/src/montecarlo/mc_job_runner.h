@@ -90,7 +90,12 @@ private:
     FirstFlakeProposal m_first_proposal;
     ChainPromise m_promise;  // the delta walks' roulette by promise (empty: off)
     std::size_t m_diagnostics = 0;
+    void learnCavityFormWeights(const Sums& total);
     ConeRates m_rates;
+    // The delta walks' drawn cavity chains: their draw's weights, learned
+    // after every round (sqrt of each form's mean square per flight that could draw it).
+    CavityFormWeights m_form_weights{};
+    bool m_form_weights_learned = false;
     std::vector<std::vector<AzimuthGlintSet>> m_azimuth_glints;  // [batch][exit]
 };
 

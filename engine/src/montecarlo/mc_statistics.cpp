@@ -43,6 +43,10 @@ void Sums::add(const Sums& other) {
     for (std::size_t k = 0; k < cones.size() && k < other.cones.size(); ++k) cones[k].add(other.cones[k]);
     addElementwise(first_count, other.first_count);
     addElementwise(first_s2, other.first_s2);
+    for (std::size_t i = 0; i < form_learning.available.size(); ++i) {
+        form_learning.m2_over_p[i] += other.form_learning.m2_over_p[i];
+        form_learning.available[i] += other.form_learning.available[i];
+    }
     walk_cost += other.walk_cost;
     nee_cost += other.nee_cost;
     nee_attempts += other.nee_attempts;

@@ -4,6 +4,7 @@
 // statistics of the adaptive rates (mc_rates.h), and the standard errors over
 // paths or over batches.
 
+#include "cavity_chain.h"
 #include "paintlab/engine/montecarlo/monte_carlo.h"
 
 #include <cstddef>
@@ -69,7 +70,8 @@ struct Sums {
     // from it, and per key and cone the sum of (f P_G / A_G)^2, f the walk's
     // estimate (JobRunner::learnFirstFlakeProposal).
     std::vector<double> first_count;
-    std::vector<double> first_s2;  // [key * cones + k]
+    std::vector<double> first_s2;      // [key * cones + k]
+    CavityFormLearning form_learning;  // the delta walks' drawn cavity chains (cavity_chain.h)
 
     explicit Sums(std::size_t entries = 0, std::size_t cone_count = 0)
         : mean(entries, 0.0), m2(entries, 0.0), cones(cone_count) {}

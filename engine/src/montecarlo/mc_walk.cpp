@@ -50,6 +50,7 @@ Walker deltaWalker(const PathContext& context, const WalkSettings& settings, Pat
     walker.bins = context.bins;
     walker.brdf_out = f_out;
     walker.chain_out = context.chain_out;
+    walker.form_learning = context.form_learning;
     walker.j = j;
     walker.depth = depth;
     walker.history.path_class = path_class;

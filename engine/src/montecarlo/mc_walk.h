@@ -2,6 +2,7 @@
 // The Monte Carlo walks through the paint at one wavelength: forward paths,
 // delta-chain, first-flake and reverse walks (mc_walk.cpp; the walker: mc_walker.h).
 
+#include "cavity_chain.h"
 #include "chain_promise.h"
 #include "flake_tile.h"
 #include "mc_connection.h"
@@ -61,6 +62,8 @@ struct WalkSettings {
     bool delta_chain_connections = true;
     double chain_connection_weight = 1.0;
     CavityForms cavity_forms;  // McSettings::cavity_forms
+    // The drawn chains' draw (null: uniform among the forms a flight can run).
+    const CavityFormWeights* cavity_form_weights = nullptr;
     // Delta-chain walks: a branch's roulette by its promise (chain_promise.h;
     // null: by weight alone). It survives with probability
     // clamp(w promise / (promise_threshold w_0), promise_floor, 1), w_0 the
@@ -110,6 +113,8 @@ struct PathContext {
     std::span<const double> nee_boost = {};
     // Where the chain connections' scores go (per bin); empty: f_out.
     std::span<double> chain_out = {};
+    // What the drawn cavity chains learn (null: nothing).
+    CavityFormLearning* form_learning = nullptr;
 };
 
 // What one path carries out of the paint (power per unit incident power),

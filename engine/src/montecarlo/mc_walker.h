@@ -47,9 +47,10 @@ struct Walker {
     PathRng* connection_rng = nullptr;  // non-null: connections on
     const WalkSettings& settings;
     std::span<double> brdf_out;
-    std::span<const double> nee_weights;  // per bin (empty: settings.connection_weight)
-    std::span<double> nee_out;            // per bin (empty: brdf_out)
-    std::span<double> chain_out;          // the chain connections' scores per bin (empty: brdf_out)
+    std::span<const double> nee_weights;          // per bin (empty: settings.connection_weight)
+    std::span<double> nee_out;                    // per bin (empty: brdf_out)
+    std::span<double> chain_out;                  // the chain connections' scores per bin (empty: brdf_out)
+    CavityFormLearning* form_learning = nullptr;  // what the drawn cavity chains learn (null: nothing)
     // Per bin, the factor (>= 1) on a pigment collision's chance to run the
     // connections into it (PathContext::nee_boost); empty: 1.
     std::span<const double> nee_boost;
@@ -263,9 +264,9 @@ struct Walker {
     // this layer (changeBack(0)).
     void cavityConnections(const Slice& s, const LayerFlakes& lf, double length, double sigma);
     // One chain (j round trips, m flakes gone back over; m = 0: ending at c)
-    // of a cavity connection's draw, its score times form_weight.
-    void cavityFormConnection(const Slice& s, const LayerFlakes& lf, const ChainDraw& draw, int trips, int m,
-                              double form_weight, PathRng& chain_rng);
+    // of a cavity connection's draw, its score times form_weight (returned too).
+    double cavityFormConnection(const Slice& s, const LayerFlakes& lf, const ChainDraw& draw, int trips,
+                                int m, double form_weight, PathRng& chain_rng);
     // Their chain from the drawn flake c (mc_walker_cavity.cpp).
     struct CavityLeg;
     double traceCavityChain(const Slice& s, const LayerFlakes& lf, const CavityLeg& leg) const;

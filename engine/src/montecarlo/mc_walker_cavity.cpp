@@ -128,7 +128,8 @@ double Walker::traceCavityChain(const Slice& s, const LayerFlakes& lf, const Cav
 // the flight's factors as the last-flake connections', times the traced
 // chain. The chains with j <= kCavityEveryFlightTrips and 1 <= m <=
 // kCavityEveryFlightRetrace run on every flight; of the others one, drawn
-// uniformly, weighted by their count.
+// uniformly and weighted by their count, or, on the delta walks, with the
+// job's learned weights (CavityFormWeights) and weighted by 1 / p.
 void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double length, double sigma) {
     if (!(length > 0.0) || bins.empty()) return;
     // x_1, x_2, ...: the latest changes, reflections off flakes of this layer.
@@ -159,13 +160,55 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
             if (const CavityForm form{s.layer, trips, m}; form.drawn())
                 drawn[static_cast<std::size_t>(forms++)] = form;
     if (forms == 0) return;
-    const CavityForm& pick =
-        drawn[static_cast<std::size_t>(std::min(forms - 1, static_cast<int>(chain_rng.uniform() * forms)))];
-    cavityFormConnection(s, lf, draw, pick.trips, pick.retrace, forms, chain_rng);
+    const CavityFormWeights* weights = settings.cavity_form_weights;
+    if (weights == nullptr && form_learning == nullptr) {
+        const CavityForm& pick = drawn[static_cast<std::size_t>(
+            std::min(forms - 1, static_cast<int>(chain_rng.uniform() * forms)))];
+        cavityFormConnection(s, lf, draw, pick.trips, pick.retrace, forms, chain_rng);
+        return;
+    }
+    // In proportion to the learned weights, mixed with the uniform draw
+    // (kUniformFormShare): every form keeps a chance, so the estimate stays
+    // unbiased whatever was learned.
+    std::array<double, drawn.size()> p{};
+    double total = 0.0;
+    const auto weight_of = [weights](const CavityForm& form) {
+        return weights != nullptr ? (*weights)[cavityFormSlot(form.trips, form.retrace)] : 0.0;
+    };
+    for (int i = 0; i < forms; ++i) total += weight_of(drawn[static_cast<std::size_t>(i)]);
+    for (int i = 0; i < forms; ++i) {
+        const CavityForm& form = drawn[static_cast<std::size_t>(i)];
+        const double learned = total > 0.0 ? weight_of(form) / total : 0.0;
+        const double uniform = 1.0 / forms;
+        p[static_cast<std::size_t>(i)] =
+            total > 0.0 ? kUniformFormShare * uniform + (1.0 - kUniformFormShare) * learned : uniform;
+    }
+    const double u = chain_rng.uniform();
+    int chosen = forms - 1;
+    double below = 0.0;
+    for (int i = 0; i < forms - 1; ++i) {
+        below += p[static_cast<std::size_t>(i)];
+        if (u < below) {
+            chosen = i;
+            break;
+        }
+    }
+    const CavityForm& pick = drawn[static_cast<std::size_t>(chosen)];
+    const double p_pick = p[static_cast<std::size_t>(chosen)];
+    const double score = cavityFormConnection(s, lf, draw, pick.trips, pick.retrace, 1.0 / p_pick, chain_rng);
+    if (form_learning != nullptr) {
+        // X = score p_pick: the chain's score before the draw's weight; X^2 / p has the mean E[X^2].
+        const double unweighted = score * p_pick;
+        form_learning->m2_over_p[cavityFormSlot(pick.trips, pick.retrace)] +=
+            unweighted * unweighted / p_pick;
+        for (int i = 0; i < forms; ++i)
+            form_learning->available[cavityFormSlot(drawn[static_cast<std::size_t>(i)].trips,
+                                                    drawn[static_cast<std::size_t>(i)].retrace)] += 1.0;
+    }
 }
 
-void Walker::cavityFormConnection(const Slice& s, const LayerFlakes& lf, const ChainDraw& draw, int trips,
-                                  int m, double form_weight, PathRng& chain_rng) {
+double Walker::cavityFormConnection(const Slice& s, const LayerFlakes& lf, const ChainDraw& draw, int trips,
+                                    int m, double form_weight, PathRng& chain_rng) {
     const LastFlakeLaw& law = *lf.last_flake;
     const std::size_t kinds = std::min(law.kinds.size(), lf.kinds.size());
     const Vec3 n_1 = changeBack(0).normal;
@@ -178,6 +221,7 @@ void Walker::cavityFormConnection(const Slice& s, const LayerFlakes& lf, const C
     const double factor = draw.factor * form_weight;
     CavityNormals normals;
     const int count = cavityNormals(v, n_1, target, trips + 1, normals);
+    double scored = 0.0;
     for (int c = 0; c < count; ++c) {
         const Vec3 h = normals[static_cast<std::size_t>(c)].h;
         const double cos_vh = std::abs(dot(v, h));
@@ -209,8 +253,12 @@ void Walker::cavityFormConnection(const Slice& s, const LayerFlakes& lf, const C
             leg.kind_c = &lf.kinds[i];
             sum += per_kind[i] * flake.rho * T_legs * traceCavityChain(s, lf, leg);
         }
-        if (sum > 0.0) chainOut()[draw.k] += sum * factor / kernels.q;
+        if (sum > 0.0) {
+            chainOut()[draw.k] += sum * factor / kernels.q;
+            scored += sum * factor / kernels.q;
+        }
     }
+    return scored;
 }
 
 }  // namespace paintlab::mc

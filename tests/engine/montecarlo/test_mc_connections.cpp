@@ -677,6 +677,9 @@ TEST(MonteCarloConnections, DrawnCavityChainsAgreeWithTheWalksEscapes) {
     // comes in rare large escapes (its error halves only slowly with more
     // paths): they must resolve it to 5 errors, so a connection score off by
     // half or more fails (the forms' weight left out, /5 to /7: z -6 to -9).
+    // After the first rounds the delta walks draw the forms by the job's
+    // learned weights (JobRunner::learnCavityFormWeights): weighted by the
+    // forms' count instead of 1 / p, exit 2 reads z = +23.
     const Recipe r = stackedMirrorFilm();
     const std::vector<mc::IncidenceRequest> req = specularNormalAndBackscatter();
     auto s = stackedMirrorDeltaWalks(800000, 191);
