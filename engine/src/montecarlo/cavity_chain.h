@@ -36,6 +36,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace paintlab::mc {
 
@@ -45,8 +46,8 @@ namespace paintlab::mc {
 // commonest); the others (more round trips or flakes, or ending at c) are
 // rarer and each costs up to j + 1 normals, so a flight runs one of them,
 // drawn uniformly and weighted by their count (the delta walks: by learned
-// weights, below), when McSettings::cavity_forms asks (off by default:
-// docs/PERFORMANCE.md).
+// weights, below), when McSettings::cavity_forms asks (as it does by
+// default: docs/PERFORMANCE.md).
 inline constexpr int kMaxCavityRoundTrips = 3;
 inline constexpr int kMaxCavityRetrace = 4;
 inline constexpr int kCavityEveryFlightTrips = 1;
@@ -63,13 +64,15 @@ inline constexpr std::size_t cavityFormSlot(int trips, int retrace) {
 }
 // The drawn chains' draw: per slot a weight (each flight draws among the
 // forms it can run, in proportion, mixed with the uniform draw); and what
-// the walks learn for it: per slot the sum of X^2 / p over the draws (X a
-// drawn chain's score before the draw's weight 1 / p) and the flights that
-// could draw it.
+// the walks learn for it: per slot and cone k the sum of X^2 / p over the
+// draws (X a drawn chain's score before the draw's weight 1 / p and the
+// chain share's, [slot * cones + k], sized by the first draw), and per
+// slot the flights that could draw it.
 using CavityFormWeights = std::array<double, kCavityFormSlots>;
 struct CavityFormLearning {
-    CavityFormWeights m2_over_p{};
+    std::vector<double> m2_over_p;
     CavityFormWeights available{};
+    void add(const CavityFormLearning& other);
 };
 
 // v mirrored through the plane with unit normal n.

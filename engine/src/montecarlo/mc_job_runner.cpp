@@ -215,13 +215,32 @@ bool JobRunner::adapt(const Sums& total) {
 
 // The drawn cavity chains' weights (CavityFormWeights): each form's draw in
 // proportion to the root of its mean square, the variance-optimal share of
-// a one-of-many draw; a form never drawn keeps the uniform share alone.
+// a one-of-many draw, with the cones weighed by the stop rule's need: w_k =
+// r_k / f_k^2, r_k the cone's relative variance per path over the largest,
+// so the mean square is that of the relative errors, the worst cone's most.
+// A form never drawn keeps the uniform share alone.
 void JobRunner::learnCavityFormWeights(const Sums& total) {
     const CavityFormLearning& learned = total.form_learning;
+    if (total.paths < 2 || learned.m2_over_p.size() < kCavityFormSlots * m_exits) return;
+    std::vector<double> w(m_exits, 0.0);
+    double r_max = 0.0;
+    for (std::size_t k = 0; k < m_exits; ++k) {
+        const double f = total.mean[kFirstExit + k];
+        if (!(f > 0.0)) continue;
+        w[k] = total.m2[kFirstExit + k] / static_cast<double>(total.paths - 1) / (f * f);
+        r_max = std::max(r_max, w[k]);
+    }
+    if (!(r_max > 0.0)) return;
+    for (std::size_t k = 0; k < m_exits; ++k) {
+        const double f = total.mean[kFirstExit + k];
+        w[k] = f > 0.0 ? w[k] / (r_max * f * f) : 0.0;
+    }
     bool any = false;
     for (std::size_t i = 0; i < m_form_weights.size(); ++i) {
         const double flights = learned.available[i];
-        m_form_weights[i] = flights > 0.0 ? std::sqrt(learned.m2_over_p[i] / flights) : 0.0;
+        double m2 = 0.0;
+        for (std::size_t k = 0; k < m_exits; ++k) m2 += w[k] * learned.m2_over_p[i * m_exits + k];
+        m_form_weights[i] = flights > 0.0 ? std::sqrt(m2 / flights) : 0.0;
         any = any || m_form_weights[i] > 0.0;
     }
     m_form_weights_learned = any;

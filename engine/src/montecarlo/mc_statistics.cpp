@@ -15,6 +15,11 @@ void addElementwise(std::vector<double>& to, const std::vector<double>& from) {
 
 }  // namespace
 
+void CavityFormLearning::add(const CavityFormLearning& other) {
+    addElementwise(m2_over_p, other.m2_over_p);
+    for (std::size_t i = 0; i < available.size(); ++i) available[i] += other.available[i];
+}
+
 void ConeStats::add(const ConeStats& o) {
     delta_samples += o.delta_samples;
     delta_s1 += o.delta_s1;
@@ -43,10 +48,7 @@ void Sums::add(const Sums& other) {
     for (std::size_t k = 0; k < cones.size() && k < other.cones.size(); ++k) cones[k].add(other.cones[k]);
     addElementwise(first_count, other.first_count);
     addElementwise(first_s2, other.first_s2);
-    for (std::size_t i = 0; i < form_learning.available.size(); ++i) {
-        form_learning.m2_over_p[i] += other.form_learning.m2_over_p[i];
-        form_learning.available[i] += other.form_learning.available[i];
-    }
+    form_learning.add(other.form_learning);
     walk_cost += other.walk_cost;
     nee_cost += other.nee_cost;
     nee_attempts += other.nee_attempts;

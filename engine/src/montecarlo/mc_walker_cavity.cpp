@@ -197,9 +197,13 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
     const double p_pick = p[static_cast<std::size_t>(chosen)];
     const double score = cavityFormConnection(s, lf, draw, pick.trips, pick.retrace, 1.0 / p_pick, chain_rng);
     if (form_learning != nullptr) {
-        // X = score p_pick: the chain's score before the draw's weight; X^2 / p has the mean E[X^2].
-        const double unweighted = score * p_pick;
-        form_learning->m2_over_p[cavityFormSlot(pick.trips, pick.retrace)] +=
+        // X = score p_pick s: the chain's score before the draw's weight and the
+        // chain share's (which changes between rounds); X^2 / p has the mean E[X^2].
+        const double unweighted = score * p_pick / settings.chain_connection_weight;
+        const std::size_t cones = bins.size();
+        if (form_learning->m2_over_p.size() < kCavityFormSlots * cones)
+            form_learning->m2_over_p.resize(kCavityFormSlots * cones, 0.0);
+        form_learning->m2_over_p[cavityFormSlot(pick.trips, pick.retrace) * cones + draw.k] +=
             unweighted * unweighted / p_pick;
         for (int i = 0; i < forms; ++i)
             form_learning->available[cavityFormSlot(drawn[static_cast<std::size_t>(i)].trips,

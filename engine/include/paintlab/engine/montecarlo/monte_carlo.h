@@ -64,14 +64,14 @@ struct ConnectionParts {
 
 // Which cavity chains (McSettings::cavity_connections, engine/src/montecarlo/
 // cavity_chain.h) the connections take: those every flight runs, the drawn
-// ones (more round trips or flakes, or ending at c; off by default: they pay
-// on silver metallic but cost more than they give on black-backed aluminium,
-// docs/PERFORMANCE.md); the walks score the escapes of the others. walk_scores (tests): All, or
-// only the escapes that end a drawn chain (a reference for the drawn forms
-// alone), or None (the connections alone).
+// ones (more round trips or flakes, or ending at c: a third less time on
+// silver metallic, even on the fast-vs-full grid's aluminium within its
+// seeds' spread, docs/PERFORMANCE.md); the walks score the escapes of the others. walk_scores (tests): All,
+// or only the escapes that end a drawn chain (a reference for the drawn forms alone), or None (the
+// connections alone).
 struct CavityForms {
     bool every_flight = true;
-    bool drawn = false;
+    bool drawn = true;
     enum class WalkScores { All, DrawnOnly, None };
     WalkScores walk_scores = WalkScores::All;
 };
