@@ -46,8 +46,8 @@ namespace paintlab::mc {
 // commonest); the others (more round trips or flakes, or ending at c) are
 // rarer and each costs up to j + 1 normals, so a flight runs one of them,
 // drawn uniformly and weighted by their count (the delta walks: by learned
-// weights, below), when McSettings::cavity_forms asks (as it does by
-// default: docs/PERFORMANCE.md).
+// weights, below), when McSettings::cavity_forms asks (by default in
+// mirror-flake layers: docs/PERFORMANCE.md).
 inline constexpr int kMaxCavityRoundTrips = 3;
 inline constexpr int kMaxCavityRetrace = 4;
 inline constexpr int kCavityEveryFlightTrips = 1;
@@ -122,9 +122,10 @@ struct CavityForm {
 };
 CavityForm cavityChainForm(std::span<const ChainChange> latest_first);
 
-// Whether the connections take a matched chain (McSettings::cavity_forms).
-inline bool cavityFormTaken(const CavityForms& forms, const CavityForm& form) {
-    return form.layer >= 0 && (form.drawn() ? forms.drawn : forms.every_flight);
+// Whether the connections take a matched chain (McSettings::cavity_forms; a
+// drawn one only where its layer runs the drawn chains, LayerFlakes).
+inline bool cavityFormTaken(const CavityForms& forms, const CavityForm& form, bool drawn_in_layer) {
+    return form.layer >= 0 && (form.drawn() ? drawn_in_layer : forms.every_flight);
 }
 
 }  // namespace paintlab::mc

@@ -88,6 +88,7 @@ struct LayerFlakes {
     // Which chain connections run in this layer (McSettings; only with a law).
     bool last_flake_connections = false;
     bool cavity_connections = false;
+    bool drawn_cavity_chains = false;  // ... and the drawn ones (McSettings::cavity_forms)
 };
 
 // A path's class by its last direction change (the histogram's classes, McSettings::histogram_classes).

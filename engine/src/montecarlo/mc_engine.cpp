@@ -216,9 +216,12 @@ McEngine::Band McEngine::band(double wavelength_nm) const {
             const bool cavity_on = m_settings.cavity_connections || auto_on;
             const bool law = (last_on || cavity_on) && !m_settings.reject_overlaps &&
                              l < m_last_flake.size() && !m_last_flake[l].kinds.empty();
+            // The drawn cavity chains pay on mirror flakes only (CavityForms).
+            const bool drawn = mirrors ? m_settings.cavity_forms.drawn
+                                       : m_settings.cavity_forms.drawn_on_interference_flakes;
             layers.push_back({m_tiles[b][l].get(), kinds[l], tilts.order.empty() ? nullptr : &tilts,
                               groups.flakes.empty() ? nullptr : &groups, law ? &m_last_flake[l] : nullptr,
-                              law && last_on, law && cavity_on});
+                              law && last_on, law && cavity_on, law && cavity_on && drawn});
         }
         band.explicit_flakes.push_back(std::move(layers));
     }

@@ -144,12 +144,11 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
     PathRng& chain_rng = chainRng();
     const ChainDraw draw = drawChainCone(s, length, sigma, chain_rng);
     if (!draw.ok) return;
-    const CavityForms& run = settings.cavity_forms;
-    if (run.every_flight)
+    if (settings.cavity_forms.every_flight)
         for (int m = 1; m <= std::min(available, kCavityEveryFlightRetrace); ++m)
             for (int trips = 0; trips <= kCavityEveryFlightTrips; ++trips)
                 cavityFormConnection(s, lf, draw, trips, m, 1.0, chain_rng);
-    if (!run.drawn) return;
+    if (!lf.drawn_cavity_chains) return;
     // The drawn chain, uniformly among the others: ending at c (m = 0, j >= 1),
     // more round trips, or more flakes gone back over.
     std::array<CavityForm, static_cast<std::size_t>((kMaxCavityRetrace + 1) * (kMaxCavityRoundTrips + 1))>

@@ -139,11 +139,12 @@ void Walker::escape() {
              explicit_flakes[static_cast<std::size_t>(latest % 64)].cavity_connections)) {
             const CavityForm form = cavityFormNow();
             drawn_form = form.layer >= 0 && form.drawn();
-            taken = chain_connections &&
-                    explicit_flakes[static_cast<std::size_t>(latest % 64)].cavity_connections &&
-                    form.layer >= 0 &&
-                    explicit_flakes[static_cast<std::size_t>(form.layer)].cavity_connections &&
-                    cavityFormTaken(settings.cavity_forms, form);
+            taken =
+                chain_connections &&
+                explicit_flakes[static_cast<std::size_t>(latest % 64)].cavity_connections &&
+                form.layer >= 0 && explicit_flakes[static_cast<std::size_t>(form.layer)].cavity_connections &&
+                cavityFormTaken(settings.cavity_forms, form,
+                                explicit_flakes[static_cast<std::size_t>(form.layer)].drawn_cavity_chains);
         }
     }
     const bool scored =

@@ -63,17 +63,20 @@ struct ConnectionParts {
 };
 
 // Which cavity chains (McSettings::cavity_connections, engine/src/montecarlo/
-// cavity_chain.h) the connections take: those every flight runs, the drawn
-// ones (more round trips or flakes, or ending at c: a third less time on
-// silver metallic, even on the fast-vs-full grid's aluminium within its
-// seeds' spread, docs/PERFORMANCE.md); the walks score the escapes of the others. walk_scores (tests): All,
-// or only the escapes that end a drawn chain (a reference for the drawn forms alone), or None (the
-// connections alone).
+// cavity_chain.h) the connections take: those every flight runs, and the
+// drawn ones (more round trips or flakes, or ending at c) in mirror-flake
+// layers (a third less time on silver metallic, even on the fast-vs-full
+// grid's aluminium within its seeds' spread) and, off by default, in
+// interference-flake layers (there they cost a quarter to a half more time
+// for the same paths: docs/PERFORMANCE.md); the walks score the escapes of
+// the others. walk_scores (tests): All, or only the escapes that end a drawn
+// chain (a reference for the drawn forms alone), or None (the connections alone).
 struct CavityForms {
     bool every_flight = true;
     bool drawn = true;
     enum class WalkScores { All, DrawnOnly, None };
     WalkScores walk_scores = WalkScores::All;
+    bool drawn_on_interference_flakes = false;
 };
 
 // The path classes, by their last direction change, whose escapes the
