@@ -65,8 +65,8 @@ struct ConnectionParts {
 // Which cavity chains (McSettings::cavity_connections, engine/src/montecarlo/
 // cavity_chain.h) the connections take: those every flight runs, and the
 // drawn ones (more round trips or flakes, or ending at c) in mirror-flake
-// layers (a third less time on silver metallic, even on the fast-vs-full
-// grid's aluminium within its seeds' spread) and, off by default, in
+// layers (a third less time on silver metallic, -3 % to +20 % on the
+// fast-vs-full grid's aluminium) and, off by default, in
 // interference-flake layers (there they cost a quarter to a half more time
 // for the same paths: docs/PERFORMANCE.md); the walks score the escapes of
 // the others. walk_scores (tests): All, or only the escapes that end a drawn
