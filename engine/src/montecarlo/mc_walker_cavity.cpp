@@ -128,8 +128,8 @@ double Walker::traceCavityChain(const Slice& s, const LayerFlakes& lf, const Cav
 // the flight's factors as the last-flake connections', times the traced
 // chain. The chains with j <= kCavityEveryFlightTrips and 1 <= m <=
 // kCavityEveryFlightRetrace run on every flight; of the others one, drawn
-// uniformly and weighted by their count, or, on the delta walks, with the
-// job's learned weights (CavityFormWeights) and weighted by 1 / p.
+// with probability p by the job's learned weights (CavityFormWeights; the
+// forward walks: uniformly) and weighted by 1 / p.
 void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double length, double sigma) {
     if (!(length > 0.0) || bins.empty()) return;
     // x_1, x_2, ...: the latest changes, reflections off flakes of this layer.
@@ -149,26 +149,20 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
             for (int trips = 0; trips <= kCavityEveryFlightTrips; ++trips)
                 cavityFormConnection(s, lf, draw, trips, m, 1.0, chain_rng);
     if (!lf.drawn_cavity_chains) return;
-    // The drawn chain, uniformly among the others: ending at c (m = 0, j >= 1),
+    // The drawn chain, one of the others: ending at c (m = 0, j >= 1),
     // more round trips, or more flakes gone back over.
-    std::array<CavityForm, static_cast<std::size_t>((kMaxCavityRetrace + 1) * (kMaxCavityRoundTrips + 1))>
-        drawn{};
+    std::array<CavityForm, kCavityFormSlots> drawn{};
     int forms = 0;
     for (int m = 0; m <= available; ++m)
         for (int trips = m == 0 ? 1 : 0; trips <= kMaxCavityRoundTrips; ++trips)
             if (const CavityForm form{s.layer, trips, m}; form.drawn())
                 drawn[static_cast<std::size_t>(forms++)] = form;
     if (forms == 0) return;
-    const CavityFormWeights* weights = settings.cavity_form_weights;
-    if (weights == nullptr && form_learning == nullptr) {
-        const CavityForm& pick = drawn[static_cast<std::size_t>(
-            std::min(forms - 1, static_cast<int>(chain_rng.uniform() * forms)))];
-        cavityFormConnection(s, lf, draw, pick.trips, pick.retrace, forms, chain_rng);
-        return;
-    }
     // In proportion to the learned weights, mixed with the uniform draw
     // (kUniformFormShare): every form keeps a chance, so the estimate stays
-    // unbiased whatever was learned.
+    // unbiased whatever was learned; uniform before any learning and on the
+    // forward walks, which learn nothing.
+    const CavityFormWeights* weights = settings.cavity_form_weights;
     std::array<double, drawn.size()> p{};
     double total = 0.0;
     const auto weight_of = [weights](const CavityForm& form) {
