@@ -200,6 +200,7 @@ void JobRunner::chunkDelta(std::size_t batch, std::int64_t first_path, std::int6
     WalkSettings walk_bare = walk;
     walk_bare.delta_chain_connections = false;
     walk.chain_connection_weight = 1.0 / share;
+    walk.drawn_chain_rate = m_first_flake ? 1.0 : m_rates.drawn_chain_rate;
     if (m_form_weights_learned) walk.cavity_form_weights = &m_form_weights;
     std::vector<double> f(m_exits);
     std::vector<double> f_chain(m_exits);
@@ -237,9 +238,12 @@ void JobRunner::chunkDelta(std::size_t batch, std::int64_t first_path, std::int6
         double cost = 0.0;
         double chain_cost = 0.0;
         if (m_uniform_delta) {
+            const double drawn_steps = sums.form_learning.drawn_steps;
             const PathOutcome out = traceDeltaChains(context, view.v_in, m_entry_weight, x, y, rng, f);
-            // A last-flake connection (a cone's draw, kernel and roulette) costs about two walk steps.
-            chain_cost = kCostPerWalkStep * static_cast<double>(2 * out.nee_attempts);
+            // A last-flake connection (a cone's draw, kernel and roulette) costs about two walk steps,
+            // the drawn cavity chains their counted steps.
+            chain_cost = kCostPerWalkStep * (static_cast<double>(2 * out.nee_attempts) +
+                                             sums.form_learning.drawn_steps - drawn_steps);
             cost += kCostPerPath + kCostPerWalkStep * static_cast<double>(out.events + out.rays) + chain_cost;
         }
         if (m_first_flake) {

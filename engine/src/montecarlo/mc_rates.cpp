@@ -45,63 +45,89 @@ std::array<double, 3> cheapestRates(const std::array<RateTerm, 3>& terms, double
     return x;
 }
 
-DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double current_share) {
+DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double current_share,
+                              double current_drawn_rate) {
     DeltaWalkModel model;
     model.shares = {current_share};
+    model.drawn_rates = {current_drawn_rate};
     const std::size_t exits = total.cones.size();
     model.v1.assign(exits, 0.0);
     model.chain_m2.assign(exits, 0.0);
+    model.drawn_m2.assign(exits, 0.0);
     if (!delta_walks || exits == 0 || !(total.cones[0].delta_samples > 1.0)) return model;
     model.measured = true;
     const ConeStats& c0 = total.cones[0];
     const double n = c0.delta_samples;
     const double n_chain = c0.chain_samples;
-    // Every walk so far ran the connections: D(1) is their measured variance as it is.
+    const CavityFormLearning& drawn = total.form_learning;
+    const bool drawn_measured =
+        n_chain > 1.0 && drawn.drawn_s2.size() == exits && drawn.drawn_steps_at_one > 0.0;
+    // Every walk so far ran the connections: D(1, 1) is their measured
+    // variance less what the drawn chains' rate added.
     const bool all_chained = n_chain == n;
     for (std::size_t k = 0; k < exits; ++k) {
         const ConeStats& cs = total.cones[k];
         const double mean = cs.delta_s1 / n;
         const double measured = std::max(0.0, cs.delta_s2 / n - mean * mean);
+        const double excess = drawn_measured ? drawn.drawn_excess[k] : 0.0;
         if (n_chain > 1.0) {
-            model.chain_m2[k] = cs.chain_s2 / n_chain;
-            model.v1[k] = all_chained ? measured
+            model.chain_m2[k] = std::max(0.0, (cs.chain_s2 - excess) / n_chain);
+            model.v1[k] = all_chained ? std::max(0.0, measured - excess / n)
                                       : std::max(0.0, cs.escape_s2 / n + 2.0 * cs.chain_cross / n_chain +
                                                           model.chain_m2[k] - mean * mean);
         } else {
             model.v1[k] = measured;
         }
+        if (drawn_measured) model.drawn_m2[k] = drawn.drawn_s2[k] / n_chain;
     }
     model.walk_cost = c0.delta_cost / n;
-    // Heavy tails (kMaxChainTermShare): E[C^2] is then no measure, and a
-    // thinned outlier would weigh 1 / s.
+    // Heavy tails (kMaxChainTermShare): a mean square is then no measure, and
+    // a thinned outlier would weigh 1 / s (or 1 / q).
     const bool heavy = std::any_of(total.cones.begin(), total.cones.end(), [](const ConeStats& cs) {
         return cs.chain_s2 > 0.0 && cs.chain_max2 > kMaxChainTermShare * cs.chain_s2;
     });
     if (n_chain > 1.0) {
         model.bare_cost = (c0.delta_cost - c0.chain_cost) / n;
         model.chain_cost = c0.chain_cost / n_chain;
-        model.all_chained = all_chained;
         model.shares.clear();
         for (double s = 1.0; s >= kMinDeltaChainShare * 0.9999 && (s == 1.0 || !heavy); s *= 0.5)
             model.shares.push_back(s);
     }
+    if (drawn_measured) {
+        model.chain_cost = std::max(0.0, model.chain_cost - kCostPerWalkStep * drawn.drawn_steps / n_chain);
+        model.drawn_cost = kCostPerWalkStep * drawn.drawn_steps_at_one / n_chain;
+        // A rate q only while no single flight's Y^2 (1 / q - 1), the variance
+        // its thinning would add, is beyond kMaxChainTermShare of the cone's
+        // sum of the walks' variance: the drawn chains' scores are heavy-tailed
+        // among themselves (on silver their largest term is 10-100 % of their
+        // sum) but a small part of the walks' variance.
+        const auto allowed = [&](double q) {
+            for (std::size_t k = 0; k < exits; ++k)
+                if (drawn.drawn_max2[k] * (1.0 / q - 1.0) > kMaxChainTermShare * n * model.v1[k])
+                    return false;
+            return true;
+        };
+        model.drawn_rates.clear();
+        for (double q = 1.0; q >= kMinDrawnChainRate * 0.9999 && (q == 1.0 || allowed(q)); q *= 0.5)
+            model.drawn_rates.push_back(q);
+    }
     return model;
 }
 
-double DeltaWalkModel::variance(std::size_t k, double share) const {
-    return share >= 1.0 ? v1[k] : v1[k] + chain_m2[k] * (1.0 / share - 1.0);
+double DeltaWalkModel::variance(std::size_t k, double share, double drawn_rate) const {
+    return v1[k] + chain_m2[k] * (1.0 / share - 1.0) + drawn_m2[k] * (1.0 / drawn_rate - 1.0) / share;
 }
 
-double DeltaWalkModel::cost(double share) const {
-    if (!(chain_cost > 0.0)) return walk_cost;
-    // With every walk chained so far, the cost at share 1 is the measured one as it is.
-    return all_chained ? walk_cost - (1.0 - share) * chain_cost : bare_cost + share * chain_cost;
+double DeltaWalkModel::cost(double share, double drawn_rate) const {
+    if (!(chain_cost + drawn_cost > 0.0)) return walk_cost;
+    return bare_cost + share * (chain_cost + drawn_rate * drawn_cost);
 }
 
-std::vector<std::pair<double, double>> DeltaWalkModel::options(const std::vector<double>& rates) const {
-    std::vector<std::pair<double, double>> out;
+std::vector<DeltaWalkModel::Option> DeltaWalkModel::options(const std::vector<double>& rates) const {
+    std::vector<Option> out;
     for (const double d : rates)
-        for (const double s : shares) out.emplace_back(d, s);
+        for (const double s : shares)
+            for (const double q : drawn_rates) out.push_back({d, s, q});
     return out;
 }
 
@@ -142,7 +168,8 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
     // The delta-chain walks serve every cone at once: one common rate d, scanned
     // over powers of two, its variance D_k / d joining A; with it the share s
     // of them that run the chain connections (DeltaWalkModel).
-    const DeltaWalkModel delta = deltaWalkModel(total, delta_walks, rates.delta_chain_share);
+    const DeltaWalkModel delta =
+        deltaWalkModel(total, delta_walks, rates.delta_chain_share, rates.drawn_chain_rate);
     std::vector<double> delta_rates{rates.delta_rate};
     if (delta.measured) {
         delta_rates.clear();
@@ -150,11 +177,12 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
     }
     double best = std::numeric_limits<double>::infinity();
     double best_share = rates.delta_chain_share;
+    double best_drawn_rate = rates.drawn_chain_rate;
     std::vector<std::array<double, 3>> x(exits);
     std::vector<double> delta_variance(exits, 0.0);
-    for (const auto& [d, share] : delta.options(delta_rates)) {
+    for (const auto& [d, share, drawn_rate] : delta.options(delta_rates)) {
         std::vector<double> a_d(exits);
-        for (std::size_t k = 0; k < exits; ++k) a_d[k] = a[k] + delta.variance(k, share) / d;
+        for (std::size_t k = 0; k < exits; ++k) a_d[k] = a[k] + delta.variance(k, share, drawn_rate) / d;
         const auto variance = [&](std::size_t k, const std::array<double, 3>& at) {
             double v = a_d[k];
             for (std::size_t t = 0; t < 3; ++t) v += terms[k][t].variance / at[t];
@@ -168,7 +196,7 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
         if (!(rho_min > 0.0)) continue;
         for (int step = 0; step < 200; ++step) {
             const double rho = rho_min * std::pow(1.06, step);
-            double cost = c_walk + d * delta.cost(share);
+            double cost = c_walk + d * delta.cost(share, drawn_rate);
             double worst = 0.0;
             for (std::size_t k = 0; k < exits; ++k) {
                 if (f2[k] > 0.0) {
@@ -184,6 +212,7 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
                 best = worst * cost;
                 rates.delta_rate = d;
                 best_share = share;
+                best_drawn_rate = drawn_rate;
                 for (std::size_t k = 0; k < exits; ++k) {
                     rates.nee_fraction[k] = x[k][0];
                     rates.glint_rate[k] = x[k][1];
@@ -193,7 +222,9 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
         }
     }
     rates.delta_chain_share = best_share;
-    for (std::size_t k = 0; k < exits; ++k) delta_variance[k] = delta.variance(k, best_share);
+    rates.drawn_chain_rate = best_drawn_rate;
+    for (std::size_t k = 0; k < exits; ++k)
+        delta_variance[k] = delta.variance(k, best_share, best_drawn_rate);
     return {std::move(f2), std::move(delta_variance)};
 }
 
