@@ -79,6 +79,7 @@ using CavityFormWeights = std::array<double, kCavityFormSlots>;
 struct CavityFormLearning {
     std::vector<double> m2_over_p;
     CavityFormWeights available{};
+    std::vector<double> drawn_s1;  // the sum of Y / q (per walk: its drawn part)
     std::vector<double> drawn_s2;
     std::vector<double> drawn_excess;
     std::vector<double> drawn_max2;

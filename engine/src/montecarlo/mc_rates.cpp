@@ -46,7 +46,7 @@ std::array<double, 3> cheapestRates(const std::array<RateTerm, 3>& terms, double
 }
 
 DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double current_share,
-                              double current_drawn_rate) {
+                              double current_drawn_rate, bool drawn_rate_adapts) {
     DeltaWalkModel model;
     model.shares = {current_share};
     model.drawn_rates = {current_drawn_rate};
@@ -82,7 +82,8 @@ DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double curren
     }
     model.walk_cost = c0.delta_cost / n;
     // Heavy tails (kMaxChainTermShare): a mean square is then no measure, and
-    // a thinned outlier would weigh 1 / s (or 1 / q).
+    // a thinned outlier would weigh 1 / s (the drawn chains, whose scores are
+    // left out of chain_max2, have their own guard: allowed).
     const bool heavy = std::any_of(total.cones.begin(), total.cones.end(), [](const ConeStats& cs) {
         return cs.chain_s2 > 0.0 && cs.chain_max2 > kMaxChainTermShare * cs.chain_s2;
     });
@@ -96,20 +97,12 @@ DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double curren
     if (drawn_measured) {
         model.chain_cost = std::max(0.0, model.chain_cost - kCostPerWalkStep * drawn.drawn_steps / n_chain);
         model.drawn_cost = kCostPerWalkStep * drawn.drawn_steps_at_one / n_chain;
-        // A rate q only while no single flight's Y^2 (1 / q - 1), the variance
-        // its thinning would add, is beyond kMaxChainTermShare of the cone's
-        // sum of the walks' variance: the drawn chains' scores are heavy-tailed
-        // among themselves (on silver their largest term is 10-100 % of their
-        // sum) but a small part of the walks' variance.
-        const auto allowed = [&](double q) {
-            for (std::size_t k = 0; k < exits; ++k)
-                if (drawn.drawn_max2[k] * (1.0 / q - 1.0) > kMaxChainTermShare * n * model.v1[k])
-                    return false;
-            return true;
-        };
+        if (!drawn_rate_adapts) return model;
         model.drawn_rates.clear();
-        for (double q = 1.0; q >= kMinDrawnChainRate * 0.9999 && (q == 1.0 || allowed(q)); q *= 0.5)
-            model.drawn_rates.push_back(q);
+        for (double q = 1.0; q >= kMinDrawnChainRate * 0.9999; q *= 0.5) model.drawn_rates.push_back(q);
+        model.drawn_max2 = drawn.drawn_max2;
+        model.drawn_limit.resize(exits);
+        for (std::size_t k = 0; k < exits; ++k) model.drawn_limit[k] = kMaxChainTermShare * n * model.v1[k];
     }
     return model;
 }
@@ -123,11 +116,18 @@ double DeltaWalkModel::cost(double share, double drawn_rate) const {
     return bare_cost + share * (chain_cost + drawn_rate * drawn_cost);
 }
 
+bool DeltaWalkModel::allowed(double share, double drawn_rate) const {
+    for (std::size_t k = 0; k < drawn_max2.size() && k < drawn_limit.size(); ++k)
+        if (drawn_max2[k] * (1.0 / (share * drawn_rate) - 1.0) > drawn_limit[k]) return false;
+    return true;
+}
+
 std::vector<DeltaWalkModel::Option> DeltaWalkModel::options(const std::vector<double>& rates) const {
     std::vector<Option> out;
     for (const double d : rates)
         for (const double s : shares)
-            for (const double q : drawn_rates) out.push_back({d, s, q});
+            for (const double q : drawn_rates)
+                if (allowed(s, q)) out.push_back({d, s, q});
     return out;
 }
 
@@ -168,8 +168,8 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
     // The delta-chain walks serve every cone at once: one common rate d, scanned
     // over powers of two, its variance D_k / d joining A; with it the share s
     // of them that run the chain connections (DeltaWalkModel).
-    const DeltaWalkModel delta =
-        deltaWalkModel(total, delta_walks, rates.delta_chain_share, rates.drawn_chain_rate);
+    const DeltaWalkModel delta = deltaWalkModel(total, delta_walks, rates.delta_chain_share,
+                                                rates.drawn_chain_rate, rates.drawn_chain_rate_adapts);
     std::vector<double> delta_rates{rates.delta_rate};
     if (delta.measured) {
         delta_rates.clear();

@@ -81,6 +81,7 @@ struct ConeRates {
     // divided by it (McSettings::drawn_chain_rate): on the grid's mirror
     // flakes over black the drawn chains cost more than they take.
     double drawn_chain_rate = 1.0;
+    bool drawn_chain_rate_adapts = true;  // false: held (McSettings::adapt_drawn_chain_rate)
 };
 
 // Per cone: f^2 and the delta walks' variance per walk (the promise's and the
@@ -132,6 +133,15 @@ struct DeltaWalkModel {
     double drawn_cost = 0.0;  // ... the drawn chains' at q = 1
     std::vector<double> shares;
     std::vector<double> drawn_rates;
+    // A pair (s, q) with s < 1 or q < 1 only while no single flight's drawn
+    // Y^2 (1 / (s q) - 1), the variance its thinning would add, is beyond
+    // kMaxChainTermShare of the cone's sum of the walks' variance
+    // (drawn_limit): the drawn chains' scores are heavy-tailed among
+    // themselves (on silver their largest term is 10-100 % of their sum)
+    // but a small part of the walks' variance.
+    std::vector<double> drawn_max2;
+    std::vector<double> drawn_limit;
+    bool allowed(double share, double drawn_rate) const;
     double variance(std::size_t k, double share, double drawn_rate) const;
     double cost(double share, double drawn_rate) const;
     // Every (walk rate, share, drawn rate), the walk rates outermost.
@@ -143,7 +153,7 @@ struct DeltaWalkModel {
     std::vector<Option> options(const std::vector<double>& rates) const;
 };
 DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double current_share,
-                              double current_drawn_rate = 1.0);
+                              double current_drawn_rate = 1.0, bool drawn_rate_adapts = true);
 
 RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool reverse_walks, bool delta_walks,
                    ConeRates& rates);

@@ -210,6 +210,7 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
         const std::size_t cones = bins.size();
         if (form_learning->m2_over_p.size() < kCavityFormSlots * cones) {
             form_learning->m2_over_p.resize(kCavityFormSlots * cones, 0.0);
+            form_learning->drawn_s1.resize(cones, 0.0);
             form_learning->drawn_s2.resize(cones, 0.0);
             form_learning->drawn_excess.resize(cones, 0.0);
             form_learning->drawn_max2.resize(cones, 0.0);
@@ -217,6 +218,7 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
         form_learning->m2_over_p[cavityFormSlot(pick.trips, pick.retrace) * cones + draw.k] +=
             unweighted * unweighted / p_pick;
         const double y2 = unweighted * unweighted / (p_pick * p_pick);
+        form_learning->drawn_s1[draw.k] += unweighted / (p_pick * q);
         form_learning->drawn_s2[draw.k] += y2 / q;
         form_learning->drawn_excess[draw.k] += y2 * (1.0 - q) / (q * q);
         form_learning->drawn_max2[draw.k] = std::max(form_learning->drawn_max2[draw.k], y2);

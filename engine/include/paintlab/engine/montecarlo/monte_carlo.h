@@ -225,6 +225,7 @@ struct McSettings {
     // every round beside delta_chain_share, from 1 down to 1/8, and 1 while
     // the drawn chains' scores are heavy-tailed; clamped to [1/8, 1].
     double drawn_chain_rate = 1.0;
+    bool adapt_drawn_chain_rate = true;  // false: drawn_chain_rate throughout (bench config 40)
     double delta_roulette_weight = 1e-3;
     // Delta-chain walks (with adaptive_fractions): a branch also survives with a
     // probability set by its promise of reaching a cone (chain_promise.h) and
