@@ -23,13 +23,13 @@ inline constexpr double kMinDeltaRate = 1.0 / 64.0;
 // The smallest share of the delta-chain walks that run the chain connections
 // (ConeRates::delta_chain_share): their scores then carry at most 8 times the weight.
 inline constexpr double kMinDeltaChainShare = 1.0 / 8.0;
-// The smallest share of their flights that run the drawn cavity chain (ConeRates::drawn_chain_rate).
-inline constexpr double kMinDrawnChainRate = 1.0 / 8.0;
 // ... and only while no single walk's connections carry more than this share
 // of any cone's sum of C^2: where one does (heavy tails, as on the grid's
 // 50 µm flakes; the measured shares in docs/PERFORMANCE.md), the mean square
 // is no measure of the variance thinning adds, and a thinned outlier weighs 1 / s.
 inline constexpr double kMaxChainTermShare = 0.1;
+// The smallest share of their flights that run the drawn cavity chain (ConeRates::drawn_chain_rate).
+inline constexpr double kMinDrawnChainRate = 1.0 / 8.0;
 // Bounds of the adaptive fractions: next-event rate (the share of paths up to
 // 1, beyond it the boost of every collision's chance), glint samples per path.
 inline constexpr double kMinFraction = 1.0 / 64.0;
@@ -118,10 +118,12 @@ struct RateFit {
 // runs the chain connections and the drawn chains' rate q, from their split
 // sums (ConeStats, CavityFormLearning): per cone D_k(1, 1) = E[E^2] + 2 E[E C]
 // + E[C^2] - f_delta^2, E[C^2] (C unweighted by the share and the rate) and
-// E[sum Y^2], and per walk c_bare + s (c_chain + q c_drawn). `shares` and
-// `drawn_rates`: those adaptRates scans (1, 1/2, ... kMinDeltaChainShare
-// once the split is measured and no cone's largest term is beyond
-// kMaxChainTermShare of its sum; 1 when one is; else the current value alone).
+// E[sum Y^2], and per walk c_bare + s (c_chain + q c_drawn). `shares`: those
+// adaptRates scans (1, 1/2, ... kMinDeltaChainShare once the split is
+// measured and no cone's largest C^2, less the drawn chains' part, is beyond
+// kMaxChainTermShare of its sum; 1 when one is; else the current share
+// alone); `drawn_rates` likewise (1 ... kMinDrawnChainRate once the drawn
+// chains are measured, unless held), the pairs filtered by `allowed`.
 struct DeltaWalkModel {
     bool measured = false;  // the walks have samples (else only the current rate and share)
     std::vector<double> v1;
