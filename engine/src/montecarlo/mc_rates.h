@@ -123,7 +123,7 @@ struct RateFit {
 // measured and no cone's largest C^2, less the drawn chains' part, is beyond
 // kMaxChainTermShare of its sum; 1 when one is; else the current share
 // alone); `drawn_rates` likewise (1 ... kMinDrawnChainRate once the drawn
-// chains are measured, unless held), the pairs filtered by `allowed`.
+// chains are measured, unless held); the pairs (s, q) scanned filtered by `allowed`.
 struct DeltaWalkModel {
     bool measured = false;  // the walks have samples (else only the current rate and share)
     std::vector<double> v1;
@@ -146,13 +146,6 @@ struct DeltaWalkModel {
     bool allowed(double share, double drawn_rate) const;
     double variance(std::size_t k, double share, double drawn_rate) const;
     double cost(double share, double drawn_rate) const;
-    // Every (walk rate, share, drawn rate), the walk rates outermost.
-    struct Option {
-        double rate = 0.0;
-        double share = 1.0;
-        double drawn_rate = 1.0;
-    };
-    std::vector<Option> options(const std::vector<double>& rates) const;
 };
 DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double current_share,
                               double current_drawn_rate = 1.0, bool drawn_rate_adapts = true);
