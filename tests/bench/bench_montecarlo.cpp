@@ -302,6 +302,9 @@ BENCHMARK(BM_McDemoOnePercent)
 //   34 the drawn cavity chains on (McSettings::cavity_forms: beyond j <= 1,
 //     m <= 2, one drawn per flight; the default since 2026-12-06, so 34 is
 //     the default now) / 39 off (the default before)
+//   40 the default with every flight of the delta walks running the drawn
+//     cavity chain (McSettings::adapt_drawn_chain_rate off at rate 1, the
+//     estimator before the drawn chains' rate)
 //   35 the default without the chain connections on interference-flake
 //     layers (McSettings::interference_chain_connections, before 2026-12-05)
 //   36 the default without the forward walk's chain connections
@@ -377,6 +380,8 @@ void BM_McExplicitBudget(benchmark::State& state) {
         s.histogram_other.delta_first = true;
     }
     if (config == 34 || config == 39) s.cavity_forms.drawn = config == 34;
+    if (config == 40)
+        s.adapt_drawn_chain_rate = false;  // every flight runs the drawn chain (before 2026-12-06)
     if (config == 35) s.interference_chain_connections = false;  // before 2026-12-05 (nineteenth session)
     if (config == 36) s.connection_parts.forward_chains = false;
     if (config == 37) s.connection_parts.delta_chains = false;
@@ -450,7 +455,7 @@ BENCHMARK(BM_McExplicitBudget)
     ->ArgsProduct({{28}, {4}, {8}})
     // Silver (issue 30): without the chain connections; the histogram's remainder; the delta walks' escapes
     // and connections apart.
-    ->ArgsProduct({{29, 30, 33, 34, 35, 36, 37, 38, 39}, {20, 100, 200}, {8}})
+    ->ArgsProduct({{29, 30, 33, 34, 35, 36, 37, 38, 39, 40}, {20, 100, 200}, {8}})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);

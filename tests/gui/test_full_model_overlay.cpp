@@ -80,7 +80,10 @@ void FullModelOverlayTest::fullModelOverlayIsLabelledAndNearTheFastModel() {
     const Recipe silver = silverRecipe();
     auto dock = silverDock(silver);
     QTRY_VERIFY_WITH_TIMEOUT(dock->brdf() != nullptr && !dock->computing(), kWaitMs);
-    dock->fullModelSeconds()->setValue(1);
+    // 3 s, not 1: a 1 s run under CI's load kept ~26k paths, where the check
+    // below fails on most seeds; 3 s beside four busy processes on two cores
+    // kept 145-222k (docs/PERFORMANCE.md, "The full-model overlay's budget").
+    dock->fullModelSeconds()->setValue(3);
     QSignalSpy ended(dock.get(), &PlotsDock::fullModelEnded);
     QElapsedTimer timer;
     timer.start();
@@ -99,7 +102,7 @@ void FullModelOverlayTest::fullModelOverlayIsLabelledAndNearTheFastModel() {
     // from): the six geometries' spectra of the full model, dashed.
     QCOMPARE(dock->paintSpectra()->comparisonSpectra().size(), std::size_t{6});
     QVERIFY(dock->status()->text().contains(QStringLiteral("full model")));
-    qInfo("full model, 1 s budget: overlay after %.1f s (%s)", static_cast<double>(timer.elapsed()) * 1e-3,
+    qInfo("full model, 3 s budget: overlay after %.1f s (%s)", static_cast<double>(timer.elapsed()) * 1e-3,
           qPrintable(dock->fullModelLabel()));
     const QString label = dock->fullModelLabel();
     QVERIFY2(label.startsWith(QStringLiteral("full model (Monte Carlo, ")) && label.contains(" paths, ") &&
@@ -130,12 +133,13 @@ void FullModelOverlayTest::fullModelOverlayIsLabelledAndNearTheFastModel() {
     // percent for metal flakes, for this silver metallic +39 to +53 % per
     // geometry, up to +180 % near specular for larger ones (docs/VALIDATION.md;
     // here the full model is ~1.5 times the fast one along the 45 degree curve),
-    // and a 1 s budget adds Monte Carlo noise on top. It catches a wrong basis,
+    // and a short budget adds Monte Carlo noise on top. It catches a wrong basis,
     // a swapped series or a unit (pi, steradian) error, not the physics.
     // Point by point only up to 70 degrees from the normal: at grazing views a
-    // 1 s budget (0.2-0.4 M paths since the budget is kept, fewer under load) leaves
-    // a few paths per cell, and one view at -85 degrees read 3.3 times the
-    // fast model in a clean-clone CI run; beyond 70 the mean must hold.
+    // short run leaves a few paths per cell, and one view at -85 degrees read
+    // 3.3 times the fast model in a clean-clone CI run; beyond 70 the mean must
+    // hold. The worst view up to 70 degrees read 1.6-2.2 times the fast model
+    // at 100-190k paths (20 seeds), 2.0-7.7 times at 15-36k (docs/PERFORMANCE.md).
     QCOMPARE(full_y.size(), std::size_t{69});
     double fast_sum = 0.0;
     double full_sum = 0.0;

@@ -67,11 +67,24 @@ inline constexpr std::size_t cavityFormSlot(int trips, int retrace) {
 // the walks learn for it: per slot and cone k the sum of X^2 / p over the
 // draws (X a drawn chain's score before the draw's weight 1 / p and the
 // chain share's, [slot * cones + k], sized by the first draw), and per
-// slot the flights that could draw it.
+// slot the flights that could draw it. For the rate q of the flights that
+// run the drawn chain (ConeRates::drawn_chain_rate), per cone k over the
+// flights that ran one, Y = X / p the flight's drawn score before the
+// weights 1 / q and the chain share's: the sums of Y^2 / q (so their mean
+// per walk is E[sum over its flights of Y^2] at q = 1), of Y^2 (1 - q) / q^2
+// (what the rate added to the walks' C^2), the largest Y^2; and the
+// drawn chains' work in walk steps (two per normal tried, as the other
+// connections'), as run and divided by q (the work at q = 1).
 using CavityFormWeights = std::array<double, kCavityFormSlots>;
 struct CavityFormLearning {
     std::vector<double> m2_over_p;
     CavityFormWeights available{};
+    std::vector<double> drawn_s1;  // the sum of Y / q (per walk: its drawn part)
+    std::vector<double> drawn_s2;
+    std::vector<double> drawn_excess;
+    std::vector<double> drawn_max2;
+    double drawn_steps = 0.0;
+    double drawn_steps_at_one = 0.0;
     void add(const CavityFormLearning& other);
 };
 

@@ -200,10 +200,12 @@ void JobRunner::chunkDelta(std::size_t batch, std::int64_t first_path, std::int6
     WalkSettings walk_bare = walk;
     walk_bare.delta_chain_connections = false;
     walk.chain_connection_weight = 1.0 / share;
+    walk.drawn_chain_rate = m_first_flake ? 1.0 : m_rates.drawn_chain_rate;
     if (m_form_weights_learned) walk.cavity_form_weights = &m_form_weights;
     std::vector<double> f(m_exits);
     std::vector<double> f_chain(m_exits);
     std::vector<double> f_first(m_exits);
+    std::vector<double> drawn_before;  // the learning's drawn_s1 before the walk
     std::vector<FirstFlakeTable> tables(m_first_flake ? m_view_count : 0);
     for (std::int64_t j = 0; j < count; ++j) {
         // Walk j of the chunk: index 4 first_path + j < 4 (first_path + paths), unique per job (rate <=
@@ -237,9 +239,13 @@ void JobRunner::chunkDelta(std::size_t batch, std::int64_t first_path, std::int6
         double cost = 0.0;
         double chain_cost = 0.0;
         if (m_uniform_delta) {
+            const double drawn_steps = sums.form_learning.drawn_steps;
+            drawn_before = sums.form_learning.drawn_s1;
             const PathOutcome out = traceDeltaChains(context, view.v_in, m_entry_weight, x, y, rng, f);
-            // A last-flake connection (a cone's draw, kernel and roulette) costs about two walk steps.
-            chain_cost = kCostPerWalkStep * static_cast<double>(2 * out.nee_attempts);
+            // A last-flake connection (a cone's draw, kernel and roulette) costs about two walk steps,
+            // the drawn cavity chains their counted steps.
+            chain_cost = kCostPerWalkStep * (static_cast<double>(2 * out.nee_attempts) +
+                                             sums.form_learning.drawn_steps - drawn_steps);
             cost += kCostPerPath + kCostPerWalkStep * static_cast<double>(out.events + out.rays) + chain_cost;
         }
         if (m_first_flake) {
@@ -267,7 +273,13 @@ void JobRunner::chunkDelta(std::size_t batch, std::int64_t first_path, std::int6
             cones[k].chain_s2 += chain * chain;
             cones[k].chain_cross += escapes * chain;
             cones[k].chain_cost += chain_cost;
-            cones[k].chain_max2 = std::max(cones[k].chain_max2, chain * chain);
+            // The guard's largest C^2 without the drawn chains' part (they have their own: DeltaWalkModel).
+            const std::vector<double>& drawn_after = sums.form_learning.drawn_s1;
+            const double drawn = k < drawn_after.size()
+                                     ? drawn_after[k] - (k < drawn_before.size() ? drawn_before[k] : 0.0)
+                                     : 0.0;
+            const double rest = chain - drawn;
+            cones[k].chain_max2 = std::max(cones[k].chain_max2, rest * rest);
         }
     }
 }

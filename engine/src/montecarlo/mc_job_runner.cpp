@@ -84,6 +84,10 @@ JobRunner::JobRunner(const McEngine::Band& band, const JobSpec& job, const McSet
     m_rates.delta_chain_share = std::isnan(settings.delta_chain_share)
                                     ? 1.0
                                     : std::clamp(settings.delta_chain_share, kMinDeltaChainShare, 1.0);
+    m_rates.drawn_chain_rate = std::isnan(settings.drawn_chain_rate)
+                                   ? 1.0
+                                   : std::clamp(settings.drawn_chain_rate, kMinDrawnChainRate, 1.0);
+    m_rates.drawn_chain_rate_adapts = settings.adapt_drawn_chain_rate;
     m_first_flake = m_delta && settings.first_flake_walks && !band.explicit_flakes.empty() &&
                     std::any_of(band.explicit_flakes[0].begin(), band.explicit_flakes[0].end(),
                                 [](const LayerFlakes& lf) { return lf.groups != nullptr; });

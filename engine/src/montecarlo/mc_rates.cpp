@@ -45,64 +45,81 @@ std::array<double, 3> cheapestRates(const std::array<RateTerm, 3>& terms, double
     return x;
 }
 
-DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double current_share) {
+DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double current_share,
+                              double current_drawn_rate, bool drawn_rate_adapts) {
     DeltaWalkModel model;
     model.shares = {current_share};
+    model.drawn_rates = {current_drawn_rate};
     const std::size_t exits = total.cones.size();
     model.v1.assign(exits, 0.0);
     model.chain_m2.assign(exits, 0.0);
+    model.drawn_m2.assign(exits, 0.0);
     if (!delta_walks || exits == 0 || !(total.cones[0].delta_samples > 1.0)) return model;
     model.measured = true;
     const ConeStats& c0 = total.cones[0];
     const double n = c0.delta_samples;
     const double n_chain = c0.chain_samples;
-    // Every walk so far ran the connections: D(1) is their measured variance as it is.
+    const CavityFormLearning& drawn = total.form_learning;
+    const bool drawn_measured =
+        n_chain > 1.0 && drawn.drawn_s2.size() == exits && drawn.drawn_steps_at_one > 0.0;
+    // Every walk so far ran the connections: D(1, 1) is their measured
+    // variance less what the drawn chains' rate added.
     const bool all_chained = n_chain == n;
     for (std::size_t k = 0; k < exits; ++k) {
         const ConeStats& cs = total.cones[k];
         const double mean = cs.delta_s1 / n;
         const double measured = std::max(0.0, cs.delta_s2 / n - mean * mean);
+        const double excess = drawn_measured ? drawn.drawn_excess[k] : 0.0;
         if (n_chain > 1.0) {
-            model.chain_m2[k] = cs.chain_s2 / n_chain;
-            model.v1[k] = all_chained ? measured
+            model.chain_m2[k] = std::max(0.0, (cs.chain_s2 - excess) / n_chain);
+            model.v1[k] = all_chained ? std::max(0.0, measured - excess / n)
                                       : std::max(0.0, cs.escape_s2 / n + 2.0 * cs.chain_cross / n_chain +
                                                           model.chain_m2[k] - mean * mean);
         } else {
             model.v1[k] = measured;
         }
+        if (drawn_measured) model.drawn_m2[k] = drawn.drawn_s2[k] / n_chain;
     }
     model.walk_cost = c0.delta_cost / n;
-    // Heavy tails (kMaxChainTermShare): E[C^2] is then no measure, and a
-    // thinned outlier would weigh 1 / s.
+    // Heavy tails (kMaxChainTermShare): a mean square is then no measure, and
+    // a thinned outlier would weigh 1 / s (the drawn chains, whose scores are
+    // left out of chain_max2, have their own guard: allowed).
     const bool heavy = std::any_of(total.cones.begin(), total.cones.end(), [](const ConeStats& cs) {
         return cs.chain_s2 > 0.0 && cs.chain_max2 > kMaxChainTermShare * cs.chain_s2;
     });
     if (n_chain > 1.0) {
         model.bare_cost = (c0.delta_cost - c0.chain_cost) / n;
         model.chain_cost = c0.chain_cost / n_chain;
-        model.all_chained = all_chained;
         model.shares.clear();
         for (double s = 1.0; s >= kMinDeltaChainShare * 0.9999 && (s == 1.0 || !heavy); s *= 0.5)
             model.shares.push_back(s);
     }
+    if (drawn_measured) {
+        model.chain_cost = std::max(0.0, model.chain_cost - kCostPerWalkStep * drawn.drawn_steps / n_chain);
+        model.drawn_cost = kCostPerWalkStep * drawn.drawn_steps_at_one / n_chain;
+        if (!drawn_rate_adapts) return model;
+        model.drawn_rates.clear();
+        for (double q = 1.0; q >= kMinDrawnChainRate * 0.9999; q *= 0.5) model.drawn_rates.push_back(q);
+        model.drawn_max2 = drawn.drawn_max2;
+        model.drawn_limit.resize(exits);
+        for (std::size_t k = 0; k < exits; ++k) model.drawn_limit[k] = kMaxChainTermShare * n * model.v1[k];
+    }
     return model;
 }
 
-double DeltaWalkModel::variance(std::size_t k, double share) const {
-    return share >= 1.0 ? v1[k] : v1[k] + chain_m2[k] * (1.0 / share - 1.0);
+double DeltaWalkModel::variance(std::size_t k, double share, double drawn_rate) const {
+    return v1[k] + chain_m2[k] * (1.0 / share - 1.0) + drawn_m2[k] * (1.0 / drawn_rate - 1.0) / share;
 }
 
-double DeltaWalkModel::cost(double share) const {
-    if (!(chain_cost > 0.0)) return walk_cost;
-    // With every walk chained so far, the cost at share 1 is the measured one as it is.
-    return all_chained ? walk_cost - (1.0 - share) * chain_cost : bare_cost + share * chain_cost;
+double DeltaWalkModel::cost(double share, double drawn_rate) const {
+    if (!(chain_cost + drawn_cost > 0.0)) return walk_cost;
+    return bare_cost + share * (chain_cost + drawn_rate * drawn_cost);
 }
 
-std::vector<std::pair<double, double>> DeltaWalkModel::options(const std::vector<double>& rates) const {
-    std::vector<std::pair<double, double>> out;
-    for (const double d : rates)
-        for (const double s : shares) out.emplace_back(d, s);
-    return out;
+bool DeltaWalkModel::allowed(double share, double drawn_rate) const {
+    for (std::size_t k = 0; k < drawn_max2.size() && k < drawn_limit.size(); ++k)
+        if (drawn_max2[k] * (1.0 / (share * drawn_rate) - 1.0) > drawn_limit[k]) return false;
+    return true;
 }
 
 RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool reverse_walks, bool delta_walks,
@@ -142,7 +159,8 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
     // The delta-chain walks serve every cone at once: one common rate d, scanned
     // over powers of two, its variance D_k / d joining A; with it the share s
     // of them that run the chain connections (DeltaWalkModel).
-    const DeltaWalkModel delta = deltaWalkModel(total, delta_walks, rates.delta_chain_share);
+    const DeltaWalkModel delta = deltaWalkModel(total, delta_walks, rates.delta_chain_share,
+                                                rates.drawn_chain_rate, rates.drawn_chain_rate_adapts);
     std::vector<double> delta_rates{rates.delta_rate};
     if (delta.measured) {
         delta_rates.clear();
@@ -150,11 +168,12 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
     }
     double best = std::numeric_limits<double>::infinity();
     double best_share = rates.delta_chain_share;
+    double best_drawn_rate = rates.drawn_chain_rate;
     std::vector<std::array<double, 3>> x(exits);
     std::vector<double> delta_variance(exits, 0.0);
-    for (const auto& [d, share] : delta.options(delta_rates)) {
+    const auto consider = [&](double d, double share, double drawn_rate) {
         std::vector<double> a_d(exits);
-        for (std::size_t k = 0; k < exits; ++k) a_d[k] = a[k] + delta.variance(k, share) / d;
+        for (std::size_t k = 0; k < exits; ++k) a_d[k] = a[k] + delta.variance(k, share, drawn_rate) / d;
         const auto variance = [&](std::size_t k, const std::array<double, 3>& at) {
             double v = a_d[k];
             for (std::size_t t = 0; t < 3; ++t) v += terms[k][t].variance / at[t];
@@ -165,10 +184,10 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
             if (f2[k] > 0.0)
                 rho_min =
                     std::max(rho_min, variance(k, {kMaxNeeRate, kMaxGlintRate, kMaxReverseRate}) / f2[k]);
-        if (!(rho_min > 0.0)) continue;
+        if (!(rho_min > 0.0)) return;
         for (int step = 0; step < 200; ++step) {
             const double rho = rho_min * std::pow(1.06, step);
-            double cost = c_walk + d * delta.cost(share);
+            double cost = c_walk + d * delta.cost(share, drawn_rate);
             double worst = 0.0;
             for (std::size_t k = 0; k < exits; ++k) {
                 if (f2[k] > 0.0) {
@@ -184,6 +203,7 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
                 best = worst * cost;
                 rates.delta_rate = d;
                 best_share = share;
+                best_drawn_rate = drawn_rate;
                 for (std::size_t k = 0; k < exits; ++k) {
                     rates.nee_fraction[k] = x[k][0];
                     rates.glint_rate[k] = x[k][1];
@@ -191,9 +211,30 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
                 }
             }
         }
+    };
+    // The walk rate and the share at the current drawn rate; then every
+    // (share, drawn rate) at the best walk rate; then the walk rate at the
+    // best pair: 61 options where all triples are 144 and made a round's
+    // scan three times as long (~13 ms; the walk rate barely moves the best
+    // pair).
+    const double q_now = delta.allowed(1.0, rates.drawn_chain_rate) ? rates.drawn_chain_rate : 1.0;
+    for (const double d : delta_rates)
+        for (const double share : delta.shares)
+            if (delta.allowed(share, q_now)) consider(d, share, q_now);
+    const double d_best = rates.delta_rate;
+    for (const double share : delta.shares)
+        for (const double q : delta.drawn_rates)
+            if (q != q_now && delta.allowed(share, q)) consider(d_best, share, q);
+    if (best_drawn_rate != q_now) {
+        const double share = best_share;
+        const double q = best_drawn_rate;
+        for (const double d : delta_rates)
+            if (d != d_best) consider(d, share, q);
     }
     rates.delta_chain_share = best_share;
-    for (std::size_t k = 0; k < exits; ++k) delta_variance[k] = delta.variance(k, best_share);
+    rates.drawn_chain_rate = best_drawn_rate;
+    for (std::size_t k = 0; k < exits; ++k)
+        delta_variance[k] = delta.variance(k, best_share, best_drawn_rate);
     return {std::move(f2), std::move(delta_variance)};
 }
 

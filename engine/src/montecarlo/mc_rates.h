@@ -28,6 +28,8 @@ inline constexpr double kMinDeltaChainShare = 1.0 / 8.0;
 // 50 µm flakes; the measured shares in docs/PERFORMANCE.md), the mean square
 // is no measure of the variance thinning adds, and a thinned outlier weighs 1 / s.
 inline constexpr double kMaxChainTermShare = 0.1;
+// The smallest share of their flights that run the drawn cavity chain (ConeRates::drawn_chain_rate).
+inline constexpr double kMinDrawnChainRate = 1.0 / 8.0;
 // Bounds of the adaptive fractions: next-event rate (the share of paths up to
 // 1, beyond it the boost of every collision's chance), glint samples per path.
 inline constexpr double kMinFraction = 1.0 / 64.0;
@@ -75,6 +77,11 @@ struct ConeRates {
     // costs a quarter to a third as much, and the escapes carry most of the
     // variance: docs/PERFORMANCE.md).
     double delta_chain_share = 1.0;
+    // The share q of their flights that run the drawn cavity chain, its score
+    // divided by it (McSettings::drawn_chain_rate): on the grid's mirror
+    // flakes over black the drawn chains cost more than they take.
+    double drawn_chain_rate = 1.0;
+    bool drawn_chain_rate_adapts = true;  // false: held (McSettings::adapt_drawn_chain_rate)
 };
 
 // Per cone: f^2 and the delta walks' variance per walk (the promise's and the
@@ -97,36 +104,51 @@ struct RateFit {
 // The stop rule waits for the worst cone, so the fractions minimise
 // max_k V_k / f_k^2 x cost: for a common level rho of V_k / f_k^2 each cone
 // takes the cheapest (q, g, r) that reaches it (cheapestRates), and rho is
-// scanned over a geometric grid. The delta walks' common rate d and the share s
-// of them that run the chain connections are scanned with it: per walk the
-// variance is D_k(s) = D_k(1) + E[C_k^2] (1 / s - 1) (C_k what the
-// connections score) at a cost of c_bare + s c_chain. Only the next paths'
+// scanned over a geometric grid. The delta walks' common rate d, the share s
+// of them that run the chain connections and the share q of those walks'
+// flights that run the drawn cavity chain are scanned with it: per walk the
+// variance is D_k(s, q) = D_k(1, 1) + E[C_k^2] (1 / s - 1) + E[sum Y_k^2]
+// (1 / q - 1) / s (C_k what the connections score, Y_k a flight's drawn
+// chain) at a cost of c_bare + s (c_chain + q c_drawn). Only the next paths'
 // fractions change, so each path's estimate stays unbiased.
 // Sets `rates` and returns the model's inputs that the job runner reuses.
 // `histogram_entries`: the index of the first histogram-part entry (one per
 // cone) in the sample vector; total.cones has one entry per cone.
 // The delta-chain walks' variance and cost per walk against the share s that
-// runs the chain connections, from their split sums (ConeStats): per cone
-// D_k(1) = E[E^2] + 2 E[E C] + E[C^2] - f_delta^2 and E[C^2] (C unweighted by
-// the share), and per walk c_bare + s c_chain. `shares`: those adaptRates
-// scans (1, 1/2, ... kMinDeltaChainShare once the split is measured and no
-// cone's largest C^2 is beyond kMaxChainTermShare of its sum; 1 when one is;
-// else the current share alone).
+// runs the chain connections and the drawn chains' rate q, from their split
+// sums (ConeStats, CavityFormLearning): per cone D_k(1, 1) = E[E^2] + 2 E[E C]
+// + E[C^2] - f_delta^2, E[C^2] (C unweighted by the share and the rate) and
+// E[sum Y^2], and per walk c_bare + s (c_chain + q c_drawn). `shares`: those
+// adaptRates scans (1, 1/2, ... kMinDeltaChainShare once the split is
+// measured and no cone's largest C^2, less the drawn chains' part, is beyond
+// kMaxChainTermShare of its sum; 1 when one is; else the current share
+// alone); `drawn_rates` likewise (1 ... kMinDrawnChainRate once the drawn
+// chains are measured, unless held); the pairs (s, q) scanned filtered by `allowed`.
 struct DeltaWalkModel {
     bool measured = false;  // the walks have samples (else only the current rate and share)
     std::vector<double> v1;
     std::vector<double> chain_m2;
-    double walk_cost = 0.0;  // per walk, as run so far
+    std::vector<double> drawn_m2;  // E[sum over a chained walk's flights of Y^2] at q = 1
+    double walk_cost = 0.0;        // per walk, as run so far
     double bare_cost = 0.0;
-    double chain_cost = 0.0;  // per walk that runs the connections
-    bool all_chained = false;
+    double chain_cost = 0.0;  // per walk that runs the connections, without the drawn chains
+    double drawn_cost = 0.0;  // ... the drawn chains' at q = 1
     std::vector<double> shares;
-    double variance(std::size_t k, double share) const;
-    double cost(double share) const;
-    // Every (rate, share) pair, the rates outermost.
-    std::vector<std::pair<double, double>> options(const std::vector<double>& rates) const;
+    std::vector<double> drawn_rates;
+    // A pair (s, q) with s < 1 or q < 1 only while no single flight's drawn
+    // Y^2 (1 / (s q) - 1), the variance its thinning would add, is beyond
+    // kMaxChainTermShare of the cone's sum of the walks' variance
+    // (drawn_limit): the drawn chains' scores are heavy-tailed among
+    // themselves (on silver their largest term is 10-100 % of their sum)
+    // but a small part of the walks' variance.
+    std::vector<double> drawn_max2;
+    std::vector<double> drawn_limit;
+    bool allowed(double share, double drawn_rate) const;
+    double variance(std::size_t k, double share, double drawn_rate) const;
+    double cost(double share, double drawn_rate) const;
 };
-DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double current_share);
+DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double current_share,
+                              double current_drawn_rate = 1.0, bool drawn_rate_adapts = true);
 
 RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool reverse_walks, bool delta_walks,
                    ConeRates& rates);

@@ -2,6 +2,7 @@
 
 #include "paintlab/engine/montecarlo/mc_table.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace paintlab::mc {
@@ -18,6 +19,14 @@ void addElementwise(std::vector<double>& to, const std::vector<double>& from) {
 void CavityFormLearning::add(const CavityFormLearning& other) {
     addElementwise(m2_over_p, other.m2_over_p);
     for (std::size_t i = 0; i < available.size(); ++i) available[i] += other.available[i];
+    addElementwise(drawn_s1, other.drawn_s1);
+    addElementwise(drawn_s2, other.drawn_s2);
+    addElementwise(drawn_excess, other.drawn_excess);
+    if (drawn_max2.size() < other.drawn_max2.size()) drawn_max2.resize(other.drawn_max2.size(), 0.0);
+    for (std::size_t k = 0; k < other.drawn_max2.size(); ++k)
+        drawn_max2[k] = std::max(drawn_max2[k], other.drawn_max2[k]);
+    drawn_steps += other.drawn_steps;
+    drawn_steps_at_one += other.drawn_steps_at_one;
 }
 
 void ConeStats::add(const ConeStats& o) {

@@ -49,7 +49,7 @@ struct ConeStats {
     double chain_s2 = 0.0;       // sum of C^2 over those
     double chain_cross = 0.0;    // sum of E C over those
     double chain_cost = 0.0;     // their connections' cost (in delta_cost too)
-    double chain_max2 = 0.0;     // the largest C^2
+    double chain_max2 = 0.0;     // the largest C^2 less the drawn cavity chains' part
     void add(const ConeStats& o);
 };
 

@@ -61,6 +61,9 @@ struct WalkSettings {
     // scores times chain_connection_weight (1 / ConeRates::delta_chain_share).
     bool delta_chain_connections = true;
     double chain_connection_weight = 1.0;
+    // ... and their flights run the drawn cavity chain with this probability,
+    // its score times the inverse (ConeRates::drawn_chain_rate).
+    double drawn_chain_rate = 1.0;
     CavityForms cavity_forms;  // McSettings::cavity_forms
     // The drawn chains' draw (null: uniform among the forms a flight can run).
     const CavityFormWeights* cavity_form_weights = nullptr;

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <limits>
 
 namespace paintlab::mc {
@@ -149,6 +151,10 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
             for (int trips = 0; trips <= kCavityEveryFlightTrips; ++trips)
                 cavityFormConnection(s, lf, draw, trips, m, 1.0, chain_rng);
     if (!lf.drawn_cavity_chains) return;
+    // Only a share q of the flights run it, weighted 1 / q (the forms stay
+    // taken: the walks never score their escapes).
+    const double q = settings.drawn_chain_rate;
+    if (q < 1.0 && chain_rng.uniform() >= q) return;
     // The drawn chain, one of the others: ending at c (m = 0, j >= 1),
     // more round trips, or more flakes gone back over.
     std::array<CavityForm, kCavityFormSlots> drawn{};
@@ -188,16 +194,36 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
     }
     const CavityForm& pick = drawn[static_cast<std::size_t>(chosen)];
     const double p_pick = p[static_cast<std::size_t>(chosen)];
-    const double score = cavityFormConnection(s, lf, draw, pick.trips, pick.retrace, 1.0 / p_pick, chain_rng);
+    const std::int64_t attempts_before = tally.nee_attempts;
+    const double score =
+        cavityFormConnection(s, lf, draw, pick.trips, pick.retrace, 1.0 / (p_pick * q), chain_rng);
     if (form_learning != nullptr) {
-        // X = score p_pick s: the chain's score before the draw's weight and the
-        // chain share's (which changes between rounds); X^2 / p has the mean E[X^2].
-        const double unweighted = score * p_pick / settings.chain_connection_weight;
+        // Its work is counted here, not among the other connections' attempts
+        // (as theirs, two walk steps per normal tried; counting the legs it
+        // traces too made silver metallic slower: docs/PERFORMANCE.md).
+        const double steps = 2.0 * static_cast<double>(tally.nee_attempts - attempts_before);
+        tally.nee_attempts = attempts_before;
+        // X = score p_pick q s: the chain's score before the draw's weight, the
+        // rate's and the chain share's (which change between rounds); X^2 / p
+        // has the mean E[X^2].
+        const double unweighted = score * p_pick * q / settings.chain_connection_weight;
         const std::size_t cones = bins.size();
-        if (form_learning->m2_over_p.size() < kCavityFormSlots * cones)
+        if (form_learning->m2_over_p.size() < kCavityFormSlots * cones) {
             form_learning->m2_over_p.resize(kCavityFormSlots * cones, 0.0);
+            form_learning->drawn_s1.resize(cones, 0.0);
+            form_learning->drawn_s2.resize(cones, 0.0);
+            form_learning->drawn_excess.resize(cones, 0.0);
+            form_learning->drawn_max2.resize(cones, 0.0);
+        }
         form_learning->m2_over_p[cavityFormSlot(pick.trips, pick.retrace) * cones + draw.k] +=
             unweighted * unweighted / p_pick;
+        const double y2 = unweighted * unweighted / (p_pick * p_pick);
+        form_learning->drawn_s1[draw.k] += unweighted / (p_pick * q);
+        form_learning->drawn_s2[draw.k] += y2 / q;
+        form_learning->drawn_excess[draw.k] += y2 * (1.0 - q) / (q * q);
+        form_learning->drawn_max2[draw.k] = std::max(form_learning->drawn_max2[draw.k], y2);
+        form_learning->drawn_steps += steps;
+        form_learning->drawn_steps_at_one += steps / q;
         for (int i = 0; i < forms; ++i)
             form_learning->available[cavityFormSlot(drawn[static_cast<std::size_t>(i)].trips,
                                                     drawn[static_cast<std::size_t>(i)].retrace)] += 1.0;

@@ -693,6 +693,32 @@ TEST(MonteCarloConnections, DrawnCavityChainsAgreeWithTheWalksEscapes) {
     expectSameAtEveryExit(connected, walks, "drawn cavity connections against the walks' escapes", 5.0);
 }
 
+TEST(MonteCarloConnections, DrawnCavityChainsOnAShareOfTheFlightsAgreeWithAllOfThem) {
+    // McSettings::drawn_chain_rate: a quarter of the delta walks' flights run
+    // the drawn cavity chain, its score times 4; the forms stay taken either
+    // way. The drawn chains' connections alone (the walks' escapes not
+    // scored, as in the test above), every flight on 100k paths against a
+    // quarter on 400k (the thinned drawn chains' errors are twice as large
+    // per path): stackedMirrorFilm, independent seeds and tiles, kZ = 4 in
+    // the combined errors, the reference resolved to 5 errors (rare large
+    // chains; |z| <= 1.6 at four seeds); the rate model would change q
+    // between rounds: off here (so the forms are drawn uniformly). Mutation
+    // (the weight 1 / q left out): the drawn chains counted a quarter, z -8
+    // to -14. ~7 CPU s.
+    const Recipe r = stackedMirrorFilm();
+    const std::vector<mc::IncidenceRequest> req = specularNormalAndBackscatter();
+    auto s = stackedMirrorDeltaWalks(100000, 211);
+    s.adaptive_fractions = false;
+    s.cavity_connections = true;
+    s.cavity_forms = {false, true, mc::CavityForms::WalkScores::None};
+    const auto every = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
+    s.seed += 1;
+    s.max_paths = 400000;
+    s.drawn_chain_rate = 0.25;
+    const auto quarter = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
+    expectSameAtEveryExit(quarter, every, "the drawn chains on a quarter of the flights", 5.0);
+}
+
 TEST(MonteCarloConnections, ForwardChainConnectionsAgreeWithTheHistogramTheyReplace) {
     // On the forward walk the chain connections take the escapes its
     // histogram scores after a smooth vertex (substrate -> flake -> cone,

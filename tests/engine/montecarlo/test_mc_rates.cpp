@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <string>
+#include <utility>
 
 namespace paintlab {
 namespace {
@@ -35,6 +37,27 @@ mc::Sums deltaOnly(double n, double share, double e2, double ec, double c2, doub
     return total;
 }
 
+// The same walks with a drawn cavity chain on their chained walks' flights,
+// run at rate q (ConeRates::drawn_chain_rate): per chained walk E[sum Y^2] =
+// y2 (part of c2, the connections' E[C^2] at q = 1; the rate adds y2 (1 / q
+// - 1) to what the walks record), the drawn chains' cost c_drawn at q = 1
+// (part of the walk's cost at q c_drawn) and their largest Y^2.
+void addDrawnChains(mc::Sums& total, double share, double q, double y2, double c_drawn, double max2) {
+    mc::ConeStats& cs = total.cones[0];
+    const double chained = cs.chain_samples;
+    const double excess = y2 * (1.0 / q - 1.0);
+    cs.chain_s2 += chained * excess;
+    cs.delta_s2 += chained * excess / (share * share);
+    cs.chain_cost += chained * q * c_drawn;
+    cs.delta_cost += chained * q * c_drawn;
+    mc::CavityFormLearning& drawn = total.form_learning;
+    drawn.drawn_s2 = {chained * y2};
+    drawn.drawn_excess = {chained * excess};
+    drawn.drawn_max2 = {max2};
+    drawn.drawn_steps = chained * q * c_drawn / mc::kCostPerWalkStep;
+    drawn.drawn_steps_at_one = chained * c_drawn / mc::kCostPerWalkStep;
+}
+
 // The rates of one cone, the delta walks' share at `share`.
 mc::ConeRates oneConeRates(double share) {
     mc::ConeRates rates;
@@ -53,10 +76,10 @@ TEST(McRates, TheChainShareRecoversTheWalksVarianceFromTheirSplit) {
         const mc::Sums total = deltaOnly(1.0e4, share, 40.0, 0.04, 1.5, 3.0, 7.0);
         const mc::DeltaWalkModel model = mc::deltaWalkModel(total, true, share);
         ASSERT_TRUE(model.measured);
-        EXPECT_NEAR(model.variance(0, 1.0), 40.0 + 0.08 + 1.5 - 1.0, 1e-9) << "share " << share;
-        EXPECT_NEAR(model.variance(0, 0.125), 40.58 + 1.5 * 7.0, 1e-9) << "share " << share;
-        EXPECT_NEAR(model.cost(1.0), 10.0, 1e-9) << "share " << share;
-        EXPECT_NEAR(model.cost(0.25), 3.0 + 0.25 * 7.0, 1e-9) << "share " << share;
+        EXPECT_NEAR(model.variance(0, 1.0, 1.0), 40.0 + 0.08 + 1.5 - 1.0, 1e-9) << "share " << share;
+        EXPECT_NEAR(model.variance(0, 0.125, 1.0), 40.58 + 1.5 * 7.0, 1e-9) << "share " << share;
+        EXPECT_NEAR(model.cost(1.0, 1.0), 10.0, 1e-9) << "share " << share;
+        EXPECT_NEAR(model.cost(0.25, 1.0), 3.0 + 0.25 * 7.0, 1e-9) << "share " << share;
         ASSERT_EQ(model.shares.size(), 4U);
         EXPECT_EQ(model.shares.front(), 1.0);
         EXPECT_EQ(model.shares.back(), mc::kMinDeltaChainShare);
@@ -99,6 +122,65 @@ TEST(McRates, EveryWalkRunsTheConnectionsWhereTheyCarryTheVariance) {
     EXPECT_EQ(rates.delta_chain_share, 1.0);
 }
 
+TEST(McRates, TheDrawnChainRateRecoversTheWalksVarianceFromItsSums) {
+    // D(1, 1) = E[E^2] + 2 E[E C] + E[C^2] - f^2 at q = 1 whatever share and
+    // rate the walks ran at, and D(s, q) = D(1, 1) + E[C^2] (1 / s - 1) +
+    // E[sum Y^2] (1 / q - 1) / s, the variance of E + B (C_e + sum_i B_i Y_i
+    // / q) / s with B, B_i draws of probabilities s and q (exact algebra: the
+    // sums are exact); the cost c_bare + s (c_chain + q c_drawn).
+    for (const auto& [share, q] : {std::pair{1.0, 1.0}, {1.0, 0.25}, {0.5, 0.5}, {0.25, 0.125}}) {
+        mc::Sums total = deltaOnly(1.0e4, share, 40.0, 0.04, 1.5, 3.0, 5.0);
+        addDrawnChains(total, share, q, 0.5, 2.0, 1.0);
+        const mc::DeltaWalkModel model = mc::deltaWalkModel(total, true, share, q);
+        ASSERT_TRUE(model.measured);
+        const std::string at = "share " + std::to_string(share) + ", q " + std::to_string(q);
+        EXPECT_NEAR(model.variance(0, 1.0, 1.0), 40.58, 1e-9) << at;
+        EXPECT_NEAR(model.variance(0, 0.5, 0.25), 40.58 + 1.5 + 0.5 * 3.0 / 0.5, 1e-9) << at;
+        EXPECT_NEAR(model.cost(1.0, 1.0), 10.0, 1e-9) << at;
+        EXPECT_NEAR(model.cost(0.5, 0.25), 3.0 + 0.5 * (5.0 + 0.25 * 2.0), 1e-9) << at;
+        ASSERT_EQ(model.drawn_rates.size(), 4U) << at;
+        EXPECT_EQ(model.drawn_rates.back(), mc::kMinDrawnChainRate) << at;
+    }
+}
+
+TEST(McRates, FewFlightsRunTheDrawnChainsWhereTheyCostMoreThanTheyCarry) {
+    // Silver metallic's flop as measured (docs/PERFORMANCE.md, per walk in
+    // units of f^2): D(1, 1) = 20, E[C^2] = 13, the drawn chains' E[sum Y^2]
+    // only 0.37 but a quarter of a walk's cost (2.6 of bare 2.6 + chain 5.1
+    // + 2.6). Variance x cost per walk at share 1: 20 x 10.3 = 206 at q = 1,
+    // 21.1 x 8.35 = 176 at 1/4, the least (1/2: 183, 1/8: 181; share 1/2
+    // at best 193).
+    mc::ConeRates rates = oneConeRates(1.0);
+    mc::Sums total = deltaOnly(1.0e4, 1.0, 8.0, 0.0, 13.0, 2.6, 5.1);
+    addDrawnChains(total, 1.0, 1.0, 0.37, 2.6, 0.1 * 0.37 * 1.0e4);
+    mc::adaptRates(total, mc::kFirstExit + 1, false, true, rates);
+    EXPECT_EQ(rates.drawn_chain_rate, 0.25);
+    EXPECT_EQ(rates.delta_chain_share, 1.0);
+}
+
+TEST(McRates, DrawnChainsThatCarryTheVarianceOrOneHeavyFlightKeepEveryFlightOnThem) {
+    // Where the drawn chains carry the cone (E[sum Y^2] = 1.5 of D = 2):
+    // thinning them multiplies their variance, q = 1 (2 x 10.3 against 3.5 x
+    // 9 at 1/2).
+    mc::ConeRates rates = oneConeRates(1.0);
+    mc::Sums carry = deltaOnly(1.0e4, 1.0, 0.2, 0.0, 2.8, 2.6, 5.1);
+    addDrawnChains(carry, 1.0, 1.0, 1.5, 2.6, 1.0);
+    mc::adaptRates(carry, mc::kFirstExit + 1, false, true, rates);
+    EXPECT_EQ(rates.drawn_chain_rate, 1.0);
+    // Expensive drawn chains (6 of a walk's 13.7), E[sum Y^2] = 4 of D = 20:
+    // q = 1/2 by the model (24 x 10.7 = 257 against 274 at 1), unless one
+    // flight carries 90 % of their sum, whose thinning at 1/2 would add 18 %
+    // of the walks' variance (the guard: 10 %); at 10 % of their sum, 2 %.
+    mc::Sums heavy = deltaOnly(1.0e4, 1.0, 8.0, 0.0, 13.0, 2.6, 5.1);
+    addDrawnChains(heavy, 1.0, 1.0, 4.0, 6.0, 0.9 * 4.0 * 1.0e4);
+    rates = oneConeRates(1.0);
+    mc::adaptRates(heavy, mc::kFirstExit + 1, false, true, rates);
+    EXPECT_EQ(rates.drawn_chain_rate, 1.0);
+    heavy.form_learning.drawn_max2 = {0.1 * 4.0 * 1.0e4};
+    mc::adaptRates(heavy, mc::kFirstExit + 1, false, true, rates);
+    EXPECT_EQ(rates.drawn_chain_rate, 0.5);
+}
+
 TEST(McRates, WithoutTheSplitTheShareStays) {
     // First-flake walks (and walks without connections) record no split: the
     // model keeps the share it has and the delta walks' measured variance.
@@ -107,8 +189,8 @@ TEST(McRates, WithoutTheSplitTheShareStays) {
     const mc::DeltaWalkModel model = mc::deltaWalkModel(total, true, 1.0);
     ASSERT_EQ(model.shares.size(), 1U);
     EXPECT_EQ(model.shares.front(), 1.0);
-    EXPECT_NEAR(model.variance(0, 1.0), 50.0 + 0.095 + 0.9525 - 1.0, 1e-9);
-    EXPECT_NEAR(model.cost(1.0), 10.0, 1e-9);
+    EXPECT_NEAR(model.variance(0, 1.0, 1.0), 50.0 + 0.095 + 0.9525 - 1.0, 1e-9);
+    EXPECT_NEAR(model.cost(1.0, 1.0), 10.0, 1e-9);
 }
 
 }  // namespace

@@ -218,6 +218,15 @@ struct McSettings {
     // flakes), and 1 while the connections' scores are heavy-tailed (mc_rates.h,
     // docs/PERFORMANCE.md); clamped to [1/8, 1].
     double delta_chain_share = 1.0;
+    // The share of those walks' flights in mirror-flake layers that run the
+    // drawn cavity chain (CavityForms::drawn), its score weighted by the
+    // inverse; the forms stay taken, so the walks never score their escapes.
+    // The start: with adaptive_fractions the rate model chooses it after
+    // every round beside delta_chain_share, from 1 down to 1/8, but not
+    // where a single flight's drawn score, so thinned, would add a tenth of
+    // the walks' variance (mc_rates.h); clamped to [1/8, 1].
+    double drawn_chain_rate = 1.0;
+    bool adapt_drawn_chain_rate = true;  // false: drawn_chain_rate throughout (bench config 40)
     double delta_roulette_weight = 1e-3;
     // Delta-chain walks (with adaptive_fractions): a branch also survives with a
     // probability set by its promise of reaching a cone (chain_promise.h) and
