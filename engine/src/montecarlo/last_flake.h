@@ -14,11 +14,11 @@
 // part at the back-scatter exit of flakes right under the top) and after
 // other changes, but for the cavity chains (x c x ..., cavity_chain.h),
 // which the cavity connections take with the same law; the first-flake
-// walks keep all of theirs. Each flight connects to one cone drawn
-// uniformly. On by default for layers of mirror flakes (on silver metallic
-// the two halved the time to 1 %; alone, before the cavity connections and
-// with all six cones per flight, they had made it longer:
-// docs/PERFORMANCE.md has the figures).
+// walks keep all of theirs. Each flight connects to one cone, on the
+// delta walks drawn by its kernel and the cone's need
+// (Walker::kernelConeProbabilities), elsewhere uniformly. On by default for layers of mirror flakes (on
+// silver metallic the two halved the time to 1 %; alone, before the cavity connections and with all six cones
+// per flight, they had made it longer: docs/PERFORMANCE.md has the figures).
 //
 // What is estimated. The tiles are realisations of a random arrangement of
 // flakes (flake_tile.h), and the estimate is over them (the batches' errors

@@ -201,6 +201,8 @@ void JobRunner::chunkDelta(std::size_t batch, std::int64_t first_path, std::int6
     walk_bare.delta_chain_connections = false;
     walk.chain_connection_weight = 1.0 / share;
     walk.drawn_chain_rate = m_first_flake ? 1.0 : m_rates.drawn_chain_rate;
+    walk.kernel_chain_cones = m_settings.kernel_chain_cones;
+    walk.chain_cone_scale = m_chain_cone_scale;
     if (m_form_weights_learned) walk.cavity_form_weights = &m_form_weights;
     std::vector<double> f(m_exits);
     std::vector<double> f_chain(m_exits);

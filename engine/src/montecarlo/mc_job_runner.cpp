@@ -212,6 +212,17 @@ bool JobRunner::adapt(const Sums& total) {
     if (!m_adaptive || total.paths < 1024 || total.cones.size() != m_exits) return false;
     const RateFit fit = adaptRates(total, estimateEntries(), m_reverse, m_delta, m_rates);
     learnCavityFormWeights(total);
+    // The last-flake connections' cone draw, p_k ~ sqrt(need_k) times the
+    // flight's kernel: each cone's connections then carry the stop rule's
+    // variance-optimal share, sqrt(need_k E[g_k^2]) (the kernel standing for
+    // the root of the mean square g_k^2 of a flight's score into cone k).
+    if (m_settings.kernel_chain_cones) {
+        const std::vector<double> needs = coneNeeds(total);
+        if (!needs.empty()) {
+            m_chain_cone_scale.resize(needs.size());
+            for (std::size_t k = 0; k < needs.size(); ++k) m_chain_cone_scale[k] = std::sqrt(needs[k]);
+        }
+    }
     if (m_first_flake) learnFirstFlakeProposal(total, fit.f2);
     weighPromiseCones(total, fit.delta_variance, fit.f2);
     return true;
@@ -223,9 +234,8 @@ bool JobRunner::adapt(const Sums& total) {
 // r_k / f_k^2, r_k the cone's relative variance per path over the largest,
 // so the mean square is that of the relative errors, the worst cone's most.
 // A form never drawn keeps the uniform share alone.
-void JobRunner::learnCavityFormWeights(const Sums& total) {
-    const CavityFormLearning& learned = total.form_learning;
-    if (total.paths < 2 || learned.m2_over_p.size() < kCavityFormSlots * m_exits) return;
+std::vector<double> JobRunner::coneNeeds(const Sums& total) const {
+    if (total.paths < 2 || total.mean.size() < kFirstExit + m_exits) return {};
     std::vector<double> w(m_exits, 0.0);
     double r_max = 0.0;
     for (std::size_t k = 0; k < m_exits; ++k) {
@@ -234,11 +244,19 @@ void JobRunner::learnCavityFormWeights(const Sums& total) {
         w[k] = total.m2[kFirstExit + k] / static_cast<double>(total.paths - 1) / (f * f);
         r_max = std::max(r_max, w[k]);
     }
-    if (!(r_max > 0.0)) return;
+    if (!(r_max > 0.0)) return {};
     for (std::size_t k = 0; k < m_exits; ++k) {
         const double f = total.mean[kFirstExit + k];
         w[k] = f > 0.0 ? w[k] / (r_max * f * f) : 0.0;
     }
+    return w;
+}
+
+void JobRunner::learnCavityFormWeights(const Sums& total) {
+    const CavityFormLearning& learned = total.form_learning;
+    if (total.paths < 2 || learned.m2_over_p.size() < kCavityFormSlots * m_exits) return;
+    const std::vector<double> w = coneNeeds(total);
+    if (w.empty()) return;
     bool any = false;
     for (std::size_t i = 0; i < m_form_weights.size(); ++i) {
         const double flights = learned.available[i];

@@ -91,11 +91,17 @@ private:
     ChainPromise m_promise;  // the delta walks' roulette by promise (empty: off)
     std::size_t m_diagnostics = 0;
     void learnCavityFormWeights(const Sums& total);
+    // Per cone the stop rule's need, r_k / (r_max f_k^2) with r_k its
+    // relative variance per path (empty before any cone has an estimate).
+    std::vector<double> coneNeeds(const Sums& total) const;
     ConeRates m_rates;
     // The delta walks' drawn cavity chains: their draw's weights, learned
     // after every round (sqrt of each form's mean square per flight that could draw it).
     CavityFormWeights m_form_weights{};
     bool m_form_weights_learned = false;
+    // The last-flake connections' cone scales (WalkSettings::chain_cone_scale),
+    // learned after every round (empty: 1 until then).
+    std::vector<double> m_chain_cone_scale;
     std::vector<std::vector<AzimuthGlintSet>> m_azimuth_glints;  // [batch][exit]
 };
 

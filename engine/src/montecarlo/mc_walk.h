@@ -64,6 +64,11 @@ struct WalkSettings {
     // ... and their flights run the drawn cavity chain with this probability,
     // its score times the inverse (ConeRates::drawn_chain_rate).
     double drawn_chain_rate = 1.0;
+    // The last-flake connections' cone draw (McSettings::kernel_chain_cones):
+    // in proportion to the cone's kernel at the flight times chain_cone_scale
+    // (per bin; empty: 1), mixed with the uniform draw; false: uniform.
+    bool kernel_chain_cones = false;
+    std::span<const double> chain_cone_scale = {};
     CavityForms cavity_forms;  // McSettings::cavity_forms
     // The drawn chains' draw (null: uniform among the forms a flight can run).
     const CavityFormWeights* cavity_form_weights = nullptr;

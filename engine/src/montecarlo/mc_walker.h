@@ -232,12 +232,12 @@ struct Walker {
     // µm ahead (no real flake on it) in slice s of a layer with a law (last_flake.h).
     void lastFlakeConnections(const Slice& s, const LayerFlakes& lf, double length, double sigma);
     // A chain connection's draw on the flight of `length` µm ahead: one cone
-    // drawn uniformly (a flight's draws for all six cost more than the walk
-    // itself), a point at t uniform on the flight, a direction uniform in the
-    // cone (u: in slice s), and the factors every such connection carries:
-    // the flight's length and transmittance e^(-sigma t), the radiance law
-    // (n_0 / n)^2, 1 / u_z, the cone's w_z Omega / Omega_proj and the number
-    // of cones (the drawn cone's weight). ok false: no connection.
+    // (a flight's draws for all six cost more than the walk itself), a point
+    // at t uniform on the flight, a direction uniform in the cone (u: in
+    // slice s), and the factors every such connection carries: the flight's
+    // length and transmittance e^(-sigma t), the radiance law (n_0 / n)^2,
+    // 1 / u_z, the cone's w_z Omega / Omega_proj and 1 / the cone's
+    // probability (the number of cones when drawn uniformly). ok false: no connection.
     struct ChainDraw {
         std::size_t k = 0;
         double t = 0.0;
@@ -246,7 +246,18 @@ struct Walker {
         double factor = 0.0;
         bool ok = false;
     };
-    ChainDraw drawChainCone(const Slice& s, double length, double sigma, PathRng& chain_rng) const;
+    // cone_p: the cones' probabilities (empty: uniform, the drawn cone weighing the number of cones).
+    ChainDraw drawChainCone(const Slice& s, double length, double sigma, PathRng& chain_rng,
+                            std::span<const double> cone_p = {}) const;
+    // The last-flake connections' cone probabilities for the flight ahead
+    // (WalkSettings::kernel_chain_cones): per cone the kernel's flake density
+    // sum_i A_i D_i(h) at the normal h that mirrors v into the cone's axis,
+    // times the axis' w_z / u_z Omega / Omega_proj and the cone's scale, mixed
+    // with the uniform draw (kUniformConeShare); false (p untouched): draw uniformly.
+    static constexpr std::size_t kMaxKernelCones = 16;
+    static constexpr double kUniformConeShare = 0.25;
+    bool kernelConeProbabilities(const Slice& s, const LayerFlakes& lf,
+                                 std::array<double, kMaxKernelCones>& p) const;
     std::span<double> chainOut() const { return chain_out.empty() ? brdf_out : chain_out; }
     // Its kernel per kind (the layer's first 4) for c's normal h: A D(h)
     // `geometric` R(cos_vh) (before rho), after a Russian roulette below

@@ -263,11 +263,54 @@ Walker::ChainKernel Walker::chainKernel(const LayerFlakes& lf, const Vec3& h, do
     return out;
 }
 
-Walker::ChainDraw Walker::drawChainCone(const Slice& s, double length, double sigma,
-                                        PathRng& chain_rng) const {
+bool Walker::kernelConeProbabilities(const Slice& s, const LayerFlakes& lf,
+                                     std::array<double, kMaxKernelCones>& p) const {
+    const std::size_t cones = bins.size();
+    if (cones > p.size() || lf.last_flake == nullptr) return false;
+    const std::size_t kinds = std::min(lf.last_flake->kinds.size(), lf.kinds.size());
+    double total = 0.0;
+    for (std::size_t k = 0; k < cones; ++k) {
+        p[k] = 0.0;
+        const HistogramBin& bin = bins[k];
+        Vec3 u;
+        if (!(bin.wo.z > 0.0) || !refractPlanar(bin.wo, stack.ambient_n, s.n, u) || !(u.z > 0.0)) continue;
+        Vec3 h{u.x - v.x, u.y - v.y, u.z - v.z};
+        const double len = std::sqrt(dot(h, h));
+        if (len < 1e-12) continue;
+        double density = 0.0;
+        for (std::size_t i = 0; i < kinds; ++i)
+            density +=
+                lf.last_flake->kinds[i].geometry.area_density_per_um * lf.kinds[i].orientation.pdf(h.z / len);
+        const double scale = k < settings.chain_cone_scale.size() ? settings.chain_cone_scale[k] : 1.0;
+        p[k] = density * bin.wo.z / u.z * bin.solid_angle / bin.projected_solid_angle * scale;
+        total += p[k];
+    }
+    if (!(total > 0.0) || !std::isfinite(total)) return false;
+    for (std::size_t k = 0; k < cones; ++k)
+        p[k] = kUniformConeShare / static_cast<double>(cones) + (1.0 - kUniformConeShare) * p[k] / total;
+    return true;
+}
+
+Walker::ChainDraw Walker::drawChainCone(const Slice& s, double length, double sigma, PathRng& chain_rng,
+                                        std::span<const double> cone_p) const {
     ChainDraw draw;
-    draw.k = std::min(bins.size() - 1,
-                      static_cast<std::size_t>(chain_rng.uniform() * static_cast<double>(bins.size())));
+    const double pick = chain_rng.uniform();
+    double cone_weight = static_cast<double>(bins.size());  // 1 / the drawn cone's probability
+    if (cone_p.empty()) {
+        draw.k = std::min(bins.size() - 1, static_cast<std::size_t>(pick * static_cast<double>(bins.size())));
+    } else {
+        double below = 0.0;
+        draw.k = bins.size() - 1;
+        for (std::size_t k = 0; k + 1 < bins.size(); ++k) {
+            below += cone_p[k];
+            if (pick < below) {
+                draw.k = k;
+                break;
+            }
+        }
+        if (!(cone_p[draw.k] > 0.0)) return draw;
+        cone_weight = 1.0 / cone_p[draw.k];
+    }
     const HistogramBin& bin = bins[draw.k];
     draw.t = length * chain_rng.uniform();
     const double u1 = chain_rng.uniform();
@@ -276,8 +319,7 @@ Walker::ChainDraw Walker::drawChainCone(const Slice& s, double length, double si
     draw.point_depth = std::clamp(depth - v.z * draw.t, s.top_um, s.bottom_um);
     const double scale = (stack.ambient_n / s.n) * (stack.ambient_n / s.n);
     draw.factor = length * weight * std::exp(-sigma * draw.t) / draw.u.z * scale * w.z * bin.solid_angle /
-                  bin.projected_solid_angle * static_cast<double>(bins.size()) *
-                  settings.chain_connection_weight;
+                  bin.projected_solid_angle * cone_weight * settings.chain_connection_weight;
     draw.ok = true;
     return draw;
 }
@@ -296,7 +338,11 @@ void Walker::lastFlakeConnections(const Slice& s, const LayerFlakes& lf, double 
     if (!(length > 0.0) || bins.empty()) return;
     PathRng& chain_rng = chainRng();
     const std::size_t kinds = std::min(law.kinds.size(), lf.kinds.size());
-    const ChainDraw draw = drawChainCone(s, length, sigma, chain_rng);
+    std::array<double, kMaxKernelCones> cone_p{};
+    const bool weighted = settings.kernel_chain_cones && kernelConeProbabilities(s, lf, cone_p);
+    const ChainDraw draw = drawChainCone(s, length, sigma, chain_rng,
+                                         weighted ? std::span<const double>(cone_p.data(), bins.size())
+                                                  : std::span<const double>{});
     if (!draw.ok) return;
     const std::size_t k = draw.k;
     const double t = draw.t;

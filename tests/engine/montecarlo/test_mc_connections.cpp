@@ -476,6 +476,32 @@ TEST(MonteCarloConnections, DeltaWalksMatchTheHistogramOnChainsFromTheBeam) {
                                "delta walks, strong roulette by promise");
 }
 
+// Large, dense, strongly tilted (25 deg) mirror flakes of reflectance 0.9 in
+// a 12 µm film (index 1.5, black substrate, no clear coat).
+Recipe mirrorFilm(double volume_fraction, double diameter_um) {
+    Recipe r = test::oneLayerRecipe(1.5, 12.0, BlackSubstrate{});
+    MirrorFlake flake = test::mirrorFlake(volume_fraction, 25.0, 0.9);
+    flake.diameter_um = diameter_um;
+    r.layers[0].components = {flake};
+    return r;
+}
+
+// 8 µm at 12 %.
+Recipe tiltedMirrorFilm() { return mirrorFilm(0.12, 8.0); }
+
+// On it, the delta walks alone (one per path) with the last-flake
+// connections and no other chain connections, f at 10 degree cones from an 800-flake tile.
+mc::McSettings lastFlakeDeltaWalks(std::uint64_t seed) {
+    auto s = explicitSettings(100000, 10.0, seed);
+    s.tile_flakes = 800;
+    s.delta_rate = 1.0;
+    s.histogram_classes = mc::HistogramClasses::none();
+    s.connection_parts = onlyPart(&mc::ConnectionParts::delta_walks);
+    s.mirror_chain_connections = false;  // the last-flake connections alone
+    s.last_flake_connections = true;
+    return s;
+}
+
 TEST(MonteCarloConnections, LastFlakeConnectionsAgreeWithTheDeltaWalksTheyReplace) {
     // The last-flake connections (McSettings::last_flake_connections,
     // last_flake.h) score the delta chains' escapes whose last change is a
@@ -494,18 +520,9 @@ TEST(MonteCarloConnections, LastFlakeConnectionsAgreeWithTheDeltaWalksTheyReplac
     // Mutations (2026-12-05): the flakes met twice given to the connections
     // z = -4.4 / -16 at exits 1 / 2; rho = 1 (no edge effect) z = -5.5 to
     // -12; the walk's own escapes left in (counted twice) z = +17 to +22.
-    Recipe r = test::oneLayerRecipe(1.5, 12.0, BlackSubstrate{});
-    MirrorFlake flake = test::mirrorFlake(0.12, 25.0, 0.9);
-    flake.diameter_um = 8.0;
-    r.layers[0].components = {flake};
+    const Recipe r = tiltedMirrorFilm();
     const std::vector<mc::IncidenceRequest> req = specularNormalAndBackscatter();
-    auto s = explicitSettings(100000, 10.0, 83);
-    s.tile_flakes = 800;
-    s.delta_rate = 1.0;
-    s.histogram_classes = mc::HistogramClasses::none();
-    s.connection_parts = onlyPart(&mc::ConnectionParts::delta_walks);
-    s.mirror_chain_connections = false;  // the last-flake connections alone
-    s.last_flake_connections = true;
+    auto s = lastFlakeDeltaWalks(83);
     const auto connected = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
     s.seed += 1;
     s.last_flake_connections = false;
@@ -541,13 +558,7 @@ void expectSameAtEveryExit(const mc::McResult& a, const mc::McResult& b, const s
 // Dense, large (10 µm), strongly tilted mirror flakes in a 12 µm film
 // (index 1.5, black substrate, no clear coat): stacked pairs, the cavity
 // chains' flakes, are common.
-Recipe stackedMirrorFilm() {
-    Recipe r = test::oneLayerRecipe(1.5, 12.0, BlackSubstrate{});
-    MirrorFlake flake = test::mirrorFlake(0.16, 25.0, 0.9);
-    flake.diameter_um = 10.0;
-    r.layers[0].components = {flake};
-    return r;
-}
+Recipe stackedMirrorFilm() { return mirrorFilm(0.16, 10.0); }
 
 // On it, the delta walks alone (one per path, no chain connections), scoring
 // f at 10 degree cones from an 800-flake tile.
@@ -559,6 +570,34 @@ mc::McSettings stackedMirrorDeltaWalks(std::int64_t paths, std::uint64_t seed) {
     s.connection_parts = onlyPart(&mc::ConnectionParts::delta_walks);
     s.mirror_chain_connections = s.interference_chain_connections = false;
     return s;
+}
+
+TEST(MonteCarloConnections, LastFlakeConnectionsDrawingTheirConeByItsKernelAgreeWithTheUniformDraw) {
+    // McSettings::kernel_chain_cones: a flight's last-flake connection draws
+    // its cone in proportion to the flake law's density at the normal that
+    // mirrors the flight into the cone's axis (a quarter of the draw kept
+    // uniform), weighted 1 / p; with adaptive fractions the cones' scales
+    // (the stop rule's need) are learned between rounds. Either way the same
+    // expectation as the uniform draw: the last-flake connections alone on
+    // the test above's film, 100k paths each, independent seeds and tiles,
+    // kZ = 4 in the combined errors, the reference resolved (> 10 errors);
+    // z -1.2 / +0.8 / +0.8 and +0.5 / -0.7 / +0.6 (2026-12-06). Mutation
+    // (the drawn cone weighted by the number of cones, as the uniform draw
+    // is): z +10 / +0.8 / +7.8 and +12 / +1.0 / +10. ~8 CPU s.
+    const Recipe r = tiltedMirrorFilm();
+    const std::vector<mc::IncidenceRequest> req = specularNormalAndBackscatter();
+    for (const bool adaptive : {false, true}) {
+        auto s = lastFlakeDeltaWalks(adaptive ? 323 : 321);
+        s.adaptive_fractions = adaptive;
+        s.cavity_forms.walk_scores = mc::CavityForms::WalkScores::None;
+        s.kernel_chain_cones = false;
+        const auto uniform = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
+        s.seed += 1;
+        s.kernel_chain_cones = true;
+        const auto kernel = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
+        expectSameAtEveryExit(kernel, uniform,
+                              adaptive ? "cones by kernel and learned need" : "cones by kernel", 10.0);
+    }
 }
 
 TEST(MonteCarloConnections, CavityConnectionsAgreeWithTheDeltaWalksTheyReplace) {

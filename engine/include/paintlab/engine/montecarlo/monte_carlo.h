@@ -227,6 +227,12 @@ struct McSettings {
     // the walks' variance (mc_rates.h); clamped to [1/8, 1].
     double drawn_chain_rate = 1.0;
     bool adapt_drawn_chain_rate = true;  // false: drawn_chain_rate throughout (bench config 40)
+    // The delta walks' last-flake connections draw a flight's cone in
+    // proportion to its kernel there (the flake law's density at the normal
+    // that mirrors the flight into the cone's axis), scaled by the cone's
+    // need of the stop rule once rounds have measured it, a quarter of the
+    // draw kept uniform; false: uniformly (bench config 41).
+    bool kernel_chain_cones = true;
     double delta_roulette_weight = 1e-3;
     // Delta-chain walks (with adaptive_fractions): a branch also survives with a
     // probability set by its promise of reaching a cone (chain_promise.h) and
