@@ -308,6 +308,9 @@ BENCHMARK(BM_McDemoOnePercent)
 //   41 the default with the last-flake connections' cone drawn uniformly
 //     (McSettings::kernel_chain_cones off, the estimator before 2026-12-06's
 //     kernel-weighted draw)
+//   42 the default with every flight of the delta walks running its
+//     last-flake connection (McSettings::adapt_chain_length off at L = 0,
+//     the estimator before the rate by flight length)
 //   35 the default without the chain connections on interference-flake
 //     layers (McSettings::interference_chain_connections, before 2026-12-05)
 //   36 the default without the forward walk's chain connections
@@ -386,6 +389,7 @@ void BM_McExplicitBudget(benchmark::State& state) {
     if (config == 40)
         s.adapt_drawn_chain_rate = false;            // every flight runs the drawn chain (before 2026-12-06)
     if (config == 41) s.kernel_chain_cones = false;  // the uniform cone draw (before 2026-12-06)
+    if (config == 42) s.adapt_chain_length = false;  // every flight connects (before 2026-12-06)
     if (config == 35) s.interference_chain_connections = false;  // before 2026-12-05 (nineteenth session)
     if (config == 36) s.connection_parts.forward_chains = false;
     if (config == 37) s.connection_parts.delta_chains = false;
@@ -459,7 +463,7 @@ BENCHMARK(BM_McExplicitBudget)
     ->ArgsProduct({{28}, {4}, {8}})
     // Silver (issue 30): without the chain connections; the histogram's remainder; the delta walks' escapes
     // and connections apart.
-    ->ArgsProduct({{29, 30, 33, 34, 35, 36, 37, 38, 39, 40, 41}, {20, 100, 200}, {8}})
+    ->ArgsProduct({{29, 30, 33, 34, 35, 36, 37, 38, 39, 40, 41, 42}, {20, 100, 200}, {8}})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);

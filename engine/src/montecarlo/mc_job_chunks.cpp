@@ -201,6 +201,7 @@ void JobRunner::chunkDelta(std::size_t batch, std::int64_t first_path, std::int6
     walk_bare.delta_chain_connections = false;
     walk.chain_connection_weight = 1.0 / share;
     walk.drawn_chain_rate = m_first_flake ? 1.0 : m_rates.drawn_chain_rate;
+    walk.chain_length_um = m_first_flake ? 0.0 : m_rates.chain_length_um;
     walk.kernel_chain_cones = m_settings.kernel_chain_cones;
     walk.chain_cone_scale = m_chain_cone_scale;
     if (m_form_weights_learned) walk.cavity_form_weights = &m_form_weights;
@@ -237,7 +238,8 @@ void JobRunner::chunkDelta(std::size_t batch, std::int64_t first_path, std::int6
                                   {},
                                   {},
                                   split ? std::span<double>(f_chain) : std::span<double>(),
-                                  &sums.form_learning};
+                                  &sums.form_learning,
+                                  m_first_flake ? nullptr : &sums.length_learning};
         double cost = 0.0;
         double chain_cost = 0.0;
         if (m_uniform_delta) {

@@ -88,6 +88,9 @@ JobRunner::JobRunner(const McEngine::Band& band, const JobSpec& job, const McSet
                                    ? 1.0
                                    : std::clamp(settings.drawn_chain_rate, kMinDrawnChainRate, 1.0);
     m_rates.drawn_chain_rate_adapts = settings.adapt_drawn_chain_rate;
+    m_rates.chain_length_um =
+        std::isfinite(settings.chain_length_um) ? std::max(0.0, settings.chain_length_um) : 0.0;
+    m_rates.chain_length_adapts = settings.adapt_chain_length;
     m_first_flake = m_delta && settings.first_flake_walks && !band.explicit_flakes.empty() &&
                     std::any_of(band.explicit_flakes[0].begin(), band.explicit_flakes[0].end(),
                                 [](const LayerFlakes& lf) { return lf.groups != nullptr; });

@@ -46,14 +46,19 @@ std::array<double, 3> cheapestRates(const std::array<RateTerm, 3>& terms, double
 }
 
 DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double current_share,
-                              double current_drawn_rate, bool drawn_rate_adapts) {
+                              double current_drawn_rate, bool drawn_rate_adapts, double current_length_um,
+                              bool length_adapts) {
     DeltaWalkModel model;
     model.shares = {current_share};
     model.drawn_rates = {current_drawn_rate};
+    model.length_um = {current_length_um};
     const std::size_t exits = total.cones.size();
     model.v1.assign(exits, 0.0);
     model.chain_m2.assign(exits, 0.0);
     model.drawn_m2.assign(exits, 0.0);
+    model.length_m2.assign(exits, 0.0);
+    model.length_max2.assign(exits, 0.0);
+    model.length_connections = {0.0};
     if (!delta_walks || exits == 0 || !(total.cones[0].delta_samples > 1.0)) return model;
     model.measured = true;
     const ConeStats& c0 = total.cones[0];
@@ -62,14 +67,17 @@ DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double curren
     const CavityFormLearning& drawn = total.form_learning;
     const bool drawn_measured =
         n_chain > 1.0 && drawn.drawn_s2.size() == exits && drawn.drawn_steps_at_one > 0.0;
+    const ChainLengthLearning& lengths = total.length_learning;
+    const bool length_measured = n_chain > 1.0 && lengths.excess.size() == exits && lengths.connected > 1.0;
     // Every walk so far ran the connections: D(1, 1) is their measured
-    // variance less what the drawn chains' rate added.
+    // variance less what the drawn chains' rate and the rate by length added.
     const bool all_chained = n_chain == n;
     for (std::size_t k = 0; k < exits; ++k) {
         const ConeStats& cs = total.cones[k];
         const double mean = cs.delta_s1 / n;
         const double measured = std::max(0.0, cs.delta_s2 / n - mean * mean);
-        const double excess = drawn_measured ? drawn.drawn_excess[k] : 0.0;
+        const double excess =
+            (drawn_measured ? drawn.drawn_excess[k] : 0.0) + (length_measured ? lengths.excess[k] : 0.0);
         if (n_chain > 1.0) {
             model.chain_m2[k] = std::max(0.0, (cs.chain_s2 - excess) / n_chain);
             model.v1[k] = all_chained ? std::max(0.0, measured - excess / n)
@@ -94,6 +102,33 @@ DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double curren
         for (double s = 1.0; s >= kMinDeltaChainShare * 0.9999 && (s == 1.0 || !heavy); s *= 0.5)
             model.shares.push_back(s);
     }
+    if (length_measured) {
+        // Option 0 is the current L; then the candidates, while adapting.
+        model.length_connections.clear();
+        model.length_m2.clear();
+        model.length_max2.clear();
+        const auto add_option = [&](double l_um, std::size_t i) {
+            model.length_um.push_back(l_um);
+            double connections = 0.0;
+            for (std::size_t k = 0; k < exits; ++k) {
+                model.length_m2.push_back(i < kChainLengths ? lengths.m2[i * exits + k] / n_chain
+                                                            : lengths.excess[k] / n_chain);
+                model.length_max2.push_back(i < kChainLengths ? lengths.max2[i * exits + k] : 0.0);
+            }
+            if (i < kChainLengths) connections = lengths.connections[i] / n_chain;
+            model.length_connections.push_back(connections);
+        };
+        model.length_um.clear();
+        // The current L's connections: those that ran (per chained walk).
+        add_option(current_length_um, kChainLengths);
+        model.length_connections[0] = lengths.connected / n_chain;
+        if (length_adapts)
+            for (std::size_t i = 0; i < kChainLengths; ++i)
+                if (kChainLengthsUm[i] != current_length_um) add_option(kChainLengthsUm[i], i);
+        model.connection_cost = kCostPerWalkStep * lengths.steps / lengths.connected;
+        model.length_limit.resize(exits);
+        for (std::size_t k = 0; k < exits; ++k) model.length_limit[k] = kMaxChainTermShare * n * model.v1[k];
+    }
     if (drawn_measured) {
         model.chain_cost = std::max(0.0, model.chain_cost - kCostPerWalkStep * drawn.drawn_steps / n_chain);
         model.drawn_cost = kCostPerWalkStep * drawn.drawn_steps_at_one / n_chain;
@@ -107,18 +142,25 @@ DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double curren
     return model;
 }
 
-double DeltaWalkModel::variance(std::size_t k, double share, double drawn_rate) const {
-    return v1[k] + chain_m2[k] * (1.0 / share - 1.0) + drawn_m2[k] * (1.0 / drawn_rate - 1.0) / share;
+double DeltaWalkModel::variance(std::size_t k, double share, double drawn_rate, std::size_t length) const {
+    const std::size_t exits = v1.size();
+    return v1[k] + chain_m2[k] * (1.0 / share - 1.0) + drawn_m2[k] * (1.0 / drawn_rate - 1.0) / share +
+           length_m2[length * exits + k] / share;
 }
 
-double DeltaWalkModel::cost(double share, double drawn_rate) const {
+double DeltaWalkModel::cost(double share, double drawn_rate, std::size_t length) const {
     if (!(chain_cost + drawn_cost > 0.0)) return walk_cost;
-    return bare_cost + share * (chain_cost + drawn_rate * drawn_cost);
+    const double connections = length_connections[length] - length_connections[0];
+    return bare_cost +
+           share * std::max(0.0, chain_cost + drawn_rate * drawn_cost + connection_cost * connections);
 }
 
-bool DeltaWalkModel::allowed(double share, double drawn_rate) const {
+bool DeltaWalkModel::allowed(double share, double drawn_rate, std::size_t length) const {
     for (std::size_t k = 0; k < drawn_max2.size() && k < drawn_limit.size(); ++k)
         if (drawn_max2[k] * (1.0 / (share * drawn_rate) - 1.0) > drawn_limit[k]) return false;
+    const std::size_t exits = v1.size();
+    for (std::size_t k = 0; k < length_limit.size(); ++k)
+        if (length_max2[length * exits + k] / share > length_limit[k]) return false;
     return true;
 }
 
@@ -159,8 +201,9 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
     // The delta-chain walks serve every cone at once: one common rate d, scanned
     // over powers of two, its variance D_k / d joining A; with it the share s
     // of them that run the chain connections (DeltaWalkModel).
-    const DeltaWalkModel delta = deltaWalkModel(total, delta_walks, rates.delta_chain_share,
-                                                rates.drawn_chain_rate, rates.drawn_chain_rate_adapts);
+    const DeltaWalkModel delta =
+        deltaWalkModel(total, delta_walks, rates.delta_chain_share, rates.drawn_chain_rate,
+                       rates.drawn_chain_rate_adapts, rates.chain_length_um, rates.chain_length_adapts);
     std::vector<double> delta_rates{rates.delta_rate};
     if (delta.measured) {
         delta_rates.clear();
@@ -169,11 +212,13 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
     double best = std::numeric_limits<double>::infinity();
     double best_share = rates.delta_chain_share;
     double best_drawn_rate = rates.drawn_chain_rate;
+    std::size_t best_length = 0;
     std::vector<std::array<double, 3>> x(exits);
     std::vector<double> delta_variance(exits, 0.0);
-    const auto consider = [&](double d, double share, double drawn_rate) {
+    const auto consider = [&](double d, double share, double drawn_rate, std::size_t length = 0) {
         std::vector<double> a_d(exits);
-        for (std::size_t k = 0; k < exits; ++k) a_d[k] = a[k] + delta.variance(k, share, drawn_rate) / d;
+        for (std::size_t k = 0; k < exits; ++k)
+            a_d[k] = a[k] + delta.variance(k, share, drawn_rate, length) / d;
         const auto variance = [&](std::size_t k, const std::array<double, 3>& at) {
             double v = a_d[k];
             for (std::size_t t = 0; t < 3; ++t) v += terms[k][t].variance / at[t];
@@ -187,7 +232,7 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
         if (!(rho_min > 0.0)) return;
         for (int step = 0; step < 200; ++step) {
             const double rho = rho_min * std::pow(1.06, step);
-            double cost = c_walk + d * delta.cost(share, drawn_rate);
+            double cost = c_walk + d * delta.cost(share, drawn_rate, length);
             double worst = 0.0;
             for (std::size_t k = 0; k < exits; ++k) {
                 if (f2[k] > 0.0) {
@@ -204,6 +249,7 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
                 rates.delta_rate = d;
                 best_share = share;
                 best_drawn_rate = drawn_rate;
+                best_length = length;
                 for (std::size_t k = 0; k < exits; ++k) {
                     rates.nee_fraction[k] = x[k][0];
                     rates.glint_rate[k] = x[k][1];
@@ -231,10 +277,15 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
         for (const double d : delta_rates)
             if (d != d_best) consider(d, share, q);
     }
+    // Then every L of the rate by length at the best (d, s, q).
+    for (std::size_t length = 1; length < delta.length_um.size(); ++length)
+        if (delta.allowed(best_share, best_drawn_rate, length))
+            consider(rates.delta_rate, best_share, best_drawn_rate, length);
     rates.delta_chain_share = best_share;
     rates.drawn_chain_rate = best_drawn_rate;
+    rates.chain_length_um = delta.length_um[best_length];
     for (std::size_t k = 0; k < exits; ++k)
-        delta_variance[k] = delta.variance(k, best_share, best_drawn_rate);
+        delta_variance[k] = delta.variance(k, best_share, best_drawn_rate, best_length);
     return {std::move(f2), std::move(delta_variance)};
 }
 

@@ -82,6 +82,10 @@ struct ConeRates {
     // flakes over black the drawn chains cost more than they take.
     double drawn_chain_rate = 1.0;
     bool drawn_chain_rate_adapts = true;  // false: held (McSettings::adapt_drawn_chain_rate)
+    // L of their last-flake connections' rate by flight length, µm (0: every
+    // flight; chain_length_rate.h), chosen among kChainLengthsUm.
+    double chain_length_um = 0.0;
+    bool chain_length_adapts = true;  // false: held (McSettings::adapt_chain_length)
 };
 
 // Per cone: f^2 and the delta walks' variance per walk (the promise's and the
@@ -143,12 +147,26 @@ struct DeltaWalkModel {
     // but a small part of the walks' variance.
     std::vector<double> drawn_max2;
     std::vector<double> drawn_limit;
-    bool allowed(double share, double drawn_rate) const;
-    double variance(std::size_t k, double share, double drawn_rate) const;
-    double cost(double share, double drawn_rate) const;
+    // The last-flake connections' rate by length (chain_length_rate.h): the
+    // options' L, the current first (then the candidates, once measured and
+    // adapting); per option and cone ([o * cones + k], per chained walk) the
+    // variance it adds to C^2 and the largest single flight's part of it;
+    // per option the connections per chained walk; the cost of one. v1 and
+    // chain_m2 above are at L = 0 (what the current L added taken out).
+    // An option is allowed while max2 / s stays within drawn_limit's share.
+    std::vector<double> length_um;
+    std::vector<double> length_m2;
+    std::vector<double> length_max2;
+    std::vector<double> length_connections;
+    double connection_cost = 0.0;
+    std::vector<double> length_limit;
+    bool allowed(double share, double drawn_rate, std::size_t length = 0) const;
+    double variance(std::size_t k, double share, double drawn_rate, std::size_t length = 0) const;
+    double cost(double share, double drawn_rate, std::size_t length = 0) const;
 };
 DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double current_share,
-                              double current_drawn_rate = 1.0, bool drawn_rate_adapts = true);
+                              double current_drawn_rate = 1.0, bool drawn_rate_adapts = true,
+                              double current_length_um = 0.0, bool length_adapts = false);
 
 RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool reverse_walks, bool delta_walks,
                    ConeRates& rates);

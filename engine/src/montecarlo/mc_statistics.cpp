@@ -29,6 +29,16 @@ void CavityFormLearning::add(const CavityFormLearning& other) {
     drawn_steps_at_one += other.drawn_steps_at_one;
 }
 
+void ChainLengthLearning::add(const ChainLengthLearning& other) {
+    addElementwise(m2, other.m2);
+    addElementwise(excess, other.excess);
+    if (max2.size() < other.max2.size()) max2.resize(other.max2.size(), 0.0);
+    for (std::size_t i = 0; i < other.max2.size(); ++i) max2[i] = std::max(max2[i], other.max2[i]);
+    for (std::size_t i = 0; i < kChainLengths; ++i) connections[i] += other.connections[i];
+    steps += other.steps;
+    connected += other.connected;
+}
+
 void ConeStats::add(const ConeStats& o) {
     delta_samples += o.delta_samples;
     delta_s1 += o.delta_s1;
@@ -58,6 +68,7 @@ void Sums::add(const Sums& other) {
     addElementwise(first_count, other.first_count);
     addElementwise(first_s2, other.first_s2);
     form_learning.add(other.form_learning);
+    length_learning.add(other.length_learning);
     walk_cost += other.walk_cost;
     nee_cost += other.nee_cost;
     nee_attempts += other.nee_attempts;

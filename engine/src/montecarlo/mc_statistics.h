@@ -5,6 +5,7 @@
 // paths or over batches.
 
 #include "cavity_chain.h"
+#include "chain_length_rate.h"
 #include "paintlab/engine/montecarlo/monte_carlo.h"
 
 #include <cstddef>
@@ -72,6 +73,8 @@ struct Sums {
     std::vector<double> first_count;
     std::vector<double> first_s2;      // [key * cones + k]
     CavityFormLearning form_learning;  // the delta walks' drawn cavity chains (cavity_chain.h)
+    ChainLengthLearning
+        length_learning;  // their last-flake connections' rate by length (chain_length_rate.h)
 
     explicit Sums(std::size_t entries = 0, std::size_t cone_count = 0)
         : mean(entries, 0.0), m2(entries, 0.0), cones(cone_count) {}

@@ -51,6 +51,7 @@ Walker deltaWalker(const PathContext& context, const WalkSettings& settings, Pat
     walker.brdf_out = f_out;
     walker.chain_out = context.chain_out;
     walker.form_learning = context.form_learning;
+    walker.length_learning = context.length_learning;
     walker.j = j;
     walker.depth = depth;
     walker.history.path_class = path_class;

@@ -3,6 +3,7 @@
 // delta-chain, first-flake and reverse walks (mc_walk.cpp; the walker: mc_walker.h).
 
 #include "cavity_chain.h"
+#include "chain_length_rate.h"
 #include "chain_promise.h"
 #include "flake_tile.h"
 #include "mc_connection.h"
@@ -64,6 +65,10 @@ struct WalkSettings {
     // ... and their flights run the drawn cavity chain with this probability,
     // its score times the inverse (ConeRates::drawn_chain_rate).
     double drawn_chain_rate = 1.0;
+    // ... and their last-flake connections run on a flight of length l with
+    // probability min(1, l / chain_length_um), times the inverse (0: every
+    // flight; chain_length_rate.h, ConeRates::chain_length_um).
+    double chain_length_um = 0.0;
     // The last-flake connections' cone draw (McSettings::kernel_chain_cones):
     // in proportion to the cone's kernel at the flight times chain_cone_scale
     // (per bin; empty: 1), mixed with the uniform draw; false: uniform.
@@ -123,6 +128,8 @@ struct PathContext {
     std::span<double> chain_out = {};
     // What the drawn cavity chains learn (null: nothing).
     CavityFormLearning* form_learning = nullptr;
+    // What the last-flake connections' rate by length learns (null: nothing).
+    ChainLengthLearning* length_learning = nullptr;
 };
 
 // What one path carries out of the paint (power per unit incident power),

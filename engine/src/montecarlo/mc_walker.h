@@ -51,6 +51,7 @@ struct Walker {
     std::span<double> nee_out;                    // per bin (empty: brdf_out)
     std::span<double> chain_out;                  // the chain connections' scores per bin (empty: brdf_out)
     CavityFormLearning* form_learning = nullptr;  // what the drawn cavity chains learn (null: nothing)
+    ChainLengthLearning* length_learning = nullptr;  // ... and the rate by length (null: nothing)
     // Per bin, the factor (>= 1) on a pigment collision's chance to run the
     // connections into it (PathContext::nee_boost); empty: 1.
     std::span<const double> nee_boost;
@@ -229,8 +230,18 @@ struct Walker {
     // Connections from a pigment collision into the cones (directly and through a flake's image).
     void connectFromPigment(const Slice& s, double sigma);
     // Delta-chain walk: the last-flake connections from the flight of `length`
-    // µm ahead (no real flake on it) in slice s of a layer with a law (last_flake.h).
+    // µm ahead (no real flake on it) in slice s of a layer with a law (last_flake.h),
+    // run at the rate by length (WalkSettings::chain_length_um).
     void lastFlakeConnections(const Slice& s, const LayerFlakes& lf, double length, double sigma);
+    // One such connection, its score weighted 1 / p_length (added to chainOut; value 0: none).
+    struct ConeScore {
+        std::size_t k = 0;
+        double value = 0.0;
+    };
+    ConeScore lastFlakeConnection(const Slice& s, const LayerFlakes& lf, double length, double sigma,
+                                  double p_length, PathRng& chain_rng);
+    // What that score tells the choice of L (ChainLengthLearning).
+    void learnChainLength(const ConeScore& score, double length, double p_length);
     // A chain connection's draw on the flight of `length` µm ahead: one cone
     // (a flight's draws for all six cost more than the walk itself), a point
     // at t uniform on the flight, a direction uniform in the cone (u: in

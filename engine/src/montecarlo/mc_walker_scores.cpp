@@ -333,31 +333,70 @@ Walker::ChainDraw Walker::drawChainCone(const Slice& s, double length, double si
 // the straight one from the point to the ambient, with eachCone's factors.
 // Russian roulette below settings.roulette_weight (per sr) on the value at
 // rho = 1, before the flake is drawn and traced (a layer's first 4 kinds).
+// A flight runs it with probability p = min(1, length / settings.chain_length_um),
+// weighted 1 / p (chain_length_rate.h).
 void Walker::lastFlakeConnections(const Slice& s, const LayerFlakes& lf, double length, double sigma) {
-    const LastFlakeLaw& law = *lf.last_flake;
     if (!(length > 0.0) || bins.empty()) return;
     PathRng& chain_rng = chainRng();
+    const double p_length = chainLengthProbability(length, settings.chain_length_um);
+    if (length_learning != nullptr)
+        for (std::size_t i = 0; i < kChainLengths; ++i)
+            length_learning->connections[i] += chainLengthProbability(length, kChainLengthsUm[i]);
+    if (p_length < 1.0 && chain_rng.uniform() >= p_length) return;
+    const std::int64_t rays_before = tally.rays;
+    const std::int64_t attempts_before = tally.nee_attempts;
+    const ConeScore score = lastFlakeConnection(s, lf, length, sigma, p_length, chain_rng);
+    if (length_learning != nullptr) {
+        length_learning->steps += 2.0 * static_cast<double>(tally.nee_attempts - attempts_before) +
+                                  static_cast<double>(tally.rays - rays_before);
+        length_learning->connected += 1.0;
+        if (score.value > 0.0) learnChainLength(score, length, p_length);
+    }
+}
+
+void Walker::learnChainLength(const ConeScore& score, double length, double p_length) {
+    // X (score_x): the score before 1 / p_length and the chain share's weight.
+    const double score_x = score.value * p_length / settings.chain_connection_weight;
+    const std::size_t cones = bins.size();
+    ChainLengthLearning& learned = *length_learning;
+    if (learned.m2.size() < kChainLengths * cones) {
+        learned.m2.resize(kChainLengths * cones, 0.0);
+        learned.max2.resize(kChainLengths * cones, 0.0);
+        learned.excess.resize(cones, 0.0);
+    }
+    for (std::size_t i = 0; i < kChainLengths; ++i) {
+        const double added =
+            score_x * score_x * (1.0 / chainLengthProbability(length, kChainLengthsUm[i]) - 1.0);
+        learned.m2[i * cones + score.k] += added / p_length;
+        learned.max2[i * cones + score.k] = std::max(learned.max2[i * cones + score.k], added);
+    }
+    learned.excess[score.k] += score_x * score_x * (1.0 / p_length - 1.0) / p_length;
+}
+
+Walker::ConeScore Walker::lastFlakeConnection(const Slice& s, const LayerFlakes& lf, double length,
+                                              double sigma, double p_length, PathRng& chain_rng) {
+    const LastFlakeLaw& law = *lf.last_flake;
     const std::size_t kinds = std::min(law.kinds.size(), lf.kinds.size());
     std::array<double, kMaxKernelCones> cone_p{};
     const bool weighted = settings.kernel_chain_cones && kernelConeProbabilities(s, lf, cone_p);
     const ChainDraw draw = drawChainCone(s, length, sigma, chain_rng,
                                          weighted ? std::span<const double>(cone_p.data(), bins.size())
                                                   : std::span<const double>{});
-    if (!draw.ok) return;
+    if (!draw.ok) return {};
     const std::size_t k = draw.k;
     const double t = draw.t;
     const Vec3 u = draw.u;
     Vec3 h{u.x - v.x, u.y - v.y, u.z - v.z};
     const double len = std::sqrt(dot(h, h));
-    if (len < 1e-12) return;
+    if (len < 1e-12) return {};
     h = {h.x / len, h.y / len, h.z / len};
     const double cos_vh = std::abs(dot(v, h));
     const double point_depth = draw.point_depth;
     const Vec3 point{ux + v.x * t, uy + v.y * t, -point_depth};
-    const double factor = draw.factor;
+    const double factor = draw.factor / p_length;
     // The kernel per kind before rho: A R D / 4.
     const ChainKernel kernels = chainKernel(lf, h, cos_vh, 0.25, factor, chain_rng);
-    if (!(kernels.q > 0.0)) return;
+    if (!(kernels.q > 0.0)) return {};
     const double q = kernels.q;
     const auto& per_kind = kernels.per_kind;
     double kernel = 0.0;
@@ -371,10 +410,12 @@ void Walker::lastFlakeConnections(const Slice& s, const LayerFlakes& lf, double 
         if (!(T_legs > 0.0)) continue;
         kernel += per_kind[i] * flake.rho * T_legs;
     }
-    if (!(kernel > 0.0)) return;
-    chainOut()[k] +=
+    if (!(kernel > 0.0)) return {};
+    const double value =
         kernel * factor / q *
         straightToAmbient(stack, explicit_flakes, j, point_depth, x + v.x * t, y + v.y * t, u, &tally.rays);
+    chainOut()[k] += value;
+    return {k, value};
 }
 
 double Walker::legsTransmittance(const Vec3& centre, const Vec3& n, double radius_um, const FlakeKind& kind,

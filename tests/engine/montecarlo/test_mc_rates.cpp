@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstddef>
 #include <string>
 #include <utility>
@@ -56,6 +57,32 @@ void addDrawnChains(mc::Sums& total, double share, double q, double y2, double c
     drawn.drawn_max2 = {max2};
     drawn.drawn_steps = chained * q * c_drawn / mc::kCostPerWalkStep;
     drawn.drawn_steps_at_one = chained * c_drawn / mc::kCostPerWalkStep;
+}
+
+// The chained walks' last-flake connections at the rate by length
+// (chain_length_rate.h), run at L = l_now: per candidate i of
+// kChainLengthsUm the variance it adds to a chained walk's C^2 (added[i]),
+// the connections per chained walk (connections[i], of which those at l_now
+// are part of c_chain at c_connection each) and the largest single term.
+void addLengthRate(mc::Sums& total, double share, double l_now, const std::array<double, 7>& added,
+                   const std::array<double, 7>& connections, double c_connection,
+                   const std::array<double, 7>& max2 = {}) {
+    mc::ConeStats& cs = total.cones[0];
+    const double chained = cs.chain_samples;
+    std::size_t now = 0;
+    while (mc::kChainLengthsUm[now] != l_now) ++now;
+    cs.chain_s2 += chained * added[now];
+    cs.delta_s2 += chained * added[now] / (share * share);
+    mc::ChainLengthLearning& learned = total.length_learning;
+    learned.m2.assign(mc::kChainLengths, 0.0);
+    learned.max2.assign(max2.begin(), max2.end());
+    for (std::size_t i = 0; i < mc::kChainLengths; ++i) {
+        learned.m2[i] = chained * added[i];
+        learned.connections[i] = chained * connections[i];
+    }
+    learned.excess = {chained * added[now]};
+    learned.connected = chained * connections[now];
+    learned.steps = learned.connected * c_connection / mc::kCostPerWalkStep;
 }
 
 // The rates of one cone, the delta walks' share at `share`.
@@ -179,6 +206,79 @@ TEST(McRates, DrawnChainsThatCarryTheVarianceOrOneHeavyFlightKeepEveryFlightOnTh
     heavy.form_learning.drawn_max2 = {0.1 * 4.0 * 1.0e4};
     mc::adaptRates(heavy, mc::kFirstExit + 1, false, true, rates);
     EXPECT_EQ(rates.drawn_chain_rate, 0.5);
+}
+
+// Silver-like walks per chained walk (units of f^2 and the cost model's
+// µs): D(1, 1) = 20 (E[E^2] 8, E[C^2] 13), bare 2.6, chain 5.1 of which ten
+// last-flake connections at 0.4 each; the rate by length at L = 0, 0.5,
+// 1, 2, 4, 8, 16 µm would add 0, 0.05, 0.2, 0.6, 1.5, 4, 10 to C^2 and run
+// 10, 9.5, 9, 8, 6.5, 4.5, 3 connections.
+constexpr std::array<double, 7> kSilverAdded{0.0, 0.05, 0.2, 0.6, 1.5, 4.0, 10.0};
+constexpr std::array<double, 7> kSilverConnections{10.0, 9.5, 9.0, 8.0, 6.5, 4.5, 3.0};
+
+TEST(McRates, TheRateByLengthRecoversTheWalksVarianceWhateverLTheyRanAt) {
+    // D(1, 1) at L = 0 from walks run at any L (what that L added taken out
+    // of C^2), D at option o = D(1, 1) + E[C^2] (1 / s - 1) + added_o / s,
+    // and the cost c_bare + s (c_chain + c_connection (n_o - n_now)) (exact
+    // algebra: the sums are exact). Options: the current L first, then the
+    // other candidates.
+    for (const auto& [share, l_now] : {std::pair{1.0, 0.0}, {1.0, 4.0}, {0.5, 16.0}}) {
+        std::size_t now = 0;
+        while (mc::kChainLengthsUm[now] != l_now) ++now;
+        const double c_chain = 5.1 - 0.4 * (10.0 - kSilverConnections[now]);
+        mc::Sums total = deltaOnly(1.0e4, share, 8.0, 0.0, 13.0, 2.6, c_chain);
+        addLengthRate(total, share, l_now, kSilverAdded, kSilverConnections, 0.4);
+        const mc::DeltaWalkModel model =
+            mc::deltaWalkModel(total, true, share, 1.0, true, l_now, /*length_adapts=*/true);
+        const std::string at = "share " + std::to_string(share) + ", L " + std::to_string(l_now);
+        ASSERT_EQ(model.length_um.size(), mc::kChainLengths) << at;
+        EXPECT_EQ(model.length_um[0], l_now) << at;
+        EXPECT_NEAR(model.variance(0, 1.0, 1.0, 0), 20.0 + kSilverAdded[now], 1e-9) << at;
+        for (std::size_t o = 0; o < model.length_um.size(); ++o) {
+            std::size_t i = 0;
+            while (mc::kChainLengthsUm[i] != model.length_um[o]) ++i;
+            EXPECT_NEAR(model.variance(0, 0.5, 1.0, o), 20.0 + 13.0 + kSilverAdded[i] / 0.5, 1e-9) << at;
+            EXPECT_NEAR(model.cost(0.5, 1.0, o), 2.6 + 0.5 * (5.1 - 0.4 * (10.0 - kSilverConnections[i])),
+                        1e-9)
+                << at << ", option L " << model.length_um[o];
+        }
+    }
+}
+
+TEST(McRates, ShortFlightsConnectLessWhereTheyCostMoreThanTheyCarry) {
+    // kSilver*: variance x cost per walk at share 1 is 20 x 7.7 = 154 at
+    // L = 0, 21.5 x 6.3 = 135 at 4 µm, 24 x 5.5 = 132 at 8 µm (the least),
+    // 30 x 4.9 = 147 at 16 µm: L = 8 µm. Unless one flight's term at 8 and
+    // 16 µm is beyond a tenth of the walks' variance (the guard, as the
+    // drawn chains'): then 4 µm. Where the short flights carry the cone
+    // (40 times the added variance: 22 x 7.5 = 165 at 0.5 µm) every flight connects.
+    mc::ConeRates rates = oneConeRates(1.0);
+    mc::Sums total = deltaOnly(1.0e4, 1.0, 8.0, 0.0, 13.0, 2.6, 5.1);
+    addLengthRate(total, 1.0, 0.0, kSilverAdded, kSilverConnections, 0.4);
+    mc::adaptRates(total, mc::kFirstExit + 1, false, true, rates);
+    EXPECT_EQ(rates.chain_length_um, 8.0);
+    EXPECT_EQ(rates.delta_chain_share, 1.0);
+    const double limit = 0.1 * 1.0e4 * 20.0;
+    addLengthRate(total, 1.0, 0.0, kSilverAdded, kSilverConnections, 0.4,
+                  {0.0, 0.0, 0.0, 0.0, 0.5 * limit, 1.5 * limit, 3.0 * limit});
+    rates = oneConeRates(1.0);
+    mc::adaptRates(total, mc::kFirstExit + 1, false, true, rates);
+    EXPECT_EQ(rates.chain_length_um, 4.0);
+    std::array<double, 7> carried{};
+    for (std::size_t i = 0; i < carried.size(); ++i) carried[i] = 40.0 * kSilverAdded[i];
+    mc::Sums carry = deltaOnly(1.0e4, 1.0, 8.0, 0.0, 13.0, 2.6, 5.1);
+    addLengthRate(carry, 1.0, 0.0, carried, kSilverConnections, 0.4);
+    rates = oneConeRates(1.0);
+    mc::adaptRates(carry, mc::kFirstExit + 1, false, true, rates);
+    EXPECT_EQ(rates.chain_length_um, 0.0);
+    // Held (McSettings::adapt_chain_length false): L stays.
+    rates = oneConeRates(1.0);
+    rates.chain_length_adapts = false;
+    rates.chain_length_um = 2.0;
+    mc::Sums held = deltaOnly(1.0e4, 1.0, 8.0, 0.0, 13.0, 2.6, 5.1 - 0.4 * 2.0);
+    addLengthRate(held, 1.0, 2.0, kSilverAdded, kSilverConnections, 0.4);
+    mc::adaptRates(held, mc::kFirstExit + 1, false, true, rates);
+    EXPECT_EQ(rates.chain_length_um, 2.0);
 }
 
 TEST(McRates, WithoutTheSplitTheShareStays) {

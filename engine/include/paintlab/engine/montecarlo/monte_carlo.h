@@ -227,6 +227,14 @@ struct McSettings {
     // the walks' variance (mc_rates.h); clamped to [1/8, 1].
     double drawn_chain_rate = 1.0;
     bool adapt_drawn_chain_rate = true;  // false: drawn_chain_rate throughout (bench config 40)
+    // Those walks' last-flake connections run on a flight of length l with
+    // probability min(1, l / L), weighted by the inverse (the score grows
+    // with l; chain_length_rate.h). L in µm, 0: every flight. The start:
+    // with adaptive_fractions the rate model chooses L after every round
+    // among 0 and 0.5-16 µm, but not where a single flight's score, so
+    // thinned, would add a tenth of the walks' variance (mc_rates.h).
+    double chain_length_um = 0.0;
+    bool adapt_chain_length = true;  // false: chain_length_um throughout (bench config 42)
     // The delta walks' last-flake connections draw a flight's cone in
     // proportion to its kernel there (the flake law's density at the normal
     // that mirrors the flight into the cone's axis), scaled by the cone's
