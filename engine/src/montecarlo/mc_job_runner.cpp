@@ -214,13 +214,13 @@ void JobRunner::buildViews(const McSettings& settings) {
 bool JobRunner::adapt(const Sums& total) {
     if (!m_adaptive || total.paths < 1024 || total.cones.size() != m_exits) return false;
     const RateFit fit = adaptRates(total, estimateEntries(), m_reverse, m_delta, m_rates);
-    learnCavityFormWeights(total);
+    const std::vector<double> needs = coneNeeds(total);
+    learnCavityFormWeights(total, needs);
     // The last-flake connections' cone draw, p_k ~ sqrt(need_k) times the
     // flight's kernel: each cone's connections then carry the stop rule's
     // variance-optimal share, sqrt(need_k E[g_k^2]) (the kernel standing for
     // the root of the mean square g_k^2 of a flight's score into cone k).
     if (m_settings.kernel_chain_cones) {
-        const std::vector<double> needs = coneNeeds(total);
         if (!needs.empty()) {
             m_chain_cone_scale.resize(needs.size());
             for (std::size_t k = 0; k < needs.size(); ++k) m_chain_cone_scale[k] = std::sqrt(needs[k]);
@@ -255,10 +255,9 @@ std::vector<double> JobRunner::coneNeeds(const Sums& total) const {
     return w;
 }
 
-void JobRunner::learnCavityFormWeights(const Sums& total) {
+void JobRunner::learnCavityFormWeights(const Sums& total, std::span<const double> w) {
     const CavityFormLearning& learned = total.form_learning;
     if (total.paths < 2 || learned.m2_over_p.size() < kCavityFormSlots * m_exits) return;
-    const std::vector<double> w = coneNeeds(total);
     if (w.empty()) return;
     bool any = false;
     for (std::size_t i = 0; i < m_form_weights.size(); ++i) {

@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace paintlab::mc {
@@ -90,7 +91,8 @@ private:
     FirstFlakeProposal m_first_proposal;
     ChainPromise m_promise;  // the delta walks' roulette by promise (empty: off)
     std::size_t m_diagnostics = 0;
-    void learnCavityFormWeights(const Sums& total);
+    // The drawn cavity chains' weights from the cones' needs (coneNeeds).
+    void learnCavityFormWeights(const Sums& total, std::span<const double> needs);
     // Per cone the stop rule's need, r_k / (r_max f_k^2) with r_k its
     // relative variance per path (empty before any cone has an estimate).
     std::vector<double> coneNeeds(const Sums& total) const;
