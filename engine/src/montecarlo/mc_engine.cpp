@@ -24,10 +24,11 @@ using Clock = std::chrono::steady_clock;
 constexpr double kRoundShare = 0.5;
 // Paths per chunk of the pilot round behind an error target (the budget a safety net).
 constexpr std::int64_t kPilotChunkPaths = 16;
-// Behind an error target, the first round after the pilot is a full round
-// divided by this, and the stop rule's minimum of kept paths: a quarter
-// round made the three-layer demo (1 % in 300-2,000 paths a job) run 16k;
-// the sixteenth kept its errors as honest (docs/PERFORMANCE.md).
+// Behind an error target, the first round after the first rates' paths are
+// dropped is a full round divided by this, and so is the stop rule's
+// minimum of kept paths: a quarter
+// round made the three-layer demo (1 % in 300-2,000 paths a job) keep
+// 4,096; the sixteenth kept its errors as honest (docs/PERFORMANCE.md).
 constexpr std::int64_t kFirstTargetRoundDivisor = 16;
 
 // The estimates of a job from its batches' sums: over the batches' means
