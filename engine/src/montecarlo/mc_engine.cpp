@@ -30,6 +30,12 @@ constexpr std::int64_t kPilotChunkPaths = 16;
 // round made the three-layer demo (1 % in 300-2,000 paths a job) keep
 // 4,096; the sixteenth kept its errors as honest (docs/PERFORMANCE.md).
 constexpr std::int64_t kFirstTargetRoundDivisor = 16;
+// Behind an error target, the paths run at the first rates are dropped once
+// adapt() has set the rates from them: they are at most this share of what
+// the pilot predicts the job needs (a full round had been 4-8 times the
+// three-layer demo's kept paths; a 32nd left the pearlescent's rates too
+// rough; docs/PERFORMANCE.md, "The three-layer's rounds").
+constexpr double kFirstRatesShare = 1.0 / 16.0;
 
 // The estimates of a job from its batches' sums: over the batches' means
 // when the batches trace different tiles, else over paths.
@@ -107,6 +113,16 @@ std::int64_t targetRoundPaths(const JobResult& current, const ErrorTarget& targe
     const std::int64_t min_round = std::max<std::int64_t>(1, first_round / 4);
     if (!(needed < static_cast<double>(full_round))) return full_round;  // NaN too
     return std::clamp<std::int64_t>(static_cast<std::int64_t>(needed), min_round, full_round);
+}
+
+// Behind an error target: the paths to run at the first rates, pilot
+// included, before adapt() sets the rates and they are dropped; at least
+// what adapt() needs. The round sizing caps it at a full round.
+double firstRatesPaths(const JobResult& pilot, const ErrorTarget& target, int orders) {
+    const double ratio = worstErrorRatio(pilot, target, orders);
+    const double predicted = static_cast<double>(pilot.incidence.paths) * 1.1 * ratio * ratio;
+    // NaN (no estimate yet) falls to adapt()'s minimum.
+    return std::max(static_cast<double>(JobRunner::kPathsToAdapt), kFirstRatesShare * predicted);
 }
 
 }  // namespace
@@ -294,6 +310,13 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
                     cap = std::min(cap, static_cast<double>(targetRoundPaths(
                                             current, error_target, job.orders, current.incidence.paths,
                                             first_target_round, full_round)));
+                // Before the first rates are set, paths that will be dropped:
+                // no more of them than firstRatesPaths.
+                if (target && runner.coneStats() > 0 && !pilot_dropped) {
+                    const double first_rates = firstRatesPaths(current, error_target, job.orders);
+                    if (first_rates > static_cast<double>(started))
+                        cap = std::min(cap, first_rates - static_cast<double>(started));
+                }
                 paths = std::max<std::int64_t>(1, static_cast<std::int64_t>(cap));
             }
             round_chunks = std::min(round_chunks, std::max<std::int64_t>(1, paths));

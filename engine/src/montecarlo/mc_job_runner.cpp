@@ -212,7 +212,7 @@ void JobRunner::buildViews(const McSettings& settings) {
 }
 
 bool JobRunner::adapt(const Sums& total) {
-    if (!m_adaptive || total.paths < 1024 || total.cones.size() != m_exits) return false;
+    if (!m_adaptive || total.paths < kPathsToAdapt || total.cones.size() != m_exits) return false;
     const RateFit fit = adaptRates(total, estimateEntries(), m_reverse, m_delta, m_rates);
     const std::vector<double> needs = coneNeeds(total);
     learnCavityFormWeights(total, needs);

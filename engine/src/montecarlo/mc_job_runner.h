@@ -39,6 +39,8 @@ public:
     // Adaptive fractions: sets the next paths' rates from every path so far
     // (mc_rates.h, adaptRates). Returns whether it set them.
     bool adapt(const Sums& total);
+    // The paths adapt() waits for before it sets the first rates.
+    static constexpr std::int64_t kPathsToAdapt = 1024;
 
 private:
     struct View {
