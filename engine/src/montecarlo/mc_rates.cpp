@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <utility>
 
 namespace paintlab::mc {
@@ -107,24 +108,25 @@ DeltaWalkModel deltaWalkModel(const Sums& total, bool delta_walks, double curren
         model.length_connections.clear();
         model.length_m2.clear();
         model.length_max2.clear();
-        const auto add_option = [&](double l_um, std::size_t i) {
+        // An option: its L, per cone its added variance per chained walk (the
+        // sums m2 over n_chain) and largest term, and its connections per walk.
+        const auto add_option = [&](double l_um, std::span<const double> m2, std::span<const double> max2,
+                                    double connections) {
             model.length_um.push_back(l_um);
-            double connections = 0.0;
             for (std::size_t k = 0; k < exits; ++k) {
-                model.length_m2.push_back(i < kChainLengths ? lengths.m2[i * exits + k] / n_chain
-                                                            : lengths.excess[k] / n_chain);
-                model.length_max2.push_back(i < kChainLengths ? lengths.max2[i * exits + k] : 0.0);
+                model.length_m2.push_back(m2[k] / n_chain);
+                model.length_max2.push_back(max2.empty() ? 0.0 : max2[k]);
             }
-            if (i < kChainLengths) connections = lengths.connections[i] / n_chain;
-            model.length_connections.push_back(connections);
+            model.length_connections.push_back(connections / n_chain);
         };
         model.length_um.clear();
-        // The current L's connections: those that ran (per chained walk).
-        add_option(current_length_um, kChainLengths);
-        model.length_connections[0] = lengths.connected / n_chain;
+        // The current L: the excess it added and the connections that ran.
+        add_option(current_length_um, lengths.excess, {}, lengths.connected);
         if (length_adapts)
             for (std::size_t i = 0; i < kChainLengths; ++i)
-                if (kChainLengthsUm[i] != current_length_um) add_option(kChainLengthsUm[i], i);
+                if (kChainLengthsUm[i] != current_length_um)
+                    add_option(kChainLengthsUm[i], std::span(lengths.m2).subspan(i * exits, exits),
+                               std::span(lengths.max2).subspan(i * exits, exits), lengths.connections[i]);
         model.connection_cost = kCostPerWalkStep * lengths.steps / lengths.connected;
         model.length_limit.resize(exits);
         for (std::size_t k = 0; k < exits; ++k) model.length_limit[k] = kMaxChainTermShare * n * model.v1[k];

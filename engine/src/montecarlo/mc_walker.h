@@ -241,7 +241,8 @@ struct Walker {
     ConeScore lastFlakeConnection(const Slice& s, const LayerFlakes& lf, double length, double sigma,
                                   double p_length, PathRng& chain_rng);
     // What that score tells the choice of L (ChainLengthLearning).
-    void learnChainLength(const ConeScore& score, double length, double p_length);
+    void learnChainLength(const ConeScore& score, const std::array<double, kChainLengths>& p_candidates,
+                          double p_length);
     // A chain connection's draw on the flight of `length` µm ahead: one cone
     // (a flight's draws for all six cost more than the walk itself), a point
     // at t uniform on the flight, a direction uniform in the cone (u: in

@@ -339,9 +339,12 @@ void Walker::lastFlakeConnections(const Slice& s, const LayerFlakes& lf, double 
     if (!(length > 0.0) || bins.empty()) return;
     PathRng& chain_rng = chainRng();
     const double p_length = chainLengthProbability(length, settings.chain_length_um);
+    std::array<double, kChainLengths> p_candidates{};  // p_i of each candidate L_i
     if (length_learning != nullptr)
-        for (std::size_t i = 0; i < kChainLengths; ++i)
-            length_learning->connections[i] += chainLengthProbability(length, kChainLengthsUm[i]);
+        for (std::size_t i = 0; i < kChainLengths; ++i) {
+            p_candidates[i] = chainLengthProbability(length, kChainLengthsUm[i]);
+            length_learning->connections[i] += p_candidates[i];
+        }
     if (p_length < 1.0 && chain_rng.uniform() >= p_length) return;
     const std::int64_t rays_before = tally.rays;
     const std::int64_t attempts_before = tally.nee_attempts;
@@ -350,11 +353,12 @@ void Walker::lastFlakeConnections(const Slice& s, const LayerFlakes& lf, double 
         length_learning->steps += 2.0 * static_cast<double>(tally.nee_attempts - attempts_before) +
                                   static_cast<double>(tally.rays - rays_before);
         length_learning->connected += 1.0;
-        if (score.value > 0.0) learnChainLength(score, length, p_length);
+        if (score.value > 0.0) learnChainLength(score, p_candidates, p_length);
     }
 }
 
-void Walker::learnChainLength(const ConeScore& score, double length, double p_length) {
+void Walker::learnChainLength(const ConeScore& score, const std::array<double, kChainLengths>& p_candidates,
+                              double p_length) {
     // X (score_x): the score before 1 / p_length and the chain share's weight.
     const double score_x = score.value * p_length / settings.chain_connection_weight;
     const std::size_t cones = bins.size();
@@ -365,8 +369,7 @@ void Walker::learnChainLength(const ConeScore& score, double length, double p_le
         learned.excess.resize(cones, 0.0);
     }
     for (std::size_t i = 0; i < kChainLengths; ++i) {
-        const double added =
-            score_x * score_x * (1.0 / chainLengthProbability(length, kChainLengthsUm[i]) - 1.0);
+        const double added = score_x * score_x * (1.0 / p_candidates[i] - 1.0);
         learned.m2[i * cones + score.k] += added / p_length;
         learned.max2[i * cones + score.k] = std::max(learned.max2[i * cones + score.k], added);
     }
