@@ -33,15 +33,3 @@ endif()
 function(paintlab_set_target_options target)
   target_link_libraries(${target} PRIVATE paintlab_compiler_options)
 endfunction()
-
-# Precompiled headers: the third-party and standard headers a target's units
-# share are parsed once per target instead of once per unit (Qt's, nlohmann
-# json's and GoogleTest's most; docs/PERFORMANCE.md, "Build, test and CI
-# time"). clang-tidy reads a copy of compile_commands.json without them
-# (tests/lint/check_tidy.sh): it cannot load GCC's .gch files, and parses
-# each file as written. The sanitizer preset turns them off
-# (CMAKE_DISABLE_PRECOMPILE_HEADERS), so a unit that leans on the forced
-# include instead of its own #include still fails a build.
-set(PAINTLAB_PCH_STD <algorithm> <array> <cmath> <cstdint> <cstdio> <cstdlib> <filesystem>
-  <fstream> <functional> <limits> <map> <memory> <numbers> <optional> <sstream> <stdexcept>
-  <string> <string_view> <utility> <variant> <vector>)
