@@ -31,10 +31,11 @@ constexpr std::int64_t kPilotChunkPaths = 16;
 // 4,096; the sixteenth kept its errors as honest (docs/PERFORMANCE.md).
 constexpr std::int64_t kFirstTargetRoundDivisor = 16;
 // Behind an error target, the paths run at the first rates are dropped once
-// adapt() has set the rates from them: they are at most this share of what
-// the pilot predicts the job needs (a full round had been 4-8 times the
-// three-layer demo's kept paths; a 32nd left the pearlescent's rates too
-// rough; docs/PERFORMANCE.md, "The three-layer's rounds").
+// adapt() has set the rates from them, so they are at most this share of
+// what the pilot predicts the job needs: paints that stop after a few
+// thousand paths a job do not pay a full round for them, and the others
+// still get rates from enough paths (docs/PERFORMANCE.md, "The paths at the
+// first rates sized by the pilot").
 constexpr double kFirstRatesShare = 1.0 / 16.0;
 
 // The estimates of a job from its batches' sums: over the batches' means
