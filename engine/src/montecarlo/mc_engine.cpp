@@ -100,28 +100,33 @@ bool converged(const JobResult& r, const ErrorTarget& target, int orders) {
     return target.rel > 0.0 && worstErrorRatio(r, target, orders) <= 1.0;
 }
 
-// Behind an error target: the paths of the next round, from those the
-// estimates so far predict (errors fall as 1 / sqrt(paths)), 10 % over so
-// that a round seldom ends just short, within [first_round / 4, full_round].
-// The first round after the pilot is `first_round`: the stop rule reads the
-// batches' spread only from there on (fixed rounds of a full round's paths
-// had run the paints that converge within one well past the target).
-std::int64_t targetRoundPaths(const JobResult& current, const ErrorTarget& target, int orders,
-                              std::int64_t kept, std::int64_t first_round, std::int64_t full_round) {
-    if (kept <= 0) return first_round;
+// Behind an error target: the paths a job needs in all, pilot included, as
+// its estimates so far predict them (errors fall as 1 / sqrt(paths)), 10 %
+// over so that a round seldom ends just short. NaN without an estimate yet.
+double predictedPaths(const JobResult& current, const ErrorTarget& target, int orders) {
     const double ratio = worstErrorRatio(current, target, orders);
-    const double needed = static_cast<double>(kept) * (1.1 * ratio * ratio - 1.0);
+    return static_cast<double>(current.incidence.paths) * 1.1 * ratio * ratio;
+}
+
+// Behind an error target: the paths of the next round, those predicted less
+// those kept, within [first_round / 4, full_round]. The first round after
+// the pilot is `first_round`: the stop rule reads the batches' spread only
+// from there on (fixed rounds of a full round's paths had run the paints
+// that converge within one well past the target).
+std::int64_t targetRoundPaths(double predicted, std::int64_t kept, std::int64_t first_round,
+                              std::int64_t full_round) {
+    if (kept <= 0) return first_round;
+    const double needed = predicted - static_cast<double>(kept);
     const std::int64_t min_round = std::max<std::int64_t>(1, first_round / 4);
     if (!(needed < static_cast<double>(full_round))) return full_round;  // NaN too
     return std::clamp<std::int64_t>(static_cast<std::int64_t>(needed), min_round, full_round);
 }
 
 // Behind an error target: the paths to run at the first rates, pilot
-// included, before adapt() sets the rates and they are dropped; at least
-// what adapt() needs. The round sizing caps it at a full round.
-double firstRatesPaths(const JobResult& pilot, const ErrorTarget& target, int orders) {
-    const double ratio = worstErrorRatio(pilot, target, orders);
-    const double predicted = static_cast<double>(pilot.incidence.paths) * 1.1 * ratio * ratio;
+// included, before adapt() sets the rates and they are dropped: a share of
+// the pilot's prediction, at least what adapt() needs. The round sizing caps
+// it at a full round.
+double firstRatesPaths(double predicted) {
     // NaN (no estimate yet) falls to adapt()'s minimum.
     return std::max(static_cast<double>(JobRunner::kPathsToAdapt), kFirstRatesShare * predicted);
 }
@@ -307,14 +312,15 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
                     if (!target)
                         cap = std::min({cap, kRoundShare * affordable, 2.0 * static_cast<double>(started)});
                 }
+                const double predicted = target ? predictedPaths(current, error_target, job.orders) : 0.0;
                 if (target)
-                    cap = std::min(cap, static_cast<double>(targetRoundPaths(
-                                            current, error_target, job.orders, current.incidence.paths,
-                                            first_target_round, full_round)));
+                    cap =
+                        std::min(cap, static_cast<double>(targetRoundPaths(predicted, current.incidence.paths,
+                                                                           first_target_round, full_round)));
                 // Before the first rates are set, paths that will be dropped:
                 // no more of them than firstRatesPaths.
                 if (target && runner.coneStats() > 0 && !pilot_dropped) {
-                    const double first_rates = firstRatesPaths(current, error_target, job.orders);
+                    const double first_rates = firstRatesPaths(predicted);
                     if (first_rates > static_cast<double>(started))
                         cap = std::min(cap, first_rates - static_cast<double>(started));
                 }
