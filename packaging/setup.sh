@@ -24,7 +24,7 @@ jobs=$(nproc 2>/dev/null || echo 2)
 # (shared/ARCHITECTURE.md, shared/notes/debian12-stack.md).
 packages=(
   # toolchain and test tools (nodejs: the Khronos glTF validator of the export test)
-  build-essential cmake pkg-config git python3 clang-format clang-tidy nodejs
+  build-essential cmake ninja-build pkg-config git python3 clang-format clang-tidy nodejs
   libgtest-dev libgmock-dev libbenchmark-dev
   # the Debian package: man pages from --help, its check (dpkg-dev, for dpkg-shlibdeps, comes with build-essential)
   help2man lintian
@@ -83,7 +83,13 @@ install_packages() {
 }
 
 build() {  # build PRESET
-  local preset=$1
+  local preset=$1 dir="$root/build/$preset"
+  # A folder configured with another generator (Makefiles, before the presets
+  # chose Ninja) cannot be reconfigured: its cache goes, its sources stay.
+  if [[ -f $dir/CMakeCache.txt ]] && ! grep -q '^CMAKE_GENERATOR:INTERNAL=Ninja$' "$dir/CMakeCache.txt"; then
+    say "build/$preset was made with another generator: configuring it afresh"
+    rm -rf "$dir/CMakeCache.txt" "$dir/CMakeFiles"
+  fi
   say "configure ($preset)"
   cmake -S "$root" --preset "$preset" >/dev/null || die "cmake configure ($preset)"
   say "build ($preset, $jobs jobs)"

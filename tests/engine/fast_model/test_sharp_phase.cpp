@@ -31,7 +31,7 @@ struct Row {
 };
 
 std::vector<Row> referenceRows() {
-    const std::string path = std::string(PAINTLAB_TEST_DATA_DIR) + "/reference/sharp_phase_slabs.csv";
+    const std::string path = PAINTLAB_TEST_DATA_DIR "/reference/sharp_phase_slabs.csv";
     std::ifstream in(path);
     std::stringstream text;
     text << in.rdbuf();
