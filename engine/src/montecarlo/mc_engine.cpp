@@ -30,13 +30,6 @@ constexpr std::int64_t kPilotChunkPaths = 16;
 // round made the three-layer demo (1 % in 300-2,000 paths a job) keep
 // 4,096; the sixteenth kept its errors as honest (docs/PERFORMANCE.md).
 constexpr std::int64_t kFirstTargetRoundDivisor = 16;
-// Behind an error target, the paths run at the first rates are dropped once
-// adapt() has set the rates from them, so they are at most this share of
-// what the pilot predicts the job needs: paints that stop after a few
-// thousand paths a job do not pay a full round for them, and the others
-// still get rates from enough paths (docs/PERFORMANCE.md, "The paths at the
-// first rates sized by the pilot").
-constexpr double kFirstRatesShare = 1.0 / 16.0;
 
 // The estimates of a job from its batches' sums: over the batches' means
 // when the batches trace different tiles, else over paths.
@@ -100,7 +93,7 @@ bool converged(const JobResult& r, const ErrorTarget& target, int orders) {
     return target.rel > 0.0 && worstErrorRatio(r, target, orders) <= 1.0;
 }
 
-// Behind an error target: the paths a job needs in all, pilot included, as
+// Behind an error target: the paths a job needs in all, as
 // its estimates so far predict them (errors fall as 1 / sqrt(paths)), 10 %
 // over so that a round seldom ends just short. NaN without an estimate yet.
 double predictedPaths(const JobResult& current, const ErrorTarget& target, int orders) {
@@ -120,15 +113,6 @@ std::int64_t targetRoundPaths(double predicted, std::int64_t kept, std::int64_t 
     const std::int64_t min_round = std::max<std::int64_t>(1, first_round / 4);
     if (!(needed < static_cast<double>(full_round))) return full_round;  // NaN too
     return std::clamp<std::int64_t>(static_cast<std::int64_t>(needed), min_round, full_round);
-}
-
-// Behind an error target: the paths to run at the first rates, pilot
-// included, before adapt() sets the rates and they are dropped: a share of
-// the pilot's prediction, at least what adapt() needs. The round sizing caps
-// it at a full round.
-double firstRatesPaths(double predicted) {
-    // NaN (no estimate yet) falls to adapt()'s minimum.
-    return std::max(static_cast<double>(JobRunner::kPathsToAdapt), kFirstRatesShare * predicted);
 }
 
 }  // namespace
@@ -312,18 +296,10 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
                     if (!target)
                         cap = std::min({cap, kRoundShare * affordable, 2.0 * static_cast<double>(started)});
                 }
-                const double predicted = target ? predictedPaths(current, error_target, job.orders) : 0.0;
                 if (target)
-                    cap =
-                        std::min(cap, static_cast<double>(targetRoundPaths(predicted, current.incidence.paths,
-                                                                           first_target_round, full_round)));
-                // Before the first rates are set, paths that will be dropped:
-                // no more of them than firstRatesPaths.
-                if (target && runner.coneStats() > 0 && !pilot_dropped) {
-                    const double first_rates = firstRatesPaths(predicted);
-                    if (first_rates > static_cast<double>(started))
-                        cap = std::min(cap, first_rates - static_cast<double>(started));
-                }
+                    cap = std::min(cap, static_cast<double>(targetRoundPaths(
+                                            predictedPaths(current, error_target, job.orders),
+                                            current.incidence.paths, first_target_round, full_round)));
                 paths = std::max<std::int64_t>(1, static_cast<std::int64_t>(cap));
             }
             round_chunks = std::min(round_chunks, std::max<std::int64_t>(1, paths));
