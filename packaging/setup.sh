@@ -83,7 +83,8 @@ install_packages() {
 }
 
 build() {  # build PRESET
-  local preset=$1 dir="$root/build/$preset"
+  local preset=$1
+  local dir="$root/build/$preset"
   # A folder configured with another generator (Makefiles, before the presets
   # chose Ninja) cannot be reconfigured: its cache goes, its sources stay.
   if [[ -f $dir/CMakeCache.txt ]] && ! grep -q '^CMAKE_GENERATOR:INTERNAL=Ninja$' "$dir/CMakeCache.txt"; then
