@@ -93,9 +93,9 @@ bool converged(const JobResult& r, const ErrorTarget& target, int orders) {
     return target.rel > 0.0 && worstErrorRatio(r, target, orders) <= 1.0;
 }
 
-// Behind an error target: the paths a job needs in all, as
-// its estimates so far predict them (errors fall as 1 / sqrt(paths)), 10 %
-// over so that a round seldom ends just short. NaN without an estimate yet.
+// Behind an error target: the paths a job needs in all, as its estimates so
+// far predict them (errors fall as 1 / sqrt(paths)), 10 % over so that a
+// round seldom ends just short. NaN without an estimate yet.
 double predictedPaths(const JobResult& current, const ErrorTarget& target, int orders) {
     const double ratio = worstErrorRatio(current, target, orders);
     return static_cast<double>(current.incidence.paths) * 1.1 * ratio * ratio;
