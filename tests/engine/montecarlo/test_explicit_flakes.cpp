@@ -286,7 +286,8 @@ TEST(MonteCarloStopping, ErrorsOfRunsStoppedByTheirTargetAreHonest) {
     // explicit flakes' glints and walks, adaptive rates), stopped at 3 %:
     // over kRuns seeds the deviations from a reference of 40 times the
     // paths, in the two runs' combined errors, have an rms within [0.6,
-    // 1.5] (30 values, 10 runs x 3 exits: the rms's own spread is ~0.13)
+    // 1.5] (30 values, 10 runs x 3 exits sharing one reference: other seed
+    // sets of the same code gave 1.02-1.33, so the rms moves by ~0.2)
     // and none beyond 5. These seeds give 0.98 at ~7.9k paths a run; other
     // seed sets, and fewer paths at the first rates, in docs/PERFORMANCE.md
     // ("The paths at the first rates sized by the pilot"). ~15 CPU s.
