@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <future>
 
 namespace paintlab::mc {
@@ -30,26 +31,54 @@ constexpr std::int64_t kPilotChunkPaths = 16;
 // round made the three-layer demo (1 % in 300-2,000 paths a job) keep
 // 4,096; the sixteenth kept its errors as honest (docs/PERFORMANCE.md).
 constexpr std::int64_t kFirstTargetRoundDivisor = 16;
+// The largest weight of a path at the first rates kept beside the adapted
+// ones (McEngine::run): the rate model's forecast from ~1k paths is rough,
+// so they never count for more than an adapted path.
+constexpr double kMaxFirstWeight = 1.0;
+// Behind an error target, while a job looks short, a round is at most this
+// many times the paths at the adapted rates so far (McEngine::run).
+constexpr std::int64_t kRoundGrowth = 2;
 
 // The estimates of a job from its batches' sums: over the batches' means
-// when the batches trace different tiles, else over paths.
-JobResult finish(const JobRunner& runner, const std::vector<Sums>& batches, bool over_batches,
-                 double seconds) {
-    Sums total(runner.entries());
-    for (const auto& b : batches) total.add(b);
-    std::vector<std::int64_t> paths;
+// when the batches trace different tiles, else over paths. `first`: per
+// batch the paths at the first rates kept beside the later ones (empty:
+// none), each weighing `first_weight` against a later path.
+JobResult finish(const JobRunner& runner, const std::vector<Sums>& batches, const std::vector<Sums>& first,
+                 double first_weight, bool over_batches, double seconds) {
+    const std::size_t entries = runner.entries();
+    Sums later(entries);
+    Sums early(entries);
+    for (const auto& b : batches) later.add(b);
+    for (const auto& b : first) early.add(b);
+    std::vector<double> weights;
     std::vector<std::vector<double>> batch_means;
-    for (const auto& b : batches)
-        if (b.paths > 0) {
-            paths.push_back(b.paths);
-            batch_means.push_back(b.mean);
-        }
-    const bool use_batches = over_batches && paths.size() >= 2;
-    std::vector<double> column(paths.size());
+    for (std::size_t k = 0; k < batches.size(); ++k) {
+        const auto n_later = static_cast<double>(batches[k].paths);
+        const double n_early = k < first.size() ? first_weight * static_cast<double>(first[k].paths) : 0.0;
+        if (!(n_later + n_early > 0.0)) continue;
+        std::vector<double> mean(batches[k].mean);
+        if (n_early > 0.0)
+            for (std::size_t e = 0; e < entries; ++e)
+                mean[e] = (n_later * batches[k].mean[e] + n_early * first[k].mean[e]) / (n_later + n_early);
+        weights.push_back(n_later + n_early);
+        batch_means.push_back(std::move(mean));
+    }
+    const bool use_batches = over_batches && weights.size() >= 2;
+    const auto n_later = static_cast<double>(later.paths);
+    const double n_early = first_weight * static_cast<double>(early.paths);
+    std::vector<double> column(weights.size());
     auto entry = [&](std::size_t k) {
-        if (!use_batches) return pooledEstimate(total.mean[k], total.m2[k], total.paths);
-        for (std::size_t b = 0; b < paths.size(); ++b) column[b] = batch_means[b][k];
-        return batchMeansEstimate(column, paths);
+        if (use_batches) {
+            for (std::size_t b = 0; b < weights.size(); ++b) column[b] = batch_means[b][k];
+            return batchMeansEstimate(column, weights);
+        }
+        const Estimate l = pooledEstimate(later.mean[k], later.m2[k], later.paths);
+        if (!(n_early > 0.0)) return l;
+        // The weighted mean of the two sets of paths and its error.
+        const Estimate e = pooledEstimate(early.mean[k], early.m2[k], early.paths);
+        const double w = n_later + n_early;
+        return Estimate{(n_later * l.mean + n_early * e.mean) / w,
+                        std::hypot(n_later * l.std_error, n_early * e.std_error) / w};
     };
     JobResult r;
     IncidenceResult& inc = r.incidence;
@@ -60,9 +89,10 @@ JobResult finish(const JobRunner& runner, const std::vector<Sums>& batches, bool
     for (std::size_t k = 0; k < runner.exitCount(); ++k) inc.brdf_per_sr.push_back(entry(kFirstExit + k));
     for (std::size_t k = kFirstExit + runner.exitCount(); k < runner.estimateEntries(); ++k)
         r.projection.push_back(entry(k));
-    inc.paths = total.paths;
+    inc.paths = later.paths + (n_early > 0.0 ? early.paths : 0);
     inc.seconds = seconds;
-    r.batch_paths = std::move(paths);
+    r.weighted_paths = n_later + n_early;
+    r.batch_weights = std::move(weights);
     r.batch_means = std::move(batch_means);
     return r;
 }
@@ -98,7 +128,7 @@ bool converged(const JobResult& r, const ErrorTarget& target, int orders) {
 // round seldom ends just short. NaN without an estimate yet.
 double predictedPaths(const JobResult& current, const ErrorTarget& target, int orders) {
     const double ratio = worstErrorRatio(current, target, orders);
-    return static_cast<double>(current.incidence.paths) * 1.1 * ratio * ratio;
+    return current.weighted_paths * 1.1 * ratio * ratio;
 }
 
 // Behind an error target: the paths of the next round, those predicted less
@@ -255,6 +285,14 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
     JobResult current;
     Sums seen(runner.entries(), runner.coneStats());  // every path so far, for the adaptive rates
     bool pilot_dropped = false;
+    // Behind an error target the first rates' round is split at adapt()'s
+    // paths: those before only set the weight of the rest (kept beside the
+    // later paths in first_batches) and are dropped. The paths left of the
+    // round (0: not split) and whether the split has been made.
+    std::int64_t first_round_rest = 0;
+    bool first_split = false;
+    std::vector<Sums> first_batches;
+    double first_weight = 0.0;
     const std::int64_t full_round = chunk * std::max(1, m_settings.chunks_per_round);
     // Behind an error target: the first round after the pilot, and the paths the stop rule waits for.
     const std::int64_t first_target_round = std::max<std::int64_t>(1, full_round / kFirstTargetRoundDivisor);
@@ -296,11 +334,39 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
                     if (!target)
                         cap = std::min({cap, kRoundShare * affordable, 2.0 * static_cast<double>(started)});
                 }
+                const double budget_cap = cap;
                 if (target)
                     cap = std::min(cap, static_cast<double>(targetRoundPaths(
                                             predictedPaths(current, error_target, job.orders),
-                                            current.incidence.paths, first_target_round, full_round)));
+                                            static_cast<std::int64_t>(current.weighted_paths),
+                                            first_target_round, full_round)));
+                if (target && pilot_dropped) {
+                    // The first round at the adapted rates is short (the rates
+                    // adapt again on their own paths), and while the job looks
+                    // short (its prediction within a full round) a round at most
+                    // kRoundGrowth times the adapted paths so far: a few kept paths
+                    // predict heavy-tailed jobs poorly, and such a prediction had
+                    // sent the three-layer demo's jobs 3-5 times past their need.
+                    std::int64_t adapted = 0;
+                    for (const auto& b : batches) adapted += b.paths;
+                    if (adapted == 0)
+                        cap = std::min(cap, static_cast<double>(first_target_round));
+                    else if (predictedPaths(current, error_target, job.orders) <
+                             static_cast<double>(full_round))
+                        cap = std::min(cap, static_cast<double>(kRoundGrowth * adapted));
+                }
                 paths = std::max<std::int64_t>(1, static_cast<std::int64_t>(cap));
+                if (first_round_rest > 0) {
+                    // The rest of the first rates' round as planned.
+                    paths =
+                        std::max<std::int64_t>(1, static_cast<std::int64_t>(std::min(
+                                                      static_cast<double>(first_round_rest), budget_cap)));
+                    first_round_rest = 0;
+                } else if (target && !first_split && !pilot_dropped && runner.coneStats() > 0 &&
+                           started < JobRunner::kPathsToAdapt && started + paths > JobRunner::kPathsToAdapt) {
+                    first_round_rest = started + paths - JobRunner::kPathsToAdapt;
+                    paths = JobRunner::kPathsToAdapt - started;
+                }
             }
             round_chunks = std::min(round_chunks, std::max<std::int64_t>(1, paths));
             round_chunk = std::clamp<std::int64_t>((paths + round_chunks - 1) / round_chunks, 1, chunk);
@@ -325,18 +391,35 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
             // The paths before the first adaptation ran at the first round's
             // rates, whose variance can be many times the adapted one (the
             // demo's flop: next-event connections on 1/8 of the paths at the
-            // unboosted chance, then boosted up to 64 times); they only set the
-            // rates and are dropped while they are a small part of the job
-            // (unbiased: the rates are fixed before the kept paths run).
-            if (runner.adapt(seen) && !pilot_dropped) {
-                pilot_dropped = true;
-                if (started * 8 <= max_paths && (budget_seconds <= 0.0 || elapsed * 8.0 <= budget_seconds)) {
+            // unboosted chance, then boosted up to 64 times). Behind an error
+            // target, the first adapt()'s paths only forecast (the rate
+            // model, mc_rates.h) the relative variance per path that the
+            // adapted rates will give over theirs, and are dropped; the rest
+            // of the round is kept beside the later paths with that ratio as
+            // each path's weight (the inverse-variance weight, set before
+            // those paths ran: unbiased). Without the split, every path
+            // before the first adaptation is dropped. Either only while they
+            // are a small part of the job.
+            const bool may_drop =
+                started * 8 <= max_paths && (budget_seconds <= 0.0 || elapsed * 8.0 <= budget_seconds);
+            if (first_round_rest > 0 && !first_split) {
+                first_split = true;
+                const double ratio = runner.forecastVarianceRatio(seen);
+                if (may_drop) {
+                    first_weight = std::isfinite(ratio) ? std::clamp(ratio, 0.0, kMaxFirstWeight) : 0.0;
                     for (auto& b : batches) b = Sums(runner.entries(), runner.coneStats());
                     dropped_now = true;
                 }
+            } else if (runner.adapt(seen) && !pilot_dropped) {
+                pilot_dropped = true;
+                if (may_drop) {
+                    if (first_weight > 0.0) first_batches = batches;
+                    for (auto& b : batches) b = Sums(runner.entries(), runner.coneStats());
+                    dropped_now = first_batches.empty();
+                }
             }
         }
-        current = finish(runner, batches, over_batches, elapsed);
+        current = finish(runner, batches, first_batches, first_weight, over_batches, elapsed);
         const bool out_of_time = budget_seconds > 0.0 && elapsed >= budget_seconds;
         if (progress) {
             double fraction = std::min(1.0, static_cast<double>(started) / static_cast<double>(max_paths));
@@ -348,8 +431,10 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
         // and not before one full round's paths (a budget's first rounds are small: an
         // error read off a few dozen paths could stop the job on a low draw), or
         // behind an error target the first round's kept paths.
-        const bool every_batch = !over_batches || std::all_of(batches.begin(), batches.end(),
-                                                              [](const Sums& b) { return b.paths > 0; });
+        bool every_batch = true;
+        for (std::size_t k = 0; over_batches && k < batches.size(); ++k)
+            every_batch = every_batch &&
+                          (batches[k].paths > 0 || (k < first_batches.size() && first_batches[k].paths > 0));
         const bool enough = target ? current.incidence.paths >= std::min(max_paths, first_target_round)
                                    : started >= std::min(max_paths, full_round);
         if (out_of_time ||

@@ -44,9 +44,12 @@ struct JobSpec {
 struct JobResult {
     IncidenceResult incidence;
     std::vector<Estimate> projection;  // [cell * orders + m]: cell average of f^m / (T_i T_o), 1/sr
-    // Per batch that has paths: its path count and mean sample vector (albedo without the mirror term).
-    std::vector<std::int64_t> batch_paths;
+    // Per batch that has paths: its paths' summed weight and mean sample
+    // vector (albedo without the mirror term). A path weighs 1, one at the
+    // first rates kept beside the later ones less (McEngine::run).
+    std::vector<double> batch_weights;
     std::vector<std::vector<double>> batch_means;
+    double weighted_paths = 0.0;  // their sum
 };
 
 // A run's time budget (McSettings::max_seconds) shared by its jobs: each job

@@ -231,6 +231,14 @@ bool JobRunner::adapt(const Sums& total) {
     return true;
 }
 
+double JobRunner::forecastVarianceRatio(const Sums& total) const {
+    if (!m_adaptive || total.paths < kPathsToAdapt || total.cones.size() != m_exits)
+        return std::numeric_limits<double>::quiet_NaN();
+    ConeRates rates = m_rates;
+    const RateFit fit = adaptRates(total, estimateEntries(), m_reverse, m_delta, rates);
+    return fit.rel_variance / fit.previous_rel_variance;  // NaN or inf where the model has no variance
+}
+
 // The drawn cavity chains' weights (CavityFormWeights): each form's draw in
 // proportion to the root of its mean square, the variance-optimal share of
 // a one-of-many draw, with the cones weighed by the stop rule's need: w_k =

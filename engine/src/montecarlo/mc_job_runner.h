@@ -41,6 +41,10 @@ public:
     bool adapt(const Sums& total);
     // The paths adapt() waits for before it sets the first rates.
     static constexpr std::int64_t kPathsToAdapt = 1024;
+    // What adapt() would choose now, without setting it: the worst cone's
+    // relative variance per path at those rates over that at the rates in
+    // force (the rate model's forecast; NaN without one).
+    double forecastVarianceRatio(const Sums& total) const;
 
 private:
     struct View {

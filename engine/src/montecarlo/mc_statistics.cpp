@@ -91,21 +91,20 @@ Estimate pooledEstimate(double mean, double m2, std::int64_t n) {
     return {mean, std::sqrt(var / dn)};
 }
 
-Estimate batchMeansEstimate(std::span<const double> batch_means, std::span<const std::int64_t> batch_paths) {
+Estimate batchMeansEstimate(std::span<const double> batch_means, std::span<const double> batch_paths) {
     double total = 0.0;
-    std::int64_t n = 0;
+    double dn = 0.0;
     for (std::size_t b = 0; b < batch_means.size(); ++b) {
-        total += batch_means[b] * static_cast<double>(batch_paths[b]);
-        n += batch_paths[b];
+        total += batch_means[b] * batch_paths[b];
+        dn += batch_paths[b];
     }
-    if (n <= 0) return {};
-    const auto dn = static_cast<double>(n);
+    if (!(dn > 0.0)) return {};
     const double mean = total / dn;
     const auto k = static_cast<double>(batch_means.size());
     if (k < 2.0) return {mean, 0.0};
     double var = 0.0;
     for (std::size_t b = 0; b < batch_means.size(); ++b) {
-        const double d = (batch_means[b] - mean) * static_cast<double>(batch_paths[b]) / dn;
+        const double d = (batch_means[b] - mean) * batch_paths[b] / dn;
         var += d * d;
     }
     return {mean, std::sqrt(var * k / (k - 1.0))};

@@ -84,8 +84,8 @@ struct Sums {
 // Mean and standard error over paths from the mean and the sum of squared deviations M2.
 Estimate pooledEstimate(double mean, double m2, std::int64_t paths);
 // Over batches: the pooled mean m and the spread of the batches' means m_k
-// weighted by their path counts n_k (N in all, K batches with paths):
-// se^2 = K / (K - 1) sum_k (n_k / N)^2 (m_k - m)^2.
-Estimate batchMeansEstimate(std::span<const double> batch_means, std::span<const std::int64_t> batch_paths);
+// weighted by their path counts n_k (or the paths' summed weights; N in all,
+// K batches with paths): se^2 = K / (K - 1) sum_k (n_k / N)^2 (m_k - m)^2.
+Estimate batchMeansEstimate(std::span<const double> batch_means, std::span<const double> batch_paths);
 
 }  // namespace paintlab::mc

@@ -287,10 +287,11 @@ TEST(MonteCarloStopping, ErrorsOfRunsStoppedByTheirTargetAreHonest) {
     // over kRuns seeds the deviations from a reference of 40 times the
     // paths, in the two runs' combined errors, have an rms within [0.6,
     // 1.5] (30 values, 10 runs x 3 exits sharing one reference: other seed
-    // sets of the same code gave 1.02-1.33, so the rms moves by ~0.2)
-    // and none beyond 5. These seeds give 0.98 at ~7.9k paths a run; other
-    // seed sets, and fewer paths at the first rates, in docs/PERFORMANCE.md
-    // ("The paths at the first rates sized by the pilot"). ~15 CPU s.
+    // sets of the same code gave 1.22-1.30, so the rms moves by ~0.2)
+    // and none beyond 5. These seeds give 1.03 at ~17.6k paths a run (the
+    // first rates' kept ones included); other seed sets and other stop
+    // schedules in docs/PERFORMANCE.md ("The first rates' paths kept at the
+    // forecast weight"). ~15 CPU s.
     constexpr int kRuns = 10;
     const Recipe r =
         flakeLayer(1.5, 20.0, LambertianSubstrate{Spectrum(0.5)}, mirror(0.05, 0.5, 10.0, 20.0, 0.9));

@@ -149,6 +149,25 @@ TEST(McRates, EveryWalkRunsTheConnectionsWhereTheyCarryTheVariance) {
     EXPECT_EQ(rates.delta_chain_share, 1.0);
 }
 
+TEST(McRates, TheForecastStartsFromTheModelAtTheRatesInForce) {
+    // The first rates' kept paths weigh the model's relative variance per
+    // path at the adapted rates over that at the rates in force (McEngine::run).
+    // At the rates in force the model gives the walks' own variance per path,
+    // D(1, 1) / d = (E[E^2] + 2 E[E C] + E[C^2] - f^2) / d at d = 1/4 walks
+    // a path (every other term zero; exact algebra), and the rates it chose,
+    // once in force, are forecast as the variance and cost it chose them for.
+    mc::ConeRates rates = oneConeRates(1.0);
+    rates.delta_rate = 0.25;
+    const mc::Sums total = deltaOnly(1.0e4, 1.0, 0.01, 0.001, 20.0, 3.0, 7.0);
+    const mc::RateFit first = mc::adaptRates(total, mc::kFirstExit + 1, false, true, rates);
+    EXPECT_NEAR(first.previous_rel_variance, (0.01 + 0.002 + 20.0 - 1.0) / 0.25, 1e-9);
+    ASSERT_EQ(rates.delta_chain_share, 1.0);  // so the sums read the same at the new rates
+    const mc::RateFit again = mc::adaptRates(total, mc::kFirstExit + 1, false, true, rates);
+    EXPECT_NEAR(again.previous_rel_variance, first.rel_variance, 1e-12 * first.rel_variance);
+    EXPECT_NEAR(again.previous_cost, first.cost, 1e-12 * first.cost);
+    EXPECT_LT(first.rel_variance * first.cost, first.previous_rel_variance * first.previous_cost);
+}
+
 TEST(McRates, TheDrawnChainRateRecoversTheWalksVarianceFromItsSums) {
     // D(1, 1) = E[E^2] + 2 E[E C] + E[C^2] - f^2 at q = 1 whatever share and
     // rate the walks ran at, and D(s, q) = D(1, 1) + E[C^2] (1 / s - 1) +
