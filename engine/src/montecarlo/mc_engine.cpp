@@ -288,9 +288,8 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
     // Behind an error target the first rates' round is split at adapt()'s
     // paths: those before only set the weight of the rest (kept beside the
     // later paths in first_batches) and are dropped. The paths left of the
-    // round (0: not split) and whether the split has been made.
+    // round, from the split until they run (0 otherwise).
     std::int64_t first_round_rest = 0;
-    bool first_split = false;
     std::vector<Sums> first_batches;
     double first_weight = 0.0;
     const std::int64_t full_round = chunk * std::max(1, m_settings.chunks_per_round);
@@ -335,10 +334,10 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
                         cap = std::min({cap, kRoundShare * affordable, 2.0 * static_cast<double>(started)});
                 }
                 const double budget_cap = cap;
+                const double predicted = predictedPaths(current, error_target, job.orders);
                 if (target)
                     cap = std::min(cap, static_cast<double>(targetRoundPaths(
-                                            predictedPaths(current, error_target, job.orders),
-                                            static_cast<std::int64_t>(current.weighted_paths),
+                                            predicted, static_cast<std::int64_t>(current.weighted_paths),
                                             first_target_round, full_round)));
                 if (target && pilot_dropped) {
                     // The first round at the adapted rates is short (the rates
@@ -351,8 +350,7 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
                     for (const auto& b : batches) adapted += b.paths;
                     if (adapted == 0)
                         cap = std::min(cap, static_cast<double>(first_target_round));
-                    else if (predictedPaths(current, error_target, job.orders) <
-                             static_cast<double>(full_round))
+                    else if (predicted < static_cast<double>(full_round))
                         cap = std::min(cap, static_cast<double>(kRoundGrowth * adapted));
                 }
                 paths = std::max<std::int64_t>(1, static_cast<std::int64_t>(cap));
@@ -362,7 +360,7 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
                         std::max<std::int64_t>(1, static_cast<std::int64_t>(std::min(
                                                       static_cast<double>(first_round_rest), budget_cap)));
                     first_round_rest = 0;
-                } else if (target && !first_split && !pilot_dropped && runner.coneStats() > 0 &&
+                } else if (target && !pilot_dropped && runner.coneStats() > 0 &&
                            started < JobRunner::kPathsToAdapt && started + paths > JobRunner::kPathsToAdapt) {
                     first_round_rest = started + paths - JobRunner::kPathsToAdapt;
                     paths = JobRunner::kPathsToAdapt - started;
@@ -402,8 +400,7 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
             // are a small part of the job.
             const bool may_drop =
                 started * 8 <= max_paths && (budget_seconds <= 0.0 || elapsed * 8.0 <= budget_seconds);
-            if (first_round_rest > 0 && !first_split) {
-                first_split = true;
+            if (first_round_rest > 0) {  // the round before the split's rest
                 const double ratio = runner.forecastVarianceRatio(seen);
                 if (may_drop) {
                     first_weight = std::isfinite(ratio) ? std::clamp(ratio, 0.0, kMaxFirstWeight) : 0.0;

@@ -211,24 +211,17 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
         delta_rates.clear();
         for (double d = kMinDeltaRate; d <= kMaxDeltaRate * 1.0001; d *= 2.0) delta_rates.push_back(d);
     }
-    // The worst cone's relative variance and the cost per path at the rates
-    // in force (the forecast's baseline).
-    double previous_cost =
-        c_walk + rates.delta_rate * delta.cost(rates.delta_chain_share, rates.drawn_chain_rate);
+    // The worst cone's relative variance per path at the rates in force (the forecast's baseline).
     double previous_rel_variance = 0.0;
     for (std::size_t k = 0; k < exits; ++k) {
         const std::array<double, 3> now{rates.nee_fraction[k], rates.glint_rate[k], rates.reverse_rate[k]};
         double v =
             a[k] + delta.variance(k, rates.delta_chain_share, rates.drawn_chain_rate) / rates.delta_rate;
-        for (std::size_t t = 0; t < 3; ++t) {
-            if (t == 0 || terms[k][t].variance > 0.0) previous_cost += now[t] * terms[k][t].cost;
-            v += terms[k][t].variance / now[t];
-        }
+        for (std::size_t t = 0; t < 3; ++t) v += terms[k][t].variance / now[t];
         if (f2[k] > 0.0) previous_rel_variance = std::max(previous_rel_variance, v / f2[k]);
     }
     double best = std::numeric_limits<double>::infinity();
     double best_worst = 0.0;
-    double best_cost = 0.0;
     double best_share = rates.delta_chain_share;
     double best_drawn_rate = rates.drawn_chain_rate;
     std::size_t best_length = 0;
@@ -266,7 +259,6 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
             if (worst * cost < best) {
                 best = worst * cost;
                 best_worst = worst;
-                best_cost = cost;
                 rates.delta_rate = d;
                 best_share = share;
                 best_drawn_rate = drawn_rate;
@@ -307,8 +299,7 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
     rates.chain_length_um = delta.length_um[best_length];
     for (std::size_t k = 0; k < exits; ++k)
         delta_variance[k] = delta.variance(k, best_share, best_drawn_rate, best_length);
-    return {std::move(f2), std::move(delta_variance), best_worst,
-            best_cost,     previous_rel_variance,     previous_cost};
+    return {std::move(f2), std::move(delta_variance), best_worst, previous_rel_variance};
 }
 
 }  // namespace paintlab::mc

@@ -89,16 +89,14 @@ struct ConeRates {
 };
 
 // Per cone: f^2 and the delta walks' variance per walk (the promise's and the
-// first-flake walks' learning reuse them); and the model's forecast at the
-// rates chosen: the worst cone's relative variance per path (V_k / f_k^2)
-// and the cost per path, and both at the rates they replaced.
+// first-flake walks' learning reuse them); and the model's forecast of the
+// worst cone's relative variance per path (V_k / f_k^2) at the rates chosen
+// and at the rates they replaced.
 struct RateFit {
     std::vector<double> f2;
     std::vector<double> delta_variance;
     double rel_variance = 0.0;
-    double cost = 0.0;
     double previous_rel_variance = 0.0;
-    double previous_cost = 0.0;
 };
 
 // Adaptive fractions (McSettings::adaptive_fractions) from every path so
