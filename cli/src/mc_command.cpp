@@ -6,6 +6,7 @@
 #include "commands.h"
 #include "helper_commands.h"
 
+#include "paintlab/database/measurements.h"
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/montecarlo/cone_average.h"
@@ -20,10 +21,12 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -156,6 +159,53 @@ ordered_json estimatesJson(const mc::McResult& r, std::size_t incidence, int exi
         se.push_back(e.std_error);
     }
     return {{"mean", mean}, {"std_error", se}};
+}
+
+// Where a run's time went: per (band, incidence) job its paths, seconds and
+// largest relative standard error (the albedo's or an f's), and where.
+struct JobAccount {
+    double wavelength_nm = 0.0;
+    double theta_i_deg = 0.0;
+    std::int64_t paths = 0;
+    double seconds = 0.0;
+    double largest_rel_error = 0.0;
+    std::string at = "albedo";
+};
+
+std::vector<JobAccount> jobAccounts(const mc::McResult& r) {
+    const double incidence_deg[] = {0.0, kMultiAngleIlluminationDeg};
+    std::vector<JobAccount> jobs;
+    for (std::size_t b = 0; b < r.bands.size(); ++b)
+        for (std::size_t i = 0; i < r.bands[b].size() && i < std::size(incidence_deg); ++i) {
+            const mc::IncidenceResult& inc = r.bands[b][i];
+            JobAccount job{r.wavelengths_nm[b], incidence_deg[i], inc.paths, inc.seconds, 0.0, "albedo"};
+            const auto consider = [&job](const mc::Estimate& e, const std::string& where) {
+                if (!(std::abs(e.mean) > 0.0)) return;
+                const double rel = e.std_error / std::abs(e.mean);
+                if (rel > job.largest_rel_error) {
+                    job.largest_rel_error = rel;
+                    job.at = where;
+                }
+            };
+            consider(inc.albedo, "albedo");
+            for (std::size_t k = 0; k < inc.brdf_per_sr.size() && k < kAspecularAnglesDeg.size(); ++k)
+                consider(inc.brdf_per_sr[k],
+                         db::multiAngleGeometryName(incidence_deg[i], kAspecularAnglesDeg[k]));
+            jobs.push_back(job);
+        }
+    return jobs;
+}
+
+ordered_json jobsJson(const std::vector<JobAccount>& jobs) {
+    ordered_json out = ordered_json::array();
+    for (const JobAccount& j : jobs)
+        out.push_back({{"wavelength_nm", j.wavelength_nm},
+                       {"theta_i_deg", j.theta_i_deg},
+                       {"paths", j.paths},
+                       {"seconds", j.seconds},
+                       {"largest_rel_error", j.largest_rel_error},
+                       {"at", j.at}});
+    return out;
 }
 
 ordered_json settingsJson(const mc::McSettings& s, const mc::McResult& r) {
@@ -307,6 +357,7 @@ int runMc(const McOptions& o) {
             geometries.push_back({{"aspecular_deg", kAspecularAnglesDeg[k]},
                                   {"brdf_per_sr", estimatesJson(r, 1, static_cast<int>(k))}});
         out["geometries"] = std::move(geometries);  // mirror term excluded
+        out["jobs"] = jobsJson(jobAccounts(r));     // where the time went
         out["notes"] = mc::estimatorLimitations(recipe);
         text << out.dump(1) << '\n';
     } else {
@@ -322,6 +373,14 @@ int runMc(const McOptions& o) {
             for (const auto& e : band[1].brdf_per_sr) std::printf(" %11.5g+-%-7.2g", e.mean, e.std_error);
             std::printf("\n");
         }
+        const auto jobs = jobAccounts(r);
+        const auto slowest = std::max_element(
+            jobs.begin(), jobs.end(), [](const auto& a, const auto& b) { return a.seconds < b.seconds; });
+        if (slowest != jobs.end())
+            std::printf("slowest job: %.1f nm at %g deg, %.2f s, %lld paths, largest error %.2f %% (%s)\n",
+                        slowest->wavelength_nm, slowest->theta_i_deg, slowest->seconds,
+                        static_cast<long long>(slowest->paths), 100.0 * slowest->largest_rel_error,
+                        slowest->at.c_str());
         for (const auto& note : mc::estimatorLimitations(recipe)) std::printf("note: %s\n", note.c_str());
     }
     if (!text.str().empty()) emit(o, text.str());
