@@ -4,7 +4,7 @@
 A source is skipped when the key of what clang-tidy would read is in the
 cache file (tests/lint/clang_tidy_clean.txt): the SHA-256 of the source
 preprocessed with its own compile command (every header it includes, as
-included), that command's flags, the .clang-tidy files that apply to it and
+included, comments kept), that command's flags, the .clang-tidy files that apply to it and
 clang-tidy's version. Any change to one of them runs clang-tidy on the file
 again, so the check is the same as running it on every file; only files that
 passed are ever written to the cache (--update), and a cache that does not
@@ -36,7 +36,8 @@ def compile_arguments(entry):
 
 
 def preprocess_command(args, source):
-    """The compile command turned into `-E -P` to stdout (no object, no line markers)."""
+    """The compile command turned into `-E -P -C` to stdout: no object, no line markers, the
+    comments kept (a NOLINT comment changes what clang-tidy reports)."""
     out = []
     skip = False
     for a in args:
@@ -49,7 +50,7 @@ def preprocess_command(args, source):
         if a in ("-c", "-MD", "-MMD") or a == source:
             continue
         out.append(a)
-    return out + ["-E", "-P", source]
+    return out + ["-E", "-P", "-C", source]
 
 
 def normalise(text, root, build):
