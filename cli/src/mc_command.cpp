@@ -22,6 +22,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -170,6 +171,8 @@ struct JobAccount {
     double seconds = 0.0;
     double largest_rel_error = 0.0;
     std::string at = "albedo";
+    mc::RateAccount account;
+    std::string account_worst;  // the account's worst cone, named like `at`
 };
 
 std::vector<JobAccount> jobAccounts(const mc::McResult& r) {
@@ -178,7 +181,17 @@ std::vector<JobAccount> jobAccounts(const mc::McResult& r) {
     for (std::size_t b = 0; b < r.bands.size(); ++b)
         for (std::size_t i = 0; i < r.bands[b].size() && i < std::size(incidence_deg); ++i) {
             const mc::IncidenceResult& inc = r.bands[b][i];
-            JobAccount job{r.wavelengths_nm[b], incidence_deg[i], inc.paths, inc.seconds, 0.0, "albedo"};
+            JobAccount job{r.wavelengths_nm[b],
+                           incidence_deg[i],
+                           inc.paths,
+                           inc.seconds,
+                           0.0,
+                           "albedo",
+                           inc.account,
+                           ""};
+            if (inc.account.measured && inc.account.worst_exit < kAspecularAnglesDeg.size())
+                job.account_worst =
+                    db::multiAngleGeometryName(incidence_deg[i], kAspecularAnglesDeg[inc.account.worst_exit]);
             const auto consider = [&job](const mc::Estimate& e, const std::string& where) {
                 if (!(std::abs(e.mean) > 0.0)) return;
                 const double rel = e.std_error / std::abs(e.mean);
@@ -196,15 +209,32 @@ std::vector<JobAccount> jobAccounts(const mc::McResult& r) {
     return jobs;
 }
 
+// The rate model's parts (mc::RateAccount::Part), as the JSON names them.
+constexpr std::array<const char*, mc::RateAccount::kParts> kRateParts = {"walk", "next_event", "glints",
+                                                                         "reverse_walks", "delta_walks"};
+
 ordered_json jobsJson(const std::vector<JobAccount>& jobs) {
     ordered_json out = ordered_json::array();
-    for (const JobAccount& j : jobs)
-        out.push_back({{"wavelength_nm", j.wavelength_nm},
-                       {"theta_i_deg", j.theta_i_deg},
-                       {"paths", j.paths},
-                       {"seconds", j.seconds},
-                       {"largest_rel_error", j.largest_rel_error},
-                       {"at", j.at}});
+    for (const JobAccount& j : jobs) {
+        ordered_json job = {{"wavelength_nm", j.wavelength_nm},
+                            {"theta_i_deg", j.theta_i_deg},
+                            {"paths", j.paths},
+                            {"seconds", j.seconds},
+                            {"largest_rel_error", j.largest_rel_error},
+                            {"at", j.at}};
+        if (j.account.measured && !j.account_worst.empty()) {
+            ordered_json cost;
+            ordered_json variance;
+            for (std::size_t p = 0; p < kRateParts.size(); ++p) {
+                cost[kRateParts[p]] = j.account.cost_us_per_path[p];
+                variance[kRateParts[p]] = j.account.rel_variance_per_path[p];
+            }
+            job["rate_model"] = {{"worst", j.account_worst},
+                                 {"cost_us_per_path", std::move(cost)},
+                                 {"rel_variance_per_path", std::move(variance)}};
+        }
+        out.push_back(std::move(job));
+    }
     return out;
 }
 

@@ -5,13 +5,30 @@ Per (band, incidence) job: its paths add up to settings.paths, its seconds
 to at most compute_seconds, its largest relative standard error and where it
 is are those of the albedo and f estimates printed beside it, and behind
 --rel-error that error is at or below the target (the stop rule's promise).
+With --expect-rate-model every oblique job carries the rate model's account
+(explicit flakes): non-negative costs and relative variances of the five
+parts, the worst cone one of the job's geometries.
 """
 
 import json
 import sys
 
 
+PARTS = {"walk", "next_event", "glints", "reverse_walks", "delta_walks"}
+
+
+def check_rate_model(job, geometries):
+    m = job["rate_model"]
+    assert m["worst"] in geometries, m
+    for key in ("cost_us_per_path", "rel_variance_per_path"):
+        assert set(m[key]) == PARTS, m[key]
+        assert all(v >= 0.0 for v in m[key].values()), m[key]
+    assert sum(m["cost_us_per_path"].values()) > 0.0, m
+    assert sum(m["rel_variance_per_path"].values()) > 0.0, m
+
+
 def main():
+    expect_rate_model = "--expect-rate-model" in sys.argv[1:]
     d = json.load(sys.stdin)
     jobs, s = d["jobs"], d["settings"]
     bands = d["wavelengths_nm"]
@@ -34,6 +51,10 @@ def main():
         assert j["at"] == at, (j, at)
         if s["target_rel_error"] > 0.0:
             assert largest <= s["target_rel_error"], f"job {n}: {largest} over the target"
+        if "rate_model" in j:
+            check_rate_model(j, [name for name, _, _ in entries[1:]])
+        elif expect_rate_model and i > 0:
+            raise AssertionError(f"job {n}: no rate_model")
     print(f"{len(jobs)} jobs, {s['paths']} paths: consistent")
 
 

@@ -438,6 +438,7 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
             (!dropped_now && every_batch && enough && converged(current, error_target, job.orders)))
             break;
     }
+    current.incidence.account = runner.account();
     return current;
 }
 

@@ -214,6 +214,7 @@ void JobRunner::buildViews(const McSettings& settings) {
 bool JobRunner::adapt(const Sums& total) {
     if (!m_adaptive || total.paths < kPathsToAdapt || total.cones.size() != m_exits) return false;
     const RateFit fit = adaptRates(total, estimateEntries(), m_reverse, m_delta, m_rates);
+    m_account = fit.account;
     const std::vector<double> needs = coneNeeds(total);
     learnCavityFormWeights(total, needs);
     // The last-flake connections' cone draw, p_k ~ sqrt(need_k) times the

@@ -45,6 +45,8 @@ public:
     // relative variance per path at those rates over that at the rates in
     // force (the rate model's forecast; NaN without one).
     double forecastVarianceRatio(const Sums& total) const;
+    // The rate model's account at the last adapt() (not measured before one).
+    const RateAccount& account() const { return m_account; }
 
 private:
     struct View {
@@ -103,6 +105,7 @@ private:
     // relative variance per path (empty before any cone has an estimate).
     std::vector<double> coneNeeds(const Sums& total) const;
     ConeRates m_rates;
+    RateAccount m_account;
     // The delta walks' drawn cavity chains: their draw's weights, learned
     // after every round (sqrt of each form's mean square per flight that could draw it).
     CavityFormWeights m_form_weights{};

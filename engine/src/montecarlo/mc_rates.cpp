@@ -211,14 +211,35 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
         delta_rates.clear();
         for (double d = kMinDeltaRate; d <= kMaxDeltaRate * 1.0001; d *= 2.0) delta_rates.push_back(d);
     }
-    // The worst cone's relative variance per path at the rates in force (the forecast's baseline).
+    // The worst cone's relative variance per path at the rates in force (the
+    // forecast's baseline), and the account of its parts and of the cost.
     double previous_rel_variance = 0.0;
+    RateAccount account;
+    account.cost_us_per_path[RateAccount::Walk] = c_walk;
+    account.cost_us_per_path[RateAccount::DeltaWalks] =
+        rates.delta_rate * delta.cost(rates.delta_chain_share, rates.drawn_chain_rate);
+    const RateAccount::Part parts[3] = {RateAccount::NextEvent, RateAccount::Glints,
+                                        RateAccount::ReverseWalks};
     for (std::size_t k = 0; k < exits; ++k) {
         const std::array<double, 3> now{rates.nee_fraction[k], rates.glint_rate[k], rates.reverse_rate[k]};
-        double v =
-            a[k] + delta.variance(k, rates.delta_chain_share, rates.drawn_chain_rate) / rates.delta_rate;
-        for (std::size_t t = 0; t < 3; ++t) v += terms[k][t].variance / now[t];
-        if (f2[k] > 0.0) previous_rel_variance = std::max(previous_rel_variance, v / f2[k]);
+        std::array<double, RateAccount::kParts> v{};
+        v[RateAccount::Walk] = a[k];
+        v[RateAccount::DeltaWalks] =
+            delta.variance(k, rates.delta_chain_share, rates.drawn_chain_rate) / rates.delta_rate;
+        for (std::size_t t = 0; t < 3; ++t) {
+            v[parts[t]] = terms[k][t].variance / now[t];
+            if (t == 0 || terms[k][t].variance > 0.0)
+                account.cost_us_per_path[parts[t]] += now[t] * terms[k][t].cost;
+        }
+        // Summed in the baseline's order of earlier versions (the same bits for the forecast).
+        double sum = v[RateAccount::Walk] + v[RateAccount::DeltaWalks];
+        for (const RateAccount::Part part : parts) sum += v[part];
+        if (f2[k] > 0.0 && sum / f2[k] > previous_rel_variance) {
+            previous_rel_variance = sum / f2[k];
+            account.measured = true;
+            account.worst_exit = k;
+            for (std::size_t p = 0; p < v.size(); ++p) account.rel_variance_per_path[p] = v[p] / f2[k];
+        }
     }
     double best = std::numeric_limits<double>::infinity();
     double best_worst = 0.0;
@@ -299,7 +320,7 @@ RateFit adaptRates(const Sums& total, std::size_t histogram_entries, bool revers
     rates.chain_length_um = delta.length_um[best_length];
     for (std::size_t k = 0; k < exits; ++k)
         delta_variance[k] = delta.variance(k, best_share, best_drawn_rate, best_length);
-    return {std::move(f2), std::move(delta_variance), best_worst, previous_rel_variance};
+    return {std::move(f2), std::move(delta_variance), best_worst, previous_rel_variance, account};
 }
 
 }  // namespace paintlab::mc

@@ -97,6 +97,8 @@ struct RateFit {
     std::vector<double> delta_variance;
     double rel_variance = 0.0;
     double previous_rel_variance = 0.0;
+    // The model's parts at the rates in force (their worst cone's sum is previous_rel_variance).
+    RateAccount account;
 };
 
 // Adaptive fractions (McSettings::adaptive_fractions) from every path so

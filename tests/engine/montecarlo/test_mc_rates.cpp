@@ -168,6 +168,32 @@ TEST(McRates, TheForecastStartsFromTheModelAtTheRatesInForce) {
     EXPECT_LT(first.rel_variance, first.previous_rel_variance);
 }
 
+TEST(McRates, TheAccountSplitsTheModelAtTheRatesInForceByPart) {
+    // `mc --json`'s jobs[].rate_model: the parts of the worst cone's relative
+    // variance per path add up to the forecast's baseline (the same sum), and
+    // here all of it is the delta walks', D(1, 1) / d (the other terms are
+    // zero); their cost per path is d c(1, 1) = 0.25 x 10 and the walk's the
+    // fixed cost per path (no free paths recorded); glints and reverse walks
+    // without samples cost nothing (exact algebra).
+    mc::ConeRates rates = oneConeRates(1.0);
+    rates.delta_rate = 0.25;
+    const mc::Sums total = deltaOnly(1.0e4, 1.0, 0.01, 0.001, 20.0, 3.0, 7.0);
+    const mc::RateFit fit = mc::adaptRates(total, mc::kFirstExit + 1, false, true, rates);
+    const mc::RateAccount& a = fit.account;
+    ASSERT_TRUE(a.measured);
+    EXPECT_EQ(a.worst_exit, 0U);
+    double sum = 0.0;
+    for (const double part : a.rel_variance_per_path) sum += part;
+    EXPECT_NEAR(sum, fit.previous_rel_variance, 1e-12 * fit.previous_rel_variance);
+    EXPECT_NEAR(a.rel_variance_per_path[mc::RateAccount::DeltaWalks], (0.01 + 0.002 + 20.0 - 1.0) / 0.25,
+                1e-9);
+    EXPECT_EQ(a.rel_variance_per_path[mc::RateAccount::Walk], 0.0);
+    EXPECT_NEAR(a.cost_us_per_path[mc::RateAccount::DeltaWalks], 0.25 * 10.0, 1e-9);
+    EXPECT_NEAR(a.cost_us_per_path[mc::RateAccount::Walk], mc::kCostPerPath, 1e-12);
+    EXPECT_EQ(a.cost_us_per_path[mc::RateAccount::Glints], 0.0);
+    EXPECT_EQ(a.cost_us_per_path[mc::RateAccount::ReverseWalks], 0.0);
+}
+
 TEST(McRates, TheDrawnChainRateRecoversTheWalksVarianceFromItsSums) {
     // D(1, 1) = E[E^2] + 2 E[E C] + E[C^2] - f^2 at q = 1 whatever share and
     // rate the walks ran at, and D(s, q) = D(1, 1) + E[C^2] (1 / s - 1) +

@@ -36,7 +36,9 @@
 #include "paintlab/engine/fast_model/layered_brdf.h"
 #include "paintlab/engine/recipe.h"
 
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -304,6 +306,19 @@ struct IncidenceRequest {
     std::vector<Direction> wo;
 };
 
+// Where a job's time and variance go, by the adaptive rates' model
+// (McSettings::adaptive_fractions, mc_rates.h) at the rates its last adapted
+// paths ran at: per part, the cost per path (microseconds on the model's
+// reference machine, from counted work) and the worst exit cone's relative
+// variance per path, V / f^2 (its share of the stop rule's error^2 x paths).
+struct RateAccount {
+    enum Part { Walk, NextEvent, Glints, ReverseWalks, DeltaWalks, kParts };
+    bool measured = false;  // false: no adaptation ran (no explicit flakes, or too few paths)
+    std::size_t worst_exit = 0;
+    std::array<double, kParts> cost_us_per_path{};
+    std::array<double, kParts> rel_variance_per_path{};
+};
+
 struct IncidenceResult {
     double specular = 0.0;              // top interface's mirror reflectance (exact, in albedo)
     Estimate albedo;                    // directional-hemispherical, mirror term included
@@ -311,6 +326,7 @@ struct IncidenceResult {
     std::vector<Estimate> brdf_per_sr;  // f(wi, wo[k]), mirror term excluded
     std::int64_t paths = 0;
     double seconds = 0.0;
+    RateAccount account;
 };
 
 struct McResult {
