@@ -267,17 +267,18 @@ BENCHMARK(BM_McDemoOnePercent)
 // multi-angle geometries, 5 degree cone, a fixed number of paths per band
 // (argument 1, thousands); argument 2: one path in this many runs the
 // connections (McSettings::connection_fraction; with adaptive fractions, the
-// first round's). "16 tiles": the default batch count (8 before 2026-12-03,
-// which the figures of that time used). Argument 0 picks the estimator:
-//   0 histogram only (split branches, as every config but 7, 8, 12, 13), 16 tiles
+// first round's). "Default tiles": the default batches, each its own tile
+// (64 of 5,000 flakes since 2026-12-07; 16 of 20,000 before, and 8 before
+// 2026-12-03, which the figures of those times used). Argument 0 picks the estimator:
+//   0 histogram only (split branches, as every config but 7, 8, 12, 13), default tiles
 //     (error over the batches: path + tile spread)
 //   1 histogram only, 1 tile (error over paths only)
-//   2 / 3 / 4 histogram only, 16 tiles, scoring only the path class
+//   2 / 3 / 4 histogram only, default tiles, scoring only the path class
 //     BeamFlake / Smooth / Other (mc_connection.h): each class's share
-//   5 connections (the default), 16 tiles;  6 connections, 1 tile
-//   7 the connections of 2026-12-01, 16 tiles;  8 the default without split
+//   5 connections (the default), default tiles;  6 connections, 1 tile
+//   7 the connections of 2026-12-01, default tiles;  8 the default without split
 //     branches;  9 the default with one fraction for every cone
-//   10 / 11 histogram only, 16 tiles, class Other only: its chains of delta
+//   10 / 11 histogram only, default tiles, class Other only: its chains of delta
 //     events from the beam / its delta events after a smooth vertex
 //   12 / 13 as 10 / 11 with split branches off
 //   14 / 15 as 11, only the paths whose first direction change was a delta /

@@ -274,9 +274,10 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
     const auto job_start = Clock::now();
     JobRunner runner(band, job, m_settings, m_tile_side_um, band_key, incidence_key);
     const std::int64_t max_paths = std::max<std::int64_t>(1, m_settings.max_paths);
-    // Small runs: chunks small enough that every batch gets paths.
-    const std::int64_t chunk = std::max<std::int64_t>(
-        1, std::min<std::int64_t>(m_settings.chunk_paths, (max_paths + m_batches - 1) / m_batches));
+    // Small runs: chunks small enough that every batch gets paths (rounded
+    // down: rounded up, 400 paths in 64 batches made 58 chunks of 7).
+    const std::int64_t chunk =
+        std::max<std::int64_t>(1, std::min<std::int64_t>(m_settings.chunk_paths, max_paths / m_batches));
     std::vector<Sums> batches(static_cast<std::size_t>(m_batches),
                               Sums(runner.entries(), runner.coneStats()));
     const bool over_batches = m_settings.explicit_flakes && m_batches > 1;

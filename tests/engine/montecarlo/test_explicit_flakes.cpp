@@ -288,10 +288,11 @@ TEST(MonteCarloStopping, ErrorsOfRunsStoppedByTheirTargetAreHonest) {
     // paths (~350k), in the two runs' combined errors, have an rms within [0.6,
     // 1.5] (30 values, 10 runs x 3 exits sharing one reference: other seed
     // sets of the same code gave 1.24-1.29, so the rms moves by ~0.2)
-    // and none beyond 5. These seeds give 1.02 at ~17.6k paths a run (the
-    // first rates' kept ones included); other seed sets and other stop
-    // schedules in docs/PERFORMANCE.md ("The first rates' paths kept at the
-    // forecast weight"). ~15 CPU s.
+    // and none beyond 5. These seeds give 0.99 at ~32k paths a run over the
+    // default 64 batches (every batch waits for its paths), 1.02 at ~17.6k
+    // over 16 (the first rates' kept ones included); other seed sets and
+    // other stop schedules in docs/PERFORMANCE.md ("The first rates' paths
+    // kept at the forecast weight", "Smaller tiles, more batches").
     constexpr int kRuns = 10;
     const Recipe r =
         flakeLayer(1.5, 20.0, LambertianSubstrate{Spectrum(0.5)}, mirror(0.05, 0.5, 10.0, 20.0, 0.9));

@@ -38,6 +38,7 @@ mc::McSettings explicitSettings(std::int64_t paths, double cone_deg, std::uint64
     s.max_paths = paths;
     s.explicit_flakes = true;
     s.histogram_cone_deg = cone_deg;
+    s.batches = 16;  // the statistics below: errors over 16 batches (t, 15 degrees of freedom)
     return s;
 }
 
