@@ -110,7 +110,6 @@ TEST(MonteCarloConnections, NextEventThroughTheStackMatchesTheClearCoatFormula) 
          {directionFromAnglesDeg(0.0, 0.0), directionFromAnglesDeg(60.0, 180.0),
           directionFromAnglesDeg(75.0, 90.0)}}};
     auto s = explicitSettings(8000, cone_deg, 2);
-    s.batches = 16;  // errors over batches: 15 degrees of freedom
     s.connection_fraction = 1.0;
     const auto result = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);
     const double ti = 1.0 - fresnelDielectric(wi.z, n);
@@ -158,7 +157,6 @@ TEST(MonteCarloConnections, AgreeWithTheHistogramOnAPearlescentPaint) {
           directionFromAnglesDeg(40.0, 0.0)}}};
     auto s = explicitSettings(48000, cone_deg, 11);
     s.tile_flakes = 1500;
-    s.batches = 16;
     const auto connected = mc::runMonteCarlo(r, std::vector<double>{450.0}, req, s);
     s.seed = 12;
     s.connections = false;
@@ -185,7 +183,6 @@ TEST(MonteCarloConnections, AgreeWithTheEstimatorOf2026_12_01) {
           directionFromAnglesDeg(40.0, 0.0), directionFromAnglesDeg(60.0, 150.0)}}};
     auto s = explicitSettings(48000, 8.0, 21);
     s.tile_flakes = 1500;
-    s.batches = 16;
     const auto current = mc::runMonteCarlo(r, std::vector<double>{450.0}, req, s);
     s.seed = 22;
     s.glint_azimuths = false;
@@ -218,7 +215,6 @@ TEST(MonteCarloConnections, BoostedNextEventMatchesTheUnboostedOnAnAbsorbingPigm
           directionFromAnglesDeg(60.0, 90.0)}}};
     auto s = explicitSettings(48000, 8.0, 31);
     s.tile_flakes = 1500;
-    s.batches = 16;
     s.adaptive_fractions = false;
     s.connection_fraction = 16.0;
     const auto boosted = mc::runMonteCarlo(r, std::vector<double>{550.0}, req, s);

@@ -140,9 +140,9 @@ struct McSettings {
     bool explicit_flakes = false;
     // Flakes per tile aimed at (sets the tile's side, >= 2 diameters). With
     // `batches` tiles per layer: 64 tiles of 5,000 hold as many flakes as 16 of
-    // 20,000, but a chunk's tile then stays in its core's cache (a path costs
-    // ~20 % less) and the errors have 63 degrees of freedom: silver metallic
-    // reaches 1 % in ~30 % less time (docs/PERFORMANCE.md, "Smaller tiles, more batches").
+    // 20,000, but a chunk's tile is a quarter of the memory (its paths cost
+    // less) and the errors have 63 degrees of freedom (docs/PERFORMANCE.md,
+    // "Smaller tiles, more batches", has the figures).
     int tile_flakes = 5000;
     int max_tile_flakes = 200000;  // per kind and layer
     // A flake that intersects one already placed is moved elsewhere
