@@ -1,5 +1,6 @@
 #include "cavity_chain.h"
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -44,36 +45,90 @@ double cavityJacobian(const Vec3& n, const Vec3& e, double theta, double cos_the
     return area * 4.0 * k * k * stretch;
 }
 
-int cavityNormals(const Vec3& d, const Vec3& n, const Vec3& target, int k, CavityNormals& out) {
-    if (k < 1 || k > static_cast<int>(out.size())) return 0;
+bool cavityTurn(const Vec3& d, const Vec3& n, const Vec3& target, CavityTurn& out) {
     // The axis e: normal to n (the turn of M_n M_h is about n x h) and to
     // target - d (a turn about e keeps the component along e).
     const Vec3 axis = cross(n, {target.x - d.x, target.y - d.y, target.z - d.z});
     const double axis_len = std::sqrt(dot(axis, axis));
-    if (!(axis_len > 1e-9)) return 0;
+    if (!(axis_len > 1e-9)) return false;
     const Vec3 e{axis.x / axis_len, axis.y / axis_len, axis.z / axis_len};
     const double de = dot(d, e);
     const double te = dot(target, e);
     const Vec3 d_p{d.x - de * e.x, d.y - de * e.y, d.z - de * e.z};
     const Vec3 t_p{target.x - te * e.x, target.y - te * e.y, target.z - te * e.z};
-    const double phi = std::atan2(dot(e, cross(d_p, t_p)), dot(d_p, t_p));
-    const Vec3 en = cross(e, n);
+    const double y = dot(e, cross(d_p, t_p));
+    const double x = dot(d_p, t_p);
+    out.e = e;
+    out.en = cross(e, n);
+    out.phi = std::atan2(y, x);
+    const double r = std::sqrt(x * x + y * y);
+    out.cos_phi = r > 0.0 ? x / r : 1.0;
+    out.sin_phi = r > 0.0 ? y / r : 0.0;
+    return true;
+}
+
+namespace {
+
+// cos and sin of a / 2 from those of a in (-pi, pi] (the half-angle
+// formulas, each side where it does not cancel).
+void halfAngle(double cos_a, double sin_a, double& cos_half, double& sin_half) {
+    if (cos_a >= 0.0) {
+        cos_half = std::sqrt(0.5 * (1.0 + cos_a));
+        sin_half = sin_a / (2.0 * cos_half);
+    } else {
+        sin_half = std::copysign(std::sqrt(0.5 * (1.0 - cos_a)), sin_a);
+        cos_half = std::abs(sin_a) / (2.0 * std::abs(sin_half));
+    }
+}
+
+}  // namespace
+
+int cavityNormals(const CavityTurn& turn, const Vec3& d, const Vec3& n, const Vec3& target, int k,
+                  CavityNormals& out) {
+    if (k < 1 || k > static_cast<int>(out.size())) return 0;
     // h = n turned about e by theta makes M_n M_h the turn about e by
-    // -2 theta, so its k-th power takes d to target for theta =
+    // -2 theta, so its k-th power takes d to target for theta_i =
     // -(phi + 2 pi i) / (2k); h and -h are one flake (theta modulo pi): i < k.
+    // theta_0's cosine and sine by halving phi (k = 1, 2, 4: no library
+    // trigonometry), the others by turning on in steps of -pi / k.
+    double c = 1.0;
+    double s = 0.0;
+    if (k == 3) {
+        c = std::cos(turn.phi / 6.0);
+        s = std::sin(turn.phi / 6.0);
+    } else {
+        c = turn.cos_phi;
+        s = turn.sin_phi;
+        for (int halves = k == 1 ? 1 : (k == 2 ? 2 : 3); halves > 0; --halves) halfAngle(c, s, c, s);
+    }
+    s = -s;  // theta_0 = -phi / (2k)
+    // cos and sin of pi / k, k = 1 .. 4.
+    static_assert(kMaxCavityRoundTrips + 1 == 4, "the halvings and the steps cover k = 1 .. 4");
+    constexpr std::array<double, 4> kStepCos{-1.0, 0.0, 0.5, 0.70710678118654752};
+    constexpr std::array<double, 4> kStepSin{0.0, 1.0, 0.86602540378443865, 0.70710678118654752};
+    const double step_cos = kStepCos[static_cast<std::size_t>(k - 1)];
+    const double step_sin = kStepSin[static_cast<std::size_t>(k - 1)];
     int count = 0;
     for (int i = 0; i < k; ++i) {
-        const double theta = -(phi + 2.0 * std::numbers::pi * i) / (2.0 * k);
-        const double c = std::cos(theta);
-        const double s = std::sin(theta);
-        Vec3 h{c * n.x + s * en.x, c * n.y + s * en.y, c * n.z + s * en.z};
+        const double theta = -(turn.phi + 2.0 * std::numbers::pi * i) / (2.0 * k);
+        Vec3 h{c * n.x + s * turn.en.x, c * n.y + s * turn.en.y, c * n.z + s * turn.en.z};
         if (h.z < 0.0) h = {-h.x, -h.y, -h.z};
-        // J = dOmega_exit / dOmega_h in closed form (cavityJacobian).
-        const double jacobian = cavityJacobian(n, e, theta, c, s, k, target);
-        if (!(jacobian > 0.0)) continue;
-        out[static_cast<std::size_t>(count++)] = {h, jacobian};
+        // J = dOmega_exit / dOmega_h in closed form (cavityJacobian; at one
+        // round trip the half vector's 4 |d.h|).
+        const double jacobian =
+            k == 1 ? 4.0 * std::abs(dot(d, h)) : cavityJacobian(n, turn.e, theta, c, s, k, target);
+        if (jacobian > 0.0) out[static_cast<std::size_t>(count++)] = {h, jacobian};
+        const double next_c = c * step_cos + s * step_sin;  // theta - pi / k
+        s = s * step_cos - c * step_sin;
+        c = next_c;
     }
     return count;
+}
+
+int cavityNormals(const Vec3& d, const Vec3& n, const Vec3& target, int k, CavityNormals& out) {
+    CavityTurn turn;
+    if (!cavityTurn(d, n, target, turn)) return 0;
+    return cavityNormals(turn, d, n, target, k, out);
 }
 
 CavityForm cavityChainForm(std::span<const ChainChange> latest_first) {

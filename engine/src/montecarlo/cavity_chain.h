@@ -113,6 +113,23 @@ struct CavityNormal {
 using CavityNormals = std::array<CavityNormal, kMaxCavityRoundTrips + 1>;
 int cavityNormals(const Vec3& d, const Vec3& n, const Vec3& target, int k, CavityNormals& out);
 
+// What every k shares for one flight d, flake x_1 of normal n and target:
+// the turn's axis e, e x n, and the angle phi from d to the target about e
+// (with its cosine and sine). A flight runs k = 1 and 2 towards the same
+// target, so the connections find the turn once (cavityTurn: false where
+// no axis exists, then there are no normals) and the normals of each k
+// from it.
+struct CavityTurn {
+    Vec3 e;
+    Vec3 en;
+    double phi = 0.0;
+    double cos_phi = 1.0;
+    double sin_phi = 0.0;
+};
+bool cavityTurn(const Vec3& d, const Vec3& n, const Vec3& target, CavityTurn& out);
+int cavityNormals(const CavityTurn& turn, const Vec3& d, const Vec3& n, const Vec3& target, int k,
+                  CavityNormals& out);
+
 // The walk's side: a direction change of the path (latest first in the
 // spans below): the flake reflected (flake * 64 + layer; -1 another change)
 // and whether it was the first meeting of a flake whose law has a density.

@@ -270,6 +270,16 @@ struct Walker {
     static constexpr double kUniformConeShare = 0.25;
     bool kernelConeProbabilities(const Slice& s, const LayerFlakes& lf,
                                  std::array<double, kMaxKernelCones>& p) const;
+    // The cones' axes refracted into a slice of index n (u.z 0: none) and
+    // their w_z / u_z Omega / Omega_proj, kept for the last n asked (every
+    // flight of a delta walk asks, most in one layer).
+    struct RefractedConeAxes {
+        double n = 0.0;
+        std::array<Vec3, kMaxKernelCones> u{};
+        std::array<double, kMaxKernelCones> factor{};
+    };
+    mutable RefractedConeAxes cone_axes;
+    const RefractedConeAxes& coneAxesIn(double n) const;
     std::span<double> chainOut() const { return chain_out.empty() ? brdf_out : chain_out; }
     // Its kernel per kind (the layer's first 4) for c's normal h: A D(h)
     // `geometric` R(cos_vh) (before rho), after a Russian roulette below
@@ -288,8 +298,16 @@ struct Walker {
     void cavityConnections(const Slice& s, const LayerFlakes& lf, double length, double sigma);
     // One chain (j round trips, m flakes gone back over; m = 0: ending at c)
     // of a cavity connection's draw, its score times form_weight (returned too).
-    double cavityFormConnection(const Slice& s, const LayerFlakes& lf, const ChainDraw& draw, int trips,
-                                int m, double form_weight, PathRng& chain_rng);
+    // Its target before the flakes gone back over (M_2 ... M_m u; M_1 u at m = 0)
+    // and the turn towards it from x_1 (cavityTurn), shared by the round trips.
+    struct CavityAim {
+        Vec3 target;
+        CavityTurn turn;
+    };
+    Vec3 cavityTarget(const Vec3& u, int m) const;
+    double cavityFormConnection(const Slice& s, const LayerFlakes& lf, const ChainDraw& draw,
+                                const CavityAim& aim, int trips, int m, double form_weight,
+                                PathRng& chain_rng);
     // Their chain from the drawn flake c (mc_walker_cavity.cpp).
     struct CavityLeg;
     double traceCavityChain(const Slice& s, const LayerFlakes& lf, const CavityLeg& leg) const;

@@ -146,10 +146,16 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
     PathRng& chain_rng = chainRng();
     const ChainDraw draw = drawChainCone(s, length, sigma, chain_rng);
     if (!draw.ok) return;
+    // The round trips towards one target share its turn (cavityTurn).
+    const Vec3 n_1 = changeBack(0).normal;
+    CavityTurn turn;
     if (settings.cavity_forms.every_flight)
-        for (int m = 1; m <= std::min(available, kCavityEveryFlightRetrace); ++m)
-            for (int trips = 0; trips <= kCavityEveryFlightTrips; ++trips)
-                cavityFormConnection(s, lf, draw, trips, m, 1.0, chain_rng);
+        for (int m = 1; m <= std::min(available, kCavityEveryFlightRetrace); ++m) {
+            const Vec3 target = cavityTarget(draw.u, m);
+            if (cavityTurn(v, n_1, target, turn))
+                for (int trips = 0; trips <= kCavityEveryFlightTrips; ++trips)
+                    cavityFormConnection(s, lf, draw, {target, turn}, trips, m, 1.0, chain_rng);
+        }
     if (!lf.drawn_cavity_chains) return;
     // Only a share q of the flights run it, weighted 1 / q (the forms stay
     // taken: the walks never score their escapes).
@@ -195,8 +201,11 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
     const CavityForm& pick = drawn[static_cast<std::size_t>(chosen)];
     const double p_pick = p[static_cast<std::size_t>(chosen)];
     const std::int64_t attempts_before = tally.nee_attempts;
-    const double score =
-        cavityFormConnection(s, lf, draw, pick.trips, pick.retrace, 1.0 / (p_pick * q), chain_rng);
+    const Vec3 target = cavityTarget(draw.u, pick.retrace);
+    const double score = cavityTurn(v, n_1, target, turn)
+                             ? cavityFormConnection(s, lf, draw, {target, turn}, pick.trips, pick.retrace,
+                                                    1.0 / (p_pick * q), chain_rng)
+                             : 0.0;
     if (form_learning != nullptr) {
         // Its work is counted here, not among the other connections' attempts
         // (as theirs, two walk steps per normal tried; counting the legs it
@@ -230,20 +239,22 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
     }
 }
 
-double Walker::cavityFormConnection(const Slice& s, const LayerFlakes& lf, const ChainDraw& draw, int trips,
-                                    int m, double form_weight, PathRng& chain_rng) {
+Vec3 Walker::cavityTarget(const Vec3& u, int m) const {
+    // Before the way back over x_m .. x_2 (M_2 ... M_m u), or over x_1 for a chain ending at c (M_1 u).
+    if (m == 0) return mirrored(u, changeBack(0).normal);
+    Vec3 target = u;
+    for (int i = m; i >= 2; --i) target = mirrored(target, changeBack(i - 1).normal);
+    return target;
+}
+
+double Walker::cavityFormConnection(const Slice& s, const LayerFlakes& lf, const ChainDraw& draw,
+                                    const CavityAim& aim, int trips, int m, double form_weight,
+                                    PathRng& chain_rng) {
     const LastFlakeLaw& law = *lf.last_flake;
     const std::size_t kinds = std::min(law.kinds.size(), lf.kinds.size());
-    const Vec3 n_1 = changeBack(0).normal;
-    // Before the way back over x_m .. x_2 (M_2 ... M_m u), or over x_1 for a chain ending at c (M_1 u).
-    Vec3 target = draw.u;
-    if (m == 0)
-        target = mirrored(target, n_1);
-    else
-        for (int i = m; i >= 2; --i) target = mirrored(target, changeBack(i - 1).normal);
     const double factor = draw.factor * form_weight;
     CavityNormals normals;
-    const int count = cavityNormals(v, n_1, target, trips + 1, normals);
+    const int count = cavityNormals(aim.turn, v, changeBack(0).normal, aim.target, trips + 1, normals);
     double scored = 0.0;
     for (int c = 0; c < count; ++c) {
         const Vec3 h = normals[static_cast<std::size_t>(c)].h;

@@ -268,12 +268,12 @@ bool Walker::kernelConeProbabilities(const Slice& s, const LayerFlakes& lf,
     const std::size_t cones = bins.size();
     if (cones > p.size() || lf.last_flake == nullptr) return false;
     const std::size_t kinds = std::min(lf.last_flake->kinds.size(), lf.kinds.size());
+    const RefractedConeAxes& axes = coneAxesIn(s.n);
     double total = 0.0;
     for (std::size_t k = 0; k < cones; ++k) {
         p[k] = 0.0;
-        const HistogramBin& bin = bins[k];
-        Vec3 u;
-        if (!(bin.wo.z > 0.0) || !refractPlanar(bin.wo, stack.ambient_n, s.n, u) || !(u.z > 0.0)) continue;
+        const Vec3& u = axes.u[k];
+        if (!(u.z > 0.0)) continue;
         Vec3 h{u.x - v.x, u.y - v.y, u.z - v.z};
         const double len = std::sqrt(dot(h, h));
         if (len < 1e-12) continue;
@@ -282,13 +282,26 @@ bool Walker::kernelConeProbabilities(const Slice& s, const LayerFlakes& lf,
             density +=
                 lf.last_flake->kinds[i].geometry.area_density_per_um * lf.kinds[i].orientation.pdf(h.z / len);
         const double scale = k < settings.chain_cone_scale.size() ? settings.chain_cone_scale[k] : 1.0;
-        p[k] = density * bin.wo.z / u.z * bin.solid_angle / bin.projected_solid_angle * scale;
+        p[k] = density * axes.factor[k] * scale;
         total += p[k];
     }
     if (!(total > 0.0) || !std::isfinite(total)) return false;
     for (std::size_t k = 0; k < cones; ++k)
         p[k] = kUniformConeShare / static_cast<double>(cones) + (1.0 - kUniformConeShare) * p[k] / total;
     return true;
+}
+
+const Walker::RefractedConeAxes& Walker::coneAxesIn(double n) const {
+    if (cone_axes.n == n) return cone_axes;
+    cone_axes.n = n;
+    for (std::size_t k = 0; k < bins.size() && k < kMaxKernelCones; ++k) {
+        const HistogramBin& bin = bins[k];
+        Vec3 u;
+        const bool ok = bin.wo.z > 0.0 && refractPlanar(bin.wo, stack.ambient_n, n, u) && u.z > 0.0;
+        cone_axes.u[k] = ok ? u : Vec3{0.0, 0.0, 0.0};
+        cone_axes.factor[k] = ok ? bin.wo.z / u.z * bin.solid_angle / bin.projected_solid_angle : 0.0;
+    }
+    return cone_axes;
 }
 
 Walker::ChainDraw Walker::drawChainCone(const Slice& s, double length, double sigma, PathRng& chain_rng,
@@ -425,11 +438,14 @@ double Walker::legsTransmittance(const Vec3& centre, const Vec3& n, double radiu
                                  const LastFlakeLaw& law) const {
     double T = 1.0;
     const int stored = std::min(vertex_count, kLegVertices);
+    const auto side = [&](const Vec3& p) { return dot(n, {p.x - centre.x, p.y - centre.y, p.z - centre.z}); };
+    double sb =
+        stored > 0 ? side(vertices[static_cast<std::size_t>((vertex_count - stored) % kLegVertices)]) : 0.0;
     for (int i = vertex_count - stored; i + 1 < vertex_count; ++i) {
         const Vec3& a = vertices[static_cast<std::size_t>(i % kLegVertices)];
         const Vec3& b = vertices[static_cast<std::size_t>((i + 1) % kLegVertices)];
-        const double sa = dot(n, {a.x - centre.x, a.y - centre.y, a.z - centre.z});
-        const double sb = dot(n, {b.x - centre.x, b.y - centre.y, b.z - centre.z});
+        const double sa = sb;  // each vertex's side once, for the leg before it and the one after
+        sb = side(b);
         if (!(sa * sb < 0.0)) continue;
         const double f = sa / (sa - sb);
         const Vec3 p{a.x + f * (b.x - a.x) - centre.x, a.y + f * (b.y - a.y) - centre.y,
