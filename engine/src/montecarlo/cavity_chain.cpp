@@ -60,7 +60,6 @@ bool cavityTurn(const Vec3& d, const Vec3& n, const Vec3& target, CavityTurn& ou
     const double x = dot(d_p, t_p);
     out.e = e;
     out.en = cross(e, n);
-    out.phi = std::atan2(y, x);
     const double r = std::sqrt(x * x + y * y);
     out.cos_phi = r > 0.0 ? x / r : 1.0;
     out.sin_phi = r > 0.0 ? y / r : 0.0;
@@ -91,11 +90,12 @@ int cavityNormals(const CavityTurn& turn, const Vec3& d, const Vec3& n, const Ve
     // -(phi + 2 pi i) / (2k); h and -h are one flake (theta modulo pi): i < k.
     // theta_0's cosine and sine by halving phi (k = 1, 2, 4: no library
     // trigonometry), the others by turning on in steps of -pi / k.
+    const double phi = k > 1 ? turn.phi() : 0.0;  // the Jacobian's theta (k = 1: 4 |d.h|)
     double c = 1.0;
     double s = 0.0;
     if (k == 3) {
-        c = std::cos(turn.phi / 6.0);
-        s = std::sin(turn.phi / 6.0);
+        c = std::cos(phi / 6.0);
+        s = std::sin(phi / 6.0);
     } else {
         c = turn.cos_phi;
         s = turn.sin_phi;
@@ -110,7 +110,7 @@ int cavityNormals(const CavityTurn& turn, const Vec3& d, const Vec3& n, const Ve
     const double step_sin = kStepSin[static_cast<std::size_t>(k - 1)];
     int count = 0;
     for (int i = 0; i < k; ++i) {
-        const double theta = -(turn.phi + 2.0 * std::numbers::pi * i) / (2.0 * k);
+        const double theta = -(phi + 2.0 * std::numbers::pi * i) / (2.0 * k);
         Vec3 h{c * n.x + s * turn.en.x, c * n.y + s * turn.en.y, c * n.z + s * turn.en.z};
         if (h.z < 0.0) h = {-h.x, -h.y, -h.z};
         // J = dOmega_exit / dOmega_h in closed form (cavityJacobian; at one

@@ -34,6 +34,7 @@
 #include "paintlab/engine/montecarlo/monte_carlo.h"
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -42,16 +43,20 @@ namespace paintlab::mc {
 
 // The round trips (j) and the flakes gone back over (m) that the connections
 // take; the walk keeps longer chains. Every flight runs the chains with
-// j <= kCavityEveryFlightTrips and 1 <= m <= kCavityEveryFlightRetrace (the
-// commonest); the others (more round trips or flakes, or ending at c) are
-// rarer and each costs up to j + 1 normals, so a flight runs one of them,
-// drawn uniformly and weighted by their count (the delta walks: by learned
-// weights, below), when McSettings::cavity_forms asks (by default in
-// mirror-flake layers: docs/PERFORMANCE.md).
+// j <= cavityEveryFlightTrips and 1 <= m <= kCavityEveryFlightRetrace (the
+// commonest: x c x, x' x c x x'); the others (round trips, more flakes, or
+// ending at c) are rarer and each costs up to j + 1 normals, so a flight
+// runs one of them, drawn uniformly and weighted by their count (the delta
+// walks: by learned weights, below), where the layer runs the drawn chains
+// (McSettings::cavity_forms: by default in mirror-flake layers).
 inline constexpr int kMaxCavityRoundTrips = 3;
 inline constexpr int kMaxCavityRetrace = 4;
-inline constexpr int kCavityEveryFlightTrips = 1;
 inline constexpr int kCavityEveryFlightRetrace = 2;
+// One round trip is drawn with the others where the layer draws chains
+// (silver metallic ~10 % faster to 1 % than with it on every flight) and
+// runs on every flight elsewhere (interference flakes, where without it
+// the walks score it: the pearlescent ~15 % slower; docs/PERFORMANCE.md).
+inline constexpr int cavityEveryFlightTrips(bool draws_in_layer) { return draws_in_layer ? 0 : 1; }
 // The delta walks draw their drawn chain in proportion to learned weights
 // (JobRunner::learnCavityFormWeights) mixed with this share of the uniform
 // draw, so that every form keeps a chance and the estimate stays unbiased.
@@ -114,17 +119,15 @@ using CavityNormals = std::array<CavityNormal, kMaxCavityRoundTrips + 1>;
 int cavityNormals(const Vec3& d, const Vec3& n, const Vec3& target, int k, CavityNormals& out);
 
 // What every k shares for one flight d, flake x_1 of normal n and target:
-// the turn's axis e, e x n, and the angle phi from d to the target about e
-// (with its cosine and sine). A flight runs k = 1 and 2 towards the same
-// target, so the connections find the turn once (cavityTurn: false where
-// no axis exists, then there are no normals) and the normals of each k
-// from it.
+// the turn's axis e, e x n, and the cosine and sine of the angle phi from d
+// to the target about e (phi itself, an atan2, only where k > 1 needs it).
+// cavityTurn: false where no axis exists (then there are no normals).
 struct CavityTurn {
     Vec3 e;
     Vec3 en;
-    double phi = 0.0;
     double cos_phi = 1.0;
     double sin_phi = 0.0;
+    double phi() const { return std::atan2(sin_phi, cos_phi); }
 };
 bool cavityTurn(const Vec3& d, const Vec3& n, const Vec3& target, CavityTurn& out);
 int cavityNormals(const CavityTurn& turn, const Vec3& d, const Vec3& n, const Vec3& target, int k,
@@ -145,17 +148,21 @@ struct CavityForm {
     int layer = -1;   // -1: no cavity chain
     int trips = 0;    // j
     int retrace = 0;  // m (0: ending at c)
-    // Whether a flight runs this chain only when it is drawn (cavity_chain.h's limits).
-    bool drawn() const {
-        return retrace == 0 || trips > kCavityEveryFlightTrips || retrace > kCavityEveryFlightRetrace;
+    // Whether a flight runs this chain only when it is drawn (the limits above;
+    // draws_in_layer: LayerFlakes::draws_cavity_chains of its layer).
+    bool drawn(bool draws_in_layer) const {
+        return retrace == 0 || trips > cavityEveryFlightTrips(draws_in_layer) ||
+               retrace > kCavityEveryFlightRetrace;
     }
 };
 CavityForm cavityChainForm(std::span<const ChainChange> latest_first);
 
-// Whether the connections take a matched chain (McSettings::cavity_forms; a
-// drawn one only where its layer runs the drawn chains, LayerFlakes).
-inline bool cavityFormTaken(const CavityForms& forms, const CavityForm& form, bool drawn_in_layer) {
-    return form.layer >= 0 && (form.drawn() ? drawn_in_layer : forms.every_flight);
+// Whether the connections take a matched chain (McSettings::cavity_forms):
+// a drawn one (drawn by its layer's kind, LayerFlakes::draws_cavity_chains)
+// only where its layer runs the drawn chains (drawn_run).
+inline bool cavityFormTaken(const CavityForms& forms, const CavityForm& form, bool draws_in_layer,
+                            bool drawn_run) {
+    return form.layer >= 0 && (form.drawn(draws_in_layer) ? drawn_run : forms.every_flight);
 }
 
 }  // namespace paintlab::mc

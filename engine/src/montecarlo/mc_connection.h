@@ -89,6 +89,11 @@ struct LayerFlakes {
     bool last_flake_connections = false;
     bool cavity_connections = false;
     bool drawn_cavity_chains = false;  // ... and the drawn ones (McSettings::cavity_forms)
+    // Whether the layer's kind draws the rarer cavity chains by the settings
+    // (McSettings::cavity_forms, connections on or not): where it does, one
+    // round trip is among them (cavityEveryFlightTrips), so the walks' and
+    // the connections' forms split alike whatever runs.
+    bool draws_cavity_chains = false;
 };
 
 // A path's class by its last direction change (the histogram's classes, McSettings::histogram_classes).

@@ -261,7 +261,7 @@ McEngine::Band McEngine::band(double wavelength_nm) const {
                                        : m_settings.cavity_forms.drawn_on_interference_flakes;
             layers.push_back({m_tiles[b][l].get(), kinds[l], tilts.order.empty() ? nullptr : &tilts,
                               groups.flakes.empty() ? nullptr : &groups, law ? &m_last_flake[l] : nullptr,
-                              law && last_on, law && cavity_on, law && cavity_on && drawn});
+                              law && last_on, law && cavity_on, law && cavity_on && drawn, drawn});
         }
         band.explicit_flakes.push_back(std::move(layers));
     }

@@ -128,7 +128,7 @@ double Walker::traceCavityChain(const Slice& s, const LayerFlakes& lf, const Cav
 // chain that ends at c), a flake c drawn through a point uniform on the
 // flight (last_flake.h's law): per sr of u the kernel A |v.h| D(h) rho R_c / J,
 // the flight's factors as the last-flake connections', times the traced
-// chain. The chains with j <= kCavityEveryFlightTrips and 1 <= m <=
+// chain. The chains with j <= cavityEveryFlightTrips and 1 <= m <=
 // kCavityEveryFlightRetrace run on every flight; of the others one, drawn
 // with probability p by the job's learned weights (CavityFormWeights; the
 // forward walks: uniformly) and weighted by 1 / p.
@@ -146,14 +146,14 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
     PathRng& chain_rng = chainRng();
     const ChainDraw draw = drawChainCone(s, length, sigma, chain_rng);
     if (!draw.ok) return;
-    // The round trips towards one target share its turn (cavityTurn).
+    // Every round-trip count run towards one target shares its turn (cavityTurn).
     const Vec3 n_1 = changeBack(0).normal;
     CavityTurn turn;
     if (settings.cavity_forms.every_flight)
         for (int m = 1; m <= std::min(available, kCavityEveryFlightRetrace); ++m) {
             const Vec3 target = cavityTarget(draw.u, m);
             if (cavityTurn(v, n_1, target, turn))
-                for (int trips = 0; trips <= kCavityEveryFlightTrips; ++trips)
+                for (int trips = 0; trips <= cavityEveryFlightTrips(lf.draws_cavity_chains); ++trips)
                     cavityFormConnection(s, lf, draw, {target, turn}, trips, m, 1.0, chain_rng);
         }
     if (!lf.drawn_cavity_chains) return;
@@ -167,7 +167,7 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
     int forms = 0;
     for (int m = 0; m <= available; ++m)
         for (int trips = m == 0 ? 1 : 0; trips <= kMaxCavityRoundTrips; ++trips)
-            if (const CavityForm form{s.layer, trips, m}; form.drawn())
+            if (const CavityForm form{s.layer, trips, m}; form.drawn(lf.draws_cavity_chains))
                 drawn[static_cast<std::size_t>(forms++)] = form;
     if (forms == 0) return;
     // In proportion to the learned weights, mixed with the uniform draw

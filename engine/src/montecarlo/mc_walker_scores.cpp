@@ -138,13 +138,15 @@ void Walker::escape() {
             (walk_scores == WalkScores::DrawnOnly ||
              explicit_flakes[static_cast<std::size_t>(latest % 64)].cavity_connections)) {
             const CavityForm form = cavityFormNow();
-            drawn_form = form.layer >= 0 && form.drawn();
-            taken =
-                chain_connections &&
-                explicit_flakes[static_cast<std::size_t>(latest % 64)].cavity_connections &&
-                form.layer >= 0 && explicit_flakes[static_cast<std::size_t>(form.layer)].cavity_connections &&
-                cavityFormTaken(settings.cavity_forms, form,
-                                explicit_flakes[static_cast<std::size_t>(form.layer)].drawn_cavity_chains);
+            if (form.layer >= 0) {
+                const LayerFlakes& in = explicit_flakes[static_cast<std::size_t>(form.layer)];
+                drawn_form = form.drawn(in.draws_cavity_chains);
+                taken = chain_connections &&
+                        explicit_flakes[static_cast<std::size_t>(latest % 64)].cavity_connections &&
+                        in.cavity_connections &&
+                        cavityFormTaken(settings.cavity_forms, form, in.draws_cavity_chains,
+                                        in.drawn_cavity_chains);
+            }
         }
     }
     const bool scored =
