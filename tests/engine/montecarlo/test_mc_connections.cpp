@@ -739,16 +739,17 @@ TEST(MonteCarloConnections, DeltaWalksThatRunTheirConnectionsOnAShareAgreeWithAl
 }
 
 TEST(MonteCarloConnections, DrawnCavityChainsAgreeWithTheWalksEscapes) {
-    // The cavity chains a flight runs only when drawn (cavity_chain.h: three
-    // round trips or more, x c x c x c x, and those ending at c, x c x c)
-    // alone: the connections of those forms only (McSettings::cavity_forms,
-    // the walks' escapes not scored) against the delta walks' escapes that
-    // end such a chain (no connections). The whole estimate cannot resolve
-    // them (~0.5-2 % of f in the test above). stackedMirrorFilm;
-    // kZ = 4, 16 batches each, independent seeds and tiles. The walks' part
-    // comes in rare large escapes (its error halves only slowly with more
-    // paths): they must resolve it to 5 errors, so a connection score off by
-    // half or more fails (the forms' weight left out, /5 to /7: z -6 to -9).
+    // The cavity chains a flight runs only when drawn (cavity_chain.h: in
+    // this mirror film one round trip or more, x c x c x, back over three or
+    // four flakes, and those ending at c, x c x c) alone: the connections of
+    // those forms only (McSettings::cavity_forms, the walks' escapes not
+    // scored) against the delta walks' escapes that end such a chain (no
+    // connections). The whole estimate cannot resolve them (~0.5-2 % of f in
+    // the test above). stackedMirrorFilm; kZ = 4, 16 batches each,
+    // independent seeds and tiles. The walks' part comes in rare large
+    // escapes (its error halves only slowly with more paths): they must
+    // resolve it to 5 errors, so a connection score off by half or more
+    // fails (the forms' weight left out, /5 to /7: z -6 to -9).
     // After the first rounds the delta walks draw the forms by the job's
     // learned weights (JobRunner::learnCavityFormWeights): weighted by the
     // forms' count instead of 1 / p, exit 2 reads z = +23.
