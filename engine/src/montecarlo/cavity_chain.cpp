@@ -125,6 +125,17 @@ int cavityNormals(const CavityTurn& turn, const Vec3& d, const Vec3& n, const Ve
     return count;
 }
 
+bool oneTripNormal(const Vec3& d, const Vec3& n, const Vec3& target, CavityNormal& out) {
+    const Vec3 w = mirrored(target, n);
+    const Vec3 half{d.x - w.x, d.y - w.y, d.z - w.z};
+    const double length = std::sqrt(dot(half, half));
+    if (!(length > 1e-12)) return false;
+    out.h = {half.x / length, half.y / length, half.z / length};
+    if (out.h.z < 0.0) out.h = {-out.h.x, -out.h.y, -out.h.z};
+    out.jacobian = 4.0 * std::abs(dot(d, out.h));
+    return out.jacobian > 0.0;
+}
+
 int cavityNormals(const Vec3& d, const Vec3& n, const Vec3& target, int k, CavityNormals& out) {
     CavityTurn turn;
     if (!cavityTurn(d, n, target, turn)) return 0;

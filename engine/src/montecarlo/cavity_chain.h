@@ -130,6 +130,10 @@ struct CavityTurn {
     double phi() const { return std::atan2(sin_phi, cos_phi); }
 };
 bool cavityTurn(const Vec3& d, const Vec3& n, const Vec3& target, CavityTurn& out);
+// k = 1 without the turn: M_h d = M_n target, so h is the half vector of d
+// and M_n target, J = 4 |d.h| (cavityNormals' one normal, up to rounding);
+// false where d = M_n target (no reflection turns d into itself).
+bool oneTripNormal(const Vec3& d, const Vec3& n, const Vec3& target, CavityNormal& out);
 int cavityNormals(const CavityTurn& turn, const Vec3& d, const Vec3& n, const Vec3& target, int k,
                   CavityNormals& out);
 

@@ -308,8 +308,11 @@ struct Walker {
     double cavityFormConnection(const Slice& s, const LayerFlakes& lf, const ChainDraw& draw,
                                 const CavityAim& aim, int trips, int m, double form_weight,
                                 PathRng& chain_rng);
-    // Their chain from the drawn flake c (mc_walker_cavity.cpp).
+    // Their chain from the drawn flake c (mc_walker_cavity.cpp): the legs'
+    // plan, and one normal's score (added to chainOut(), returned) times `factor`.
     struct CavityLeg;
+    double cavityNormalScore(const Slice& s, const LayerFlakes& lf, const ChainDraw& draw,
+                             const CavityNormal& normal, CavityLeg& leg, double factor, PathRng& chain_rng);
     double traceCavityChain(const Slice& s, const LayerFlakes& lf, const CavityLeg& leg) const;
     // The transmittance of a drawn flake c of `kind` (centre, unit normal n, radius) to the path's
     // previous legs: the product of its T over the legs that cross it within the layer's depths

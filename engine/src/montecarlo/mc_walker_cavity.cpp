@@ -152,7 +152,14 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
     if (settings.cavity_forms.every_flight)
         for (int m = 1; m <= std::min(available, kCavityEveryFlightRetrace); ++m) {
             const Vec3 target = cavityTarget(draw.u, m);
-            if (cavityTurn(v, n_1, target, turn))
+            if (cavityEveryFlightTrips(lf.draws_cavity_chains) == 0) {
+                // One pass at c only (mirror layers): its normal without the turn.
+                CavityNormal normal;
+                CavityLeg leg;
+                leg.retrace = m;
+                if (oneTripNormal(v, n_1, target, normal))
+                    cavityNormalScore(s, lf, draw, normal, leg, draw.factor, chain_rng);
+            } else if (cavityTurn(v, n_1, target, turn))
                 for (int trips = 0; trips <= cavityEveryFlightTrips(lf.draws_cavity_chains); ++trips)
                     cavityFormConnection(s, lf, draw, {target, turn}, trips, m, 1.0, chain_rng);
         }
@@ -250,48 +257,52 @@ Vec3 Walker::cavityTarget(const Vec3& u, int m) const {
 double Walker::cavityFormConnection(const Slice& s, const LayerFlakes& lf, const ChainDraw& draw,
                                     const CavityAim& aim, int trips, int m, double form_weight,
                                     PathRng& chain_rng) {
-    const LastFlakeLaw& law = *lf.last_flake;
-    const std::size_t kinds = std::min(law.kinds.size(), lf.kinds.size());
-    const double factor = draw.factor * form_weight;
     CavityNormals normals;
     const int count = cavityNormals(aim.turn, v, changeBack(0).normal, aim.target, trips + 1, normals);
+    CavityLeg leg;
+    leg.round_trips = trips;
+    leg.retrace = m;
     double scored = 0.0;
-    for (int c = 0; c < count; ++c) {
-        const Vec3 h = normals[static_cast<std::size_t>(c)].h;
-        const double cos_vh = std::abs(dot(v, h));
-        // The kernel per kind before rho: A R D |v.h| / J.
-        const ChainKernel kernels = chainKernel(
-            lf, h, cos_vh, cos_vh / normals[static_cast<std::size_t>(c)].jacobian, factor, chain_rng);
-        if (!(kernels.q > 0.0)) continue;
-        const auto& per_kind = kernels.per_kind;
-        CavityLeg leg;
-        leg.start = {ux + v.x * draw.t, uy + v.y * draw.t, -draw.point_depth};
-        leg.x = x + v.x * draw.t;
-        leg.y = y + v.y * draw.t;
-        leg.direction = mirrored(v, h);
-        leg.h = h;
-        leg.round_trips = trips;
-        leg.retrace = m;
-        leg.top_um = law.top_um;
-        leg.bottom_um = law.bottom_um;
-        double sum = 0.0;
-        for (std::size_t i = 0; i < kinds && i < per_kind.size(); ++i) {
-            if (!(per_kind[i] > 0.0)) continue;
-            const VirtualFlake flake = drawVirtualFlake(law, i, h, draw.point_depth, chain_rng);
-            if (!(flake.rho > 0.0)) continue;
-            leg.centre = {leg.start.x + flake.centre_offset.x, leg.start.y + flake.centre_offset.y,
-                          leg.start.z + flake.centre_offset.z};
-            const double T_legs = legsTransmittance(leg.centre, h, flake.radius_um, lf.kinds[i], law);
-            if (!(T_legs > 0.0)) continue;
-            leg.radius_um = flake.radius_um;
-            leg.kind_c = &lf.kinds[i];
-            sum += per_kind[i] * flake.rho * T_legs * traceCavityChain(s, lf, leg);
-        }
-        if (sum > 0.0) {
-            chainOut()[draw.k] += sum * factor / kernels.q;
-            scored += sum * factor / kernels.q;
-        }
+    for (int c = 0; c < count; ++c)
+        scored += cavityNormalScore(s, lf, draw, normals[static_cast<std::size_t>(c)], leg,
+                                    draw.factor * form_weight, chain_rng);
+    return scored;
+}
+
+double Walker::cavityNormalScore(const Slice& s, const LayerFlakes& lf, const ChainDraw& draw,
+                                 const CavityNormal& normal, CavityLeg& leg, double factor,
+                                 PathRng& chain_rng) {
+    const LastFlakeLaw& law = *lf.last_flake;
+    const std::size_t kinds = std::min(law.kinds.size(), lf.kinds.size());
+    const Vec3& h = normal.h;
+    const double cos_vh = std::abs(dot(v, h));
+    // The kernel per kind before rho: A R D |v.h| / J.
+    const ChainKernel kernels = chainKernel(lf, h, cos_vh, cos_vh / normal.jacobian, factor, chain_rng);
+    if (!(kernels.q > 0.0)) return 0.0;
+    const auto& per_kind = kernels.per_kind;
+    leg.start = {ux + v.x * draw.t, uy + v.y * draw.t, -draw.point_depth};
+    leg.x = x + v.x * draw.t;
+    leg.y = y + v.y * draw.t;
+    leg.direction = mirrored(v, h);
+    leg.h = h;
+    leg.top_um = law.top_um;
+    leg.bottom_um = law.bottom_um;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < kinds && i < per_kind.size(); ++i) {
+        if (!(per_kind[i] > 0.0)) continue;
+        const VirtualFlake flake = drawVirtualFlake(law, i, h, draw.point_depth, chain_rng);
+        if (!(flake.rho > 0.0)) continue;
+        leg.centre = {leg.start.x + flake.centre_offset.x, leg.start.y + flake.centre_offset.y,
+                      leg.start.z + flake.centre_offset.z};
+        const double T_legs = legsTransmittance(leg.centre, h, flake.radius_um, lf.kinds[i], law);
+        if (!(T_legs > 0.0)) continue;
+        leg.radius_um = flake.radius_um;
+        leg.kind_c = &lf.kinds[i];
+        sum += per_kind[i] * flake.rho * T_legs * traceCavityChain(s, lf, leg);
     }
+    if (!(sum > 0.0)) return 0.0;
+    const double scored = sum * factor / kernels.q;
+    chainOut()[draw.k] += scored;
     return scored;
 }
 

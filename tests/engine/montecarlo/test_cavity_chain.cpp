@@ -52,7 +52,8 @@ TEST(CavityChain, NormalsSendTheFlightToTheTarget) {
     // map the flight onto the target (the mirrors composed directly), lie
     // in the upper hemisphere, and carry the Jacobian of those mirrors'
     // central differences (its closed form, SO(3)'s left Jacobian); one round
-    // trip has its textbook 4 |d.h| (the half vector's). Jacobian tolerance
+    // trip has its textbook 4 |d.h| (the half vector's), and oneTripNormal
+    // finds it without the turn (rounding: 1e-12). Jacobian tolerance
     // 1e-4 relative: the differences' error is ~1e-10; a J off by a power of
     // k or the sin/theta stretch is off by 10 % or more at these angles.
     mc::PathRng rng(7, 1, 2, 3);
@@ -75,6 +76,13 @@ TEST(CavityChain, NormalsSendTheFlightToTheTarget) {
                 EXPECT_GE(c.h.z, 0.0);
                 if (k == 1) {
                     EXPECT_NEAR(c.jacobian, 4.0 * std::abs(mc::dot(d, c.h)), 1e-12);
+                    // The walker's shortcut for one pass (no turn): the same normal and J.
+                    mc::CavityNormal direct;
+                    ASSERT_TRUE(mc::oneTripNormal(d, n, target, direct));
+                    EXPECT_NEAR(direct.h.x, c.h.x, 1e-12);
+                    EXPECT_NEAR(direct.h.y, c.h.y, 1e-12);
+                    EXPECT_NEAR(direct.h.z, c.h.z, 1e-12);
+                    EXPECT_NEAR(direct.jacobian, c.jacobian, 1e-12);
                 }
                 const double reference = finiteDifferenceJacobian(d, n, c.h, k);
                 EXPECT_NEAR(c.jacobian, reference, 1e-4 * reference) << "k = " << k;
