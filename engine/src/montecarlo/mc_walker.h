@@ -299,7 +299,8 @@ struct Walker {
     // One chain (j round trips, m flakes gone back over; m = 0: ending at c)
     // of a cavity connection's draw, its score times form_weight (returned too).
     // Its target before the flakes gone back over (M_2 ... M_m u; M_1 u at m = 0)
-    // and the turn towards it from x_1 (cavityTurn), shared by every round-trip count.
+    // and the turn towards it from x_1 (cavityTurn), shared by every round-trip
+    // count j >= 1 (j = 0 takes the half vector: oneTripNormal).
     struct CavityAim {
         Vec3 target;
         CavityTurn turn;

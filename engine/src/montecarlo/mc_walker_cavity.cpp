@@ -152,15 +152,10 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
     if (settings.cavity_forms.every_flight)
         for (int m = 1; m <= std::min(available, kCavityEveryFlightRetrace); ++m) {
             const Vec3 target = cavityTarget(draw.u, m);
-            if (cavityEveryFlightTrips(lf.draws_cavity_chains) == 0) {
-                // One pass at c only (mirror layers): its normal without the turn.
-                CavityNormal normal;
-                CavityLeg leg;
-                leg.retrace = m;
-                if (oneTripNormal(v, n_1, target, normal))
-                    cavityNormalScore(s, lf, draw, normal, leg, draw.factor, chain_rng);
-            } else if (cavityTurn(v, n_1, target, turn))
-                for (int trips = 0; trips <= cavityEveryFlightTrips(lf.draws_cavity_chains); ++trips)
+            cavityFormConnection(s, lf, draw, {target, {}}, 0, m, 1.0, chain_rng);
+            const int trips_max = cavityEveryFlightTrips(lf.draws_cavity_chains);
+            if (trips_max > 0 && cavityTurn(v, n_1, target, turn))
+                for (int trips = 1; trips <= trips_max; ++trips)
                     cavityFormConnection(s, lf, draw, {target, turn}, trips, m, 1.0, chain_rng);
         }
     if (!lf.drawn_cavity_chains) return;
@@ -209,7 +204,7 @@ void Walker::cavityConnections(const Slice& s, const LayerFlakes& lf, double len
     const double p_pick = p[static_cast<std::size_t>(chosen)];
     const std::int64_t attempts_before = tally.nee_attempts;
     const Vec3 target = cavityTarget(draw.u, pick.retrace);
-    const double score = cavityTurn(v, n_1, target, turn)
+    const double score = pick.trips == 0 || cavityTurn(v, n_1, target, turn)
                              ? cavityFormConnection(s, lf, draw, {target, turn}, pick.trips, pick.retrace,
                                                     1.0 / (p_pick * q), chain_rng)
                              : 0.0;
@@ -257,8 +252,11 @@ Vec3 Walker::cavityTarget(const Vec3& u, int m) const {
 double Walker::cavityFormConnection(const Slice& s, const LayerFlakes& lf, const ChainDraw& draw,
                                     const CavityAim& aim, int trips, int m, double form_weight,
                                     PathRng& chain_rng) {
+    // No round trip: the half vector (oneTripNormal), no turn needed (aim.turn is unused).
     CavityNormals normals;
-    const int count = cavityNormals(aim.turn, v, changeBack(0).normal, aim.target, trips + 1, normals);
+    const int count = trips == 0
+                          ? (oneTripNormal(v, changeBack(0).normal, aim.target, normals[0]) ? 1 : 0)
+                          : cavityNormals(aim.turn, v, changeBack(0).normal, aim.target, trips + 1, normals);
     CavityLeg leg;
     leg.round_trips = trips;
     leg.retrace = m;
