@@ -254,6 +254,8 @@ ordered_json settingsJson(const mc::McSettings& s, const mc::McResult& r) {
             {"connections", s.explicit_flakes && s.connections},
             {"tile_views", s.explicit_flakes ? s.tile_views : 1},
             {"glint_azimuths", s.explicit_flakes && s.connections && s.glint_azimuths},
+            {"move_glint_flakes", s.explicit_flakes && s.connections && s.glint_azimuths &&
+                                      s.move_glint_flakes && !s.reject_overlaps},
             {"adaptive_fractions",
              s.explicit_flakes && s.connections && s.glint_azimuths && s.adaptive_fractions},
             {"split_branches", s.explicit_flakes && s.split_branches},

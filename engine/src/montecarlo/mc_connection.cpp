@@ -10,9 +10,10 @@
 namespace paintlab::mc {
 
 double tileTransmittance(const LayerFlakes& lf, double& x, double& y, double depth, const Vec3& u,
-                         double length, std::int64_t* rays) {
+                         double length, std::int64_t* rays, std::int64_t absent_flake) {
     double T = 1.0;
     const bool passed = marchTile(*lf.tile, x, y, depth, u, length, rays, [&](const FlakeHit& hit, double) {
+        if (hit.flake == absent_flake) return true;
         T *= lf.kinds[static_cast<std::size_t>(hit.kind)].T(std::abs(dot(u, hit.normal)));
         return T > 0.0;
     });
@@ -79,7 +80,8 @@ bool refractPlanar(const Vec3& v, double n_from, double n_to, Vec3& out) {
 }
 
 TopArrival straightToTop(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
-                         double depth, double x, double y, Vec3 u, std::int64_t* rays, PathRng* roulette) {
+                         double depth, double x, double y, Vec3 u, std::int64_t* rays, PathRng* roulette,
+                         const AbsentFlake& absent) {
     double T = 1.0;
     for (;;) {
         const Slice& s = stack.slices[j];
@@ -95,7 +97,8 @@ TopArrival straightToTop(const PaintStack& stack, std::span<const LayerFlakes> t
                 T = kConnectionRouletteT;
                 roulette = nullptr;  // once per connection
             }
-            T *= tileTransmittance(tiles[layer], x, y, depth, u, length, rays);
+            T *= tileTransmittance(tiles[layer], x, y, depth, u, length, rays,
+                                   static_cast<std::size_t>(absent.layer) == layer ? absent.flake : -1);
         } else {
             x += u.x * length;
             y += u.y * length;
@@ -115,8 +118,9 @@ TopArrival straightToTop(const PaintStack& stack, std::span<const LayerFlakes> t
 }
 
 double straightToAmbient(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
-                         double depth, double x, double y, Vec3 u, std::int64_t* rays, PathRng* roulette) {
-    const TopArrival top = straightToTop(stack, tiles, j, depth, x, y, u, rays, roulette);
+                         double depth, double x, double y, Vec3 u, std::int64_t* rays, PathRng* roulette,
+                         const AbsentFlake& absent) {
+    const TopArrival top = straightToTop(stack, tiles, j, depth, x, y, u, rays, roulette, absent);
     if (!(top.T > 0.0)) return 0.0;
     const double n_top = stack.slices.front().n;
     if (std::abs(stack.ambient_n - n_top) < 1e-12) return top.T;

@@ -108,6 +108,13 @@ enum class PathClass {
 // false under total internal reflection.
 bool refractPlanar(const Vec3& v, double n_from, double n_to, Vec3& out);
 
+// A flake that a straight trace passes through as if it were not in its
+// tile (azimuthGlintSample's flake, moved elsewhere in the tile); none by default.
+struct AbsentFlake {
+    int layer = -1;
+    std::int64_t flake = -1;
+};
+
 // Transmittance of the straight path from (x, y, depth) in slice j along the
 // upward direction u (in slice j) into the ambient: pigment extinction of
 // every slice, the flake tiles of their layers (T of each interference flake
@@ -119,7 +126,7 @@ bool refractPlanar(const Vec3& v, double n_from, double n_to, Vec3& out);
 // Russian roulette below kConnectionRouletteT (unbiased: E[T] unchanged).
 double straightToAmbient(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
                          double depth, double x, double y, Vec3 u, std::int64_t* rays = nullptr,
-                         PathRng* roulette = nullptr);
+                         PathRng* roulette = nullptr, const AbsentFlake& absent = {});
 
 // Russian roulette of a connection (issue 30): before the first flake tile it
 // would trace, a connection whose transmittance so far (the pigments' and
@@ -144,7 +151,7 @@ struct TopArrival {
 };
 TopArrival straightToTop(const PaintStack& stack, std::span<const LayerFlakes> tiles, std::size_t j,
                          double depth, double x, double y, Vec3 u, std::int64_t* rays = nullptr,
-                         PathRng* roulette = nullptr);
+                         PathRng* roulette = nullptr, const AbsentFlake& absent = {});
 
 // The straight segment from (x, y, depth) along u of `length` µm through one
 // layer's periodic tile (wrapping at its sides): on_hit(hit, travelled) for
@@ -214,9 +221,10 @@ TileHit targetFlakeAlong(const LayerFlakes& lf, double x, double y, double depth
 
 // Transmittance along the segment from (x, y, depth) of `length` µm in
 // direction u through one layer's tile (wrapping at its sides): the product
-// of T(|u.n|) over the flakes crossed. x, y are advanced to the segment's end.
+// of T(|u.n|) over the flakes crossed but `absent_flake` (-1: none). x, y
+// are advanced to the segment's end.
 double tileTransmittance(const LayerFlakes& lf, double& x, double& y, double depth, const Vec3& u,
-                         double length, std::int64_t* rays = nullptr);
+                         double length, std::int64_t* rays = nullptr, std::int64_t absent_flake = -1);
 
 // Pigment optical depth of the straight segment between two depths of one
 // layer along a direction of cosine |mu| (the slices of a depth profile each

@@ -373,16 +373,23 @@ double azimuthGlintSample(const PaintStack& stack, std::span<const LayerFlakes> 
     const Vec3 r{v.x - 2.0 * vn * flake.normal.x, v.y - 2.0 * vn * flake.normal.y,
                  v.z - 2.0 * vn * flake.normal.z};
     if (!(r.z > 0.0)) return 0.0;
-    const Vec3 p = tile.pointOnFlake(g.flake, u.u1, u.u2, u.u3);
+    Vec3 p = tile.pointOnFlake(g.flake, u.u1, u.u2, u.u3);
+    const double L = tile.sideUm();
+    AbsentFlake absent;
+    if (u.moved) {
+        p.x += u.move_x * L;
+        p.y += u.move_y * L;
+        absent = {g.layer, static_cast<std::int64_t>(g.flake)};
+    }
     const double depth = -p.z;
     const std::size_t j = sliceAt(stack, g.layer, depth);
     if (j == stack.slices.size()) return 0.0;
     const double R = lf.kinds[static_cast<std::size_t>(flake.kind)].R(std::abs(vn));
     if (!(R > 0.0)) return 0.0;
-    const double t_in = straightToAmbient(stack, tiles, j, depth, p.x, p.y, {-v.x, -v.y, -v.z}, rays);
+    const double t_in =
+        straightToAmbient(stack, tiles, j, depth, p.x, p.y, {-v.x, -v.y, -v.z}, rays, nullptr, absent);
     if (!(t_in > 0.0)) return 0.0;
-    const double t_out = straightToAmbient(stack, tiles, j, depth, p.x, p.y, r, rays);
-    const double L = tile.sideUm();
+    const double t_out = straightToAmbient(stack, tiles, j, depth, p.x, p.y, r, rays, nullptr, absent);
     const double weight = tile.flakeAreaUm2(g.flake) * std::abs(vn) / (std::abs(v.z) * L * L);
     return weight * t_in * R * t_out / bin.projected_solid_angle * g.psi_width * share /
            (2.0 * std::numbers::pi * probability);

@@ -111,12 +111,25 @@ std::vector<AzimuthGlintSet> azimuthGlintSets(const PaintStack& stack, std::span
                                               const Vec3& v_in, std::span<const HistogramBin> bins);
 
 // Uniforms of one sample: the pick (stratified by the caller), the azimuth
-// within the interval and the point on the polygon (pointOnFlake's three).
+// within the interval and the point on the polygon (pointOnFlake's three);
+// with `moved`, the flake's new place in the tile (McSettings::move_glint_flakes).
 struct GlintUniforms {
     double pick = 0.0, psi = 0.0, choose = 0.0, u1 = 0.0, u2 = 0.0, u3 = 0.0;
+    bool moved = false;
+    double move_x = 0.0, move_y = 0.0;
 };
 
 // One sample of bin k's BeamFlake f (1/sr) from its set (0 when the set is empty).
+//
+// Moved flakes (u.moved): the tiles place their flakes independently and
+// uniformly over the tile (without reject_overlaps), so flake i's place is
+// independent of its normal, its depth and every other flake. The sample
+// may then put the picked flake at a new uniform place, traced through the
+// tile without it (AbsentFlake): the same expectation over tiles, but the
+// flakes above a glinting one change from sample to sample. Without it each
+// tile's glint term keeps its own flakes' shadows, a spread between tiles
+// that no path count lowers (docs/PERFORMANCE.md, "The glints' spread
+// between tiles"); with it that spread becomes the samples' own variance.
 double azimuthGlintSample(const PaintStack& stack, std::span<const LayerFlakes> tiles,
                           const AzimuthGlintSet& set, const HistogramBin& bin, const GlintUniforms& u,
                           std::int64_t* rays = nullptr);

@@ -57,6 +57,11 @@ std::vector<double> JobRunner::chunkGlints(std::size_t batch, std::int64_t first
             u.u1 = (static_cast<double>(permutation[static_cast<std::size_t>(j)]) + rng.uniform()) / strata;
             u.u2 = rng.uniform();
             u.u3 = rng.uniform();
+            if (m_move_glint_flakes) {
+                u.moved = true;
+                u.move_x = rng.uniform();
+                u.move_y = rng.uniform();
+            }
             const double value = azimuthGlintSample(m_band.stack, tiles, sets[k], m_bins[k], u, &rays);
             const auto path = static_cast<std::size_t>(
                 std::min<std::int64_t>(paths - 1, (2 * j + 1) * paths / (2 * count)));

@@ -73,6 +73,7 @@ JobRunner::JobRunner(const McEngine::Band& band, const JobSpec& job, const McSet
     m_connection_fraction = std::clamp(settings.connection_fraction, 1e-3, 1.0);
     const double nee_rate = std::clamp(settings.connection_fraction, 1e-3, kMaxNeeRate);
     m_azimuths = m_connections && settings.glint_azimuths;
+    m_move_glint_flakes = m_azimuths && settings.move_glint_flakes && !settings.reject_overlaps;
     m_adaptive = m_azimuths && settings.adaptive_fractions;
     m_rates.nee_fraction.assign(m_exits, nee_rate);
     m_rates.glint_rate.assign(m_exits, m_connection_fraction);

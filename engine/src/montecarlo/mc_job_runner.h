@@ -88,10 +88,11 @@ private:
     std::vector<std::vector<View>> m_views;  // [batch][view]
     std::size_t m_view_count = 1;
     double m_connection_fraction = 1.0;
-    bool m_azimuths = false;  // glint_azimuths
-    bool m_adaptive = false;  // adaptive_fractions
-    bool m_reverse = false;   // reverse_walks
-    bool m_nee_on = true;     // ConnectionParts::cone_direct
+    bool m_azimuths = false;           // glint_azimuths
+    bool m_move_glint_flakes = false;  // move_glint_flakes, where the tiles allow it
+    bool m_adaptive = false;           // adaptive_fractions
+    bool m_reverse = false;            // reverse_walks
+    bool m_nee_on = true;              // ConnectionParts::cone_direct
     bool m_glints_on = true;
     bool m_delta = false;          // delta_walks
     bool m_first_flake = false;    // first_flake_walks: the delta chains that begin at a flake

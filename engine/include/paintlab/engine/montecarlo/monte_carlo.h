@@ -179,6 +179,12 @@ struct McSettings {
     // (mc_glints.h, azimuthGlintSets; errors over paths then become
     // conservative). false: one flake per connected path and view.
     bool glint_azimuths = true;
+    // With glint_azimuths: each glint sample puts its flake at a new uniform
+    // place in the tile and traces the shadows of the others there (mc_glints.h,
+    // azimuthGlintSample): the tiles' own shadows no longer leave a spread
+    // between tiles in the glints. Ignored with reject_overlaps (flakes then
+    // are not placed independently).
+    bool move_glint_flakes = true;
     // Connections with glint_azimuths: per cone, the next-event rate, the glint
     // samples, reverse walks and delta-chain walks per path are chosen after
     // every round from the cones' variances and a cost model (mc_rates.h).
