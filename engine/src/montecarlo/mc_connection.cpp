@@ -97,8 +97,7 @@ TopArrival straightToTop(const PaintStack& stack, std::span<const LayerFlakes> t
                 T = kConnectionRouletteT;
                 roulette = nullptr;  // once per connection
             }
-            T *= tileTransmittance(tiles[layer], x, y, depth, u, length, rays,
-                                   static_cast<std::size_t>(absent.layer) == layer ? absent.flake : -1);
+            T *= tileTransmittance(tiles[layer], x, y, depth, u, length, rays, absent.in(layer));
         } else {
             x += u.x * length;
             y += u.y * length;

@@ -113,6 +113,10 @@ bool refractPlanar(const Vec3& v, double n_from, double n_to, Vec3& out);
 struct AbsentFlake {
     int layer = -1;
     std::int64_t flake = -1;
+    // The flake absent from layer l's tile (-1: none).
+    std::int64_t in(std::size_t l) const {
+        return layer >= 0 && static_cast<std::size_t>(layer) == l ? flake : -1;
+    }
 };
 
 // Transmittance of the straight path from (x, y, depth) in slice j along the

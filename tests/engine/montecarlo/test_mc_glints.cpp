@@ -79,6 +79,18 @@ mc::Vec3 turned(const mc::Vec3& a, double psi) {
     return {std::cos(psi) * a.x - std::sin(psi) * a.y, std::sin(psi) * a.x + std::cos(psi) * a.y, a.z};
 }
 
+// One glint sample's uniforms, each independent (GlintUniforms; not moved).
+mc::GlintUniforms randomGlintUniforms(mc::PathRng& rng) {
+    mc::GlintUniforms u;
+    u.pick = rng.uniform();
+    u.psi = rng.uniform();
+    u.choose = rng.uniform();
+    u.u1 = rng.uniform();
+    u.u2 = rng.uniform();
+    u.u3 = rng.uniform();
+    return u;
+}
+
 TEST(GlintAzimuths, EveryGlintingFlakeIsListedAtItsAzimuth) {
     const Fixture fx(5.0);
     const auto sets = mc::azimuthGlintSets(fx.band.stack, fx.tiles(), fx.v_in, fx.bins);
@@ -142,13 +154,7 @@ TEST(GlintAzimuths, SampleMeanIsTheAverageOverViews) {
         double s1 = 0.0;
         double s2 = 0.0;
         for (int i = 0; i < kSamples; ++i) {
-            mc::GlintUniforms u;
-            u.pick = rng.uniform();
-            u.psi = rng.uniform();
-            u.choose = rng.uniform();
-            u.u1 = rng.uniform();
-            u.u2 = rng.uniform();
-            u.u3 = rng.uniform();
+            mc::GlintUniforms u = randomGlintUniforms(rng);
             const double x = mc::azimuthGlintSample(fx.band.stack, fx.tiles(), sets[k], fx.bins[k], u);
             s1 += x;
             s2 += x * x;
@@ -172,13 +178,7 @@ TEST(GlintAzimuths, AFlakeMovedToItsOwnPlaceGlintsAsInPlace) {
     int glinting = 0;
     for (std::size_t k = 0; k < 4; ++k)
         for (int i = 0; i < 2000; ++i) {
-            mc::GlintUniforms u;
-            u.pick = rng.uniform();
-            u.psi = rng.uniform();
-            u.choose = rng.uniform();
-            u.u1 = rng.uniform();
-            u.u2 = rng.uniform();
-            u.u3 = rng.uniform();
+            mc::GlintUniforms u = randomGlintUniforms(rng);
             const double in_place = mc::azimuthGlintSample(fx.band.stack, fx.tiles(), sets[k], fx.bins[k], u);
             u.moved = true;
             const double moved = mc::azimuthGlintSample(fx.band.stack, fx.tiles(), sets[k], fx.bins[k], u);
@@ -217,14 +217,10 @@ TEST(GlintAzimuths, MovedFlakesKeepTheMeanOverTiles) {
             double in_place = 0.0;
             double moved = 0.0;
             for (int i = 0; i < kSamples; ++i) {
-                mc::GlintUniforms u;
-                u.pick = (i + rng.uniform()) / kSamples;
-                u.psi = rng.uniform();
-                u.choose = rng.uniform();
-                u.u1 = rng.uniform();
-                u.u2 = rng.uniform();
-                u.u3 = rng.uniform();
+                mc::GlintUniforms u = randomGlintUniforms(rng);
+                u.pick = (i + rng.uniform()) / kSamples;  // stratified, as chunkGlints picks
                 in_place += mc::azimuthGlintSample(band.stack, tiles, sets[k], fx.bins[k], u) / kSamples;
+                u = randomGlintUniforms(rng);
                 u.pick = (i + rng.uniform()) / kSamples;
                 u.moved = true;
                 u.move_x = rng.uniform();
