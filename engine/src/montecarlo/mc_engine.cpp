@@ -147,16 +147,8 @@ std::int64_t targetRoundPaths(double predicted, std::int64_t kept, std::int64_t 
 
 }  // namespace
 
-RunDeadline::RunDeadline(double max_seconds, std::size_t jobs)
-    : m_start(Clock::now()), m_max_seconds(max_seconds), m_jobs_left(std::max<std::size_t>(1, jobs)) {}
-
-double RunDeadline::nextJobBudget() {
-    if (!(m_max_seconds > 0.0)) return 0.0;
-    const double left = m_max_seconds - std::chrono::duration<double>(Clock::now() - m_start).count();
-    const double share = left / static_cast<double>(m_jobs_left);
-    if (m_jobs_left > 1) --m_jobs_left;
-    // Past the deadline a job still runs its pilot round (a result needs paths): a tiny positive budget.
-    return std::max(share, 1e-6);
+double largestRelativeError(const JobResult& r, int orders) {
+    return worstErrorRatio(r, ErrorTarget{1.0, 0.0}, orders);
 }
 
 McEngine::McEngine(const Recipe& recipe, const McSettings& settings, const std::function<bool()>& keep_going)

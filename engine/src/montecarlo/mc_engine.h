@@ -24,7 +24,6 @@
 
 #include "paintlab/engine/montecarlo/monte_carlo.h"
 
-#include <chrono>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -52,22 +51,10 @@ struct JobResult {
     double weighted_paths = 0.0;  // their sum
 };
 
-// A run's time budget (McSettings::max_seconds) shared by its jobs: each job
-// gets an even share of what is left when it starts, so the set-up before it
-// (flake tiles, the band's stack) and an earlier job's overrun come out of the
-// later jobs' shares and the run as a whole keeps its budget. Starts when
-// constructed (before the set-up).
-class RunDeadline {
-public:
-    RunDeadline(double max_seconds, std::size_t jobs);
-    // The next job's budget in seconds (0: none); call once per job, in order.
-    double nextJobBudget();
-
-private:
-    std::chrono::steady_clock::time_point m_start;
-    double m_max_seconds;
-    std::size_t m_jobs_left;
-};
+// A job's largest relative standard error: of its albedo, every f and its
+// projection's order-0 entries (0 where a mean is 0); RunDeadline's measure
+// of what a job kind needs.
+double largestRelativeError(const JobResult& r, int orders);
 
 class McEngine {
 public:

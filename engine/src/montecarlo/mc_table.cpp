@@ -47,6 +47,7 @@
 #include "paintlab/engine/montecarlo/mc_table.h"
 
 #include "mc_engine.h"
+#include "run_deadline.h"
 
 #include <tbb/global_control.h>
 
@@ -109,13 +110,16 @@ McTable tabulateMonteCarlo(const Recipe& recipe, const FastModelSettings& grid_s
     std::function<bool()> keep_going;
     if (progress) keep_going = [&progress] { return progress(kGridShare); };
     const McEngine engine(recipe, settings, keep_going);
-    std::size_t jobs = 0;
-    for (const auto& g : grid.bands()) jobs += g.mu.size();
+    // Jobs run band by band; the same incidence node in each band is one kind.
+    std::vector<std::size_t> kinds;
+    for (const auto& g : grid.bands())
+        for (std::size_t j = 0; j < g.mu.size(); ++j) kinds.push_back(j);
+    const std::size_t jobs = kinds.size();
     // Unlike runMonteCarlo, the budget starts after the tiles' set-up: a
     // table has ~250 jobs, and the GUI's 1 s budget (full_model_job.cpp) is
     // shorter than the set-up, which would leave every job its pilot round
     // alone. An overrun of one job still comes out of the later ones.
-    RunDeadline deadline(settings.max_seconds, jobs);
+    RunDeadline deadline(settings.max_seconds, kinds);
     const auto wavelengths = grid.wavelengthsNm();
     const auto& grid_bands = grid.bands();
     const auto batches = static_cast<std::size_t>(engine.batches());
@@ -148,6 +152,7 @@ McTable tabulateMonteCarlo(const Recipe& recipe, const FastModelSettings& grid_s
                                                      static_cast<double>(jobs));
                 };
             const JobResult r = engine.run(band, b, j, job, deadline.nextJobBudget(), job_progress);
+            deadline.jobDone(r.incidence.seconds, largestRelativeError(r, job.orders));
             const auto jj = static_cast<Eigen::Index>(j);
             t.albedo(jj) = r.incidence.albedo.mean;
             albedo_se(jj) = r.incidence.albedo.std_error;

@@ -1,6 +1,7 @@
 #include "paintlab/engine/montecarlo/monte_carlo.h"
 
 #include "mc_engine.h"
+#include "run_deadline.h"
 
 #include <tbb/global_control.h>
 
@@ -20,7 +21,11 @@ McResult runMonteCarlo(const Recipe& recipe, std::span<const double> wavelengths
                        std::span<const IncidenceRequest> requests, const McSettings& settings,
                        const ProgressCallback& progress) {
     const auto start = Clock::now();
-    RunDeadline deadline(settings.max_seconds, wavelengths_nm.size() * requests.size());
+    // Jobs run band by band; the same incidence in each band is one kind.
+    std::vector<std::size_t> kinds;
+    for (std::size_t b = 0; b < wavelengths_nm.size(); ++b)
+        for (std::size_t i = 0; i < requests.size(); ++i) kinds.push_back(i);
+    RunDeadline deadline(settings.max_seconds, std::move(kinds));
     std::unique_ptr<tbb::global_control> threads;
     if (settings.threads > 0)
         threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
@@ -43,6 +48,7 @@ McResult runMonteCarlo(const Recipe& recipe, std::span<const double> wavelengths
                     return progress((static_cast<double>(jobs_done) + fraction) / static_cast<double>(jobs));
                 };
             JobResult r = engine.run(band, b, i, job, deadline.nextJobBudget(), job_progress);
+            deadline.jobDone(r.incidence.seconds, largestRelativeError(r, job.orders));
             result.total_paths += r.incidence.paths;
             result.bands[b].push_back(std::move(r.incidence));
             ++jobs_done;

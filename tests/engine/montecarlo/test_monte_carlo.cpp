@@ -16,6 +16,7 @@
 
 #include "mc_engine.h"
 #include "mc_stack.h"
+#include "run_deadline.h"
 #include "test_recipes.h"
 #include "z_test.h"
 
@@ -402,14 +403,14 @@ TEST(MonteCarloStopping, RelativeErrorTimeBudgetAndCancel) {
 }
 
 // Issue 30: a run's budget covers its set-up (flake tiles, stacks) and every
-// job's overrun: each job gets an even share of what is left. The checks are
+// job's overrun: each job gets its share of what is left. The checks are
 // one-sided in the elapsed time (a loaded machine only sleeps longer), so
 // they cannot fail by load; before the shares were fixed at max_seconds / jobs
 // (0.2 s here) whatever the set-up had taken.
 TEST(MonteCarloStopping, RunDeadlineSharesWhatIsLeft) {
-    mc::RunDeadline none(0.0, 4);
+    mc::RunDeadline none(0.0, {0, 1, 0, 1});
     EXPECT_EQ(none.nextJobBudget(), 0.0);  // no budget: unlimited jobs
-    mc::RunDeadline deadline(0.4, 2);
+    mc::RunDeadline deadline(0.4, {0, 0});
     std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the set-up
     const double first = deadline.nextJobBudget();
     EXPECT_GT(first, 0.0);
@@ -418,6 +419,42 @@ TEST(MonteCarloStopping, RunDeadlineSharesWhatIsLeft) {
     const double second = deadline.nextJobBudget();
     EXPECT_GT(second, 0.0);  // a job still runs its pilot round
     EXPECT_LT(second, 1e-3);
+}
+
+// The shares follow the forecast needs, exactly: a need's part of their sum,
+// an even share when none is known, within [0.1, 4] even shares.
+TEST(MonteCarloStopping, JobSharesFollowTheForecastNeeds) {
+    EXPECT_DOUBLE_EQ(mc::jobShare(std::vector<double>{1.0, 1.0, 1.0, 1.0}), 0.25);
+    EXPECT_DOUBLE_EQ(mc::jobShare(std::vector<double>{3.0, 1.0}), 0.75);
+    EXPECT_DOUBLE_EQ(mc::jobShare(std::vector<double>{0.0, 0.0}), 0.5);
+    EXPECT_DOUBLE_EQ(mc::jobShare(std::vector<double>{2.0}), 1.0);
+    EXPECT_DOUBLE_EQ(mc::jobShare(std::vector<double>{0.0, 1.0, 1.0, 1.0}), mc::kMinShareOfEven / 4.0);
+    EXPECT_DOUBLE_EQ(mc::jobShare(std::vector<double>{100.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0}),
+                     mc::kMaxShareOfEven / 8.0);
+}
+
+// Two kinds of job, alternating as the incidences of a run's bands: once a
+// kind is seen to be cheap (need W = seconds x error^2), its next job gets
+// the floor share and the costly kind the rest. Only microseconds pass
+// between the calls, so the bounds leave 0.1 s for a loaded machine.
+TEST(MonteCarloStopping, RunDeadlineGivesACheapKindsTimeToACostlyOne) {
+    mc::RunDeadline deadline(1.0, {0, 1, 0, 1});
+    const double first = deadline.nextJobBudget();  // nothing seen: an even share
+    EXPECT_LE(first, 0.25);
+    EXPECT_GT(first, 0.15);
+    deadline.jobDone(0.01, 0.01);  // kind 0: W = 1e-6
+    // Kind 1 unseen: forecast as kind 0, so a third of what is left, doubled as a kind's first job.
+    const double second = deadline.nextJobBudget();
+    EXPECT_LE(second, mc::kFirstOfKindShare / 3.0);
+    EXPECT_GT(second, mc::kFirstOfKindShare / 3.0 - 0.1);
+    deadline.jobDone(0.5, 0.01);                    // kind 1: W = 5e-5, fifty times kind 0's
+    const double third = deadline.nextJobBudget();  // kind 0: 1/51 of the two, held at the floor
+    EXPECT_LE(third, mc::kMinShareOfEven / 2.0);
+    EXPECT_GT(third, 0.0);
+    deadline.jobDone(0.001, 0.01);
+    const double last = deadline.nextJobBudget();  // everything left
+    EXPECT_GT(last, 0.9);
+    EXPECT_LE(last, 1.0);
 }
 
 TEST(MonteCarloDeterminism, SameSeedSameNumbersAnyThreadCount) {
