@@ -6,6 +6,8 @@
 #include "paintlab/engine/error.h"
 #include "paintlab/engine/layer_optics.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -45,8 +47,18 @@ BottomOperator::BottomOperator(const Recipe& recipe, std::size_t first_layer, do
     m_f.assign(static_cast<std::size_t>(kOrders) * count * count, 0.0);
     m_albedo.assign(count, 0.0);
     double f0_max = 0.0;
-    for (int m = 0; m < kOrders; ++m) {
-        const Eigen::MatrixXd R = fast::stackReflection(stack, m, fs);
+    // The orders are independent: a block of them at a time in parallel (the
+    // bands are built between jobs, on an idle machine), read in order so
+    // that the series ends where it did order by order.
+    constexpr int kOrderBlock = 4;
+    std::vector<Eigen::MatrixXd> block(kOrderBlock);
+    for (int m = 0; m < kOrders && !m_series_converged; ++m) {
+        if (m % kOrderBlock == 0)
+            tbb::parallel_for(m, std::min(kOrders, m + kOrderBlock), [&](int order) {
+                block[static_cast<std::size_t>(order % kOrderBlock)] =
+                    fast::stackReflection(stack, order, fs);
+            });
+        const Eigen::MatrixXd& R = block[static_cast<std::size_t>(m % kOrderBlock)];
         double largest = 0.0;
         for (int o = 0; o < nn; ++o) {
             const double to_brdf = 1.0 / (kPi * medium.quadrature.fluxWeight(o));
@@ -66,10 +78,7 @@ BottomOperator::BottomOperator(const Recipe& recipe, std::size_t first_layer, do
         if (m == 0) f0_max = largest;
         m_orders = m + 1;
         // The coefficients fall monotonically with m (HG's g^m): the first negligible order ends the series.
-        if (m > 0 && largest <= 1e-7 * f0_max) {
-            m_series_converged = true;
-            break;
-        }
+        if (m > 0 && largest <= 1e-7 * f0_max) m_series_converged = true;
     }
     m_f.resize(static_cast<std::size_t>(m_orders) * count * count);
 
@@ -114,17 +123,25 @@ BottomOperator::BottomOperator(const Recipe& recipe, std::size_t first_layer, do
         }
         for (std::size_t o = 1; o <= count; ++o) cdf[o] /= cdf[count];
     }
-    // Azimuth: per (node, cell) the Fourier series at bin centres over [0, pi], floored.
+    // Azimuth: per (node, cell) the Fourier series at bin centres over [0, pi],
+    // floored; the cosines tabulated once, the incident nodes in parallel.
     const std::size_t bins = kAzimuthBins;
+    const auto orders = static_cast<std::size_t>(m_orders);
+    std::vector<double> cosines(bins * orders);
+    for (std::size_t b = 0; b < bins; ++b) {
+        const double phi = (static_cast<double>(b) + 0.5) * kPi / static_cast<double>(bins);
+        for (int m = 1; m < m_orders; ++m)
+            cosines[b * orders + static_cast<std::size_t>(m)] = std::cos(m * phi);
+    }
     m_azimuth_cdf.assign(count * count * (bins + 1), 0.0);
-    std::vector<double> g(bins);
-    for (int i = 0; i < nn; ++i) {
+    tbb::parallel_for(0, nn, [&](int i) {
+        std::vector<double> g(bins);
         for (int o = 0; o < nn; ++o) {
             double mean = 0.0;
             for (std::size_t b = 0; b < bins; ++b) {
-                const double phi = (static_cast<double>(b) + 0.5) * kPi / static_cast<double>(bins);
                 double value = at(0, o, i);
-                for (int m = 1; m < m_orders; ++m) value += 2.0 * at(m, o, i) * std::cos(m * phi);
+                for (int m = 1; m < m_orders; ++m)
+                    value += 2.0 * at(m, o, i) * cosines[b * orders + static_cast<std::size_t>(m)];
                 g[b] = std::max(0.0, value);
                 mean += g[b] / static_cast<double>(bins);
             }
@@ -134,7 +151,7 @@ BottomOperator::BottomOperator(const Recipe& recipe, std::size_t first_layer, do
                 cdf[b + 1] = cdf[b] + g[b] + kAzimuthFloor * std::max(mean, 1e-300);
             for (std::size_t b = 1; b <= bins; ++b) cdf[b] /= cdf[bins];
         }
-    }
+    });
 }
 
 void BottomOperator::locate(double mu, int& k, double& t, bool extrapolate) const {
