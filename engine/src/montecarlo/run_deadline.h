@@ -6,8 +6,9 @@
 // its budget. The shares follow each job kind's need learned from the jobs
 // already done (the work-normalised variance W = seconds x error^2: a job
 // given W / e^2 seconds ends near the error e), so that the jobs end near a
-// common error instead of the cheap ones far below it: on silver metallic a
-// normal-incidence job needs ~1/200 of an oblique one's time.
+// common error instead of the cheap ones far below it (a flake paint's
+// normal-incidence jobs need a small part of its oblique ones' time;
+// docs/PERFORMANCE.md, "Budgets shared by each job kind's need").
 
 #include <chrono>
 #include <cstddef>
@@ -24,9 +25,8 @@ inline constexpr double kMaxShareOfEven = 4.0;
 // Once some kinds are seen, the first job of another gets this many times
 // the share its forecast (their mean need) gives: its need is the least
 // known, and a job given too little stays at a large error while one given
-// too much takes a little from each of the many jobs after it (silver
-// metallic's first oblique job ended at 2.3 % against 1.2-1.7 % for the
-// others on an even share). Before any kind is seen, shares are even.
+// too much takes a little from each of the many jobs after it. Before any
+// kind is seen, shares are even.
 inline constexpr double kFirstOfKindShare = 2.0;
 
 // The share of what is left that the first of the remaining jobs gets, from
