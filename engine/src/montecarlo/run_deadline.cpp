@@ -22,9 +22,7 @@ RunDeadline::RunDeadline(double max_seconds, std::vector<std::size_t> kinds)
     m_need.assign(kind_count, -1.0);
 }
 
-double RunDeadline::forecastNeed(std::size_t kind) const {
-    if (kind < m_need.size() && m_need[kind] >= 0.0) return m_need[kind];
-    // A kind not seen yet: the mean of those seen (1 before any: even shares).
+double RunDeadline::meanSeenNeed() const {
     double sum = 0.0;
     int seen = 0;
     for (const double need : m_need)
@@ -32,7 +30,7 @@ double RunDeadline::forecastNeed(std::size_t kind) const {
             sum += need;
             ++seen;
         }
-    return seen > 0 ? sum / seen : 1.0;
+    return seen > 0 ? sum / seen : -1.0;
 }
 
 double RunDeadline::nextJobBudget() {
@@ -46,20 +44,22 @@ double RunDeadline::nextJobBudget() {
         left -=
             std::max(0.0, between) / static_cast<double>(job) * static_cast<double>(m_kinds.size() - job - 1);
     }
+    // A kind not seen yet is forecast as the mean of those seen (1 before any: even shares).
+    const double mean_seen = meanSeenNeed();
+    const double unseen = mean_seen >= 0.0 ? mean_seen : 1.0;
     std::vector<double> needs;
-    for (std::size_t j = job; j < m_kinds.size(); ++j) needs.push_back(forecastNeed(m_kinds[j]));
+    for (std::size_t j = job; j < m_kinds.size(); ++j)
+        needs.push_back(m_need[m_kinds[j]] >= 0.0 ? m_need[m_kinds[j]] : unseen);
     double share = jobShare(needs);
-    const bool seen_any = std::any_of(m_need.begin(), m_need.end(), [](double need) { return need >= 0.0; });
-    if (seen_any && m_need[m_kinds[job]] < 0.0) share = std::min(1.0, kFirstOfKindShare * share);
+    if (mean_seen >= 0.0 && m_need[m_kinds[job]] < 0.0) share = std::min(1.0, kFirstOfKindShare * share);
     // Past the deadline a job still runs its pilot round (a result needs paths): a tiny positive budget.
     return std::max(left * share, 1e-6);
 }
 
 void RunDeadline::jobDone(double seconds, double error) {
     if (m_next == 0 || m_next > m_kinds.size()) return;
-    const std::size_t kind = m_kinds[m_next - 1];
-    if (kind < m_need.size() && std::isfinite(seconds) && std::isfinite(error))
-        m_need[kind] = std::max(0.0, seconds) * error * error;
+    if (std::isfinite(seconds) && std::isfinite(error))
+        m_need[m_kinds[m_next - 1]] = std::max(0.0, seconds) * error * error;
     if (std::isfinite(seconds)) m_job_seconds += std::max(0.0, seconds);
 }
 

@@ -47,7 +47,8 @@ public:
     void jobDone(double seconds, double error);
 
 private:
-    double forecastNeed(std::size_t kind) const;
+    // The mean need of the kinds seen so far (negative: none).
+    double meanSeenNeed() const;
 
     std::chrono::steady_clock::time_point m_start;
     std::chrono::steady_clock::time_point m_first_job;

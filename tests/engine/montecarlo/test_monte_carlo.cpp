@@ -457,6 +457,21 @@ TEST(MonteCarloStopping, RunDeadlineGivesACheapKindsTimeToACostlyOne) {
     EXPECT_LE(last, 1.0);
 }
 
+// The time between jobs that no job reports (each band's stack) is forecast
+// per job to come and kept out of the shares: after 0.1 s between the first
+// two of four equal jobs, the second gets a third of what is left less two
+// more such gaps, not a third of all of it (0.30 s). One-sided: a slower
+// machine only sleeps longer, which lowers the share.
+TEST(MonteCarloStopping, RunDeadlineKeepsTheTimeBetweenJobsForTheJobsToCome) {
+    mc::RunDeadline deadline(1.0, {0, 0, 0, 0});
+    EXPECT_LE(deadline.nextJobBudget(), 0.25);
+    deadline.jobDone(0.0, 0.01);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));  // a band's stack
+    const double second = deadline.nextJobBudget();
+    EXPECT_GT(second, 0.0);
+    EXPECT_LE(second, (1.0 - 0.1 - 2 * 0.1) / 3.0);
+}
+
 TEST(MonteCarloDeterminism, SameSeedSameNumbersAnyThreadCount) {
     Recipe r = oneLayerRecipe(1.5, 20.0, LambertianSubstrate{Spectrum(0.5)});
     r.layers[0].components = {rawMedium(0.8, 1.0, 0.3)};
