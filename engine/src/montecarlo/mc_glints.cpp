@@ -61,7 +61,9 @@ private:
 };
 
 constexpr int kAzimuthScan = 16;      // azimuths tested per glint sample (azimuthGlintSample)
-constexpr int kAzimuthScanBuild = 8;  // and per listed flake for its proposal weight
+constexpr int kAzimuthScanBuild = 8;  // and per listed flake for its proposal weight (even)
+constexpr double kCosPiOver8 = 0.92387953251128675613;  // the whole circle's half step
+constexpr double kSinPiOver8 = 0.38268343236508977173;
 
 // Whether the flake with normal n reflects the beam v0 (layer l, unturned) into the bin at the view
 // turned by the angle with cosine c and sine s.
@@ -155,7 +157,12 @@ TiltIndex tiltIndex(const FlakeTile& tile) {
         return tilt[a] < tilt[b] || (tilt[a] == tilt[b] && a < b);
     });
     TiltIndex index;
-    for (std::uint32_t i : order) index.tilt.push_back(tilt[i]);
+    for (std::uint32_t i : order) {
+        index.tilt.push_back(tilt[i]);
+        const PlacedFlake& f = flakes[i];
+        const Vec3 up = f.normal.z >= 0.0 ? f.normal : Vec3{-f.normal.x, -f.normal.y, -f.normal.z};
+        index.entries.push_back({up, -f.centre.z, tile.flakeAreaUm2(i), f.kind});
+    }
     // The lateral grid: cells about a flake diameter wide (a query's box is
     // then covered with little waste), each cell's flakes in tilt order.
     const double L = tile.sideUm();
@@ -211,7 +218,6 @@ std::vector<AzimuthGlintSet> azimuthGlintSets(const PaintStack& stack, std::span
         Vec3 v;
         if (!(n_layer > 0.0) || !refractPlanar(v_in, n_top, n_layer, v)) continue;
         const double L = tile->sideUm();
-        const auto& flakes = tile->flakes();
         for (std::size_t k = 0; k < bins.size(); ++k) {
             const HistogramBin& bin = bins[k];
             AzimuthGlintSet& set = sets[k];
@@ -246,6 +252,13 @@ std::vector<AzimuthGlintSet> azimuthGlintSets(const PaintStack& stack, std::span
             const double tau_star = std::acos(std::clamp(n_star.z, -1.0, 1.0));
             const double phi_star = std::atan2(n_star.y, n_star.x);
             const double cos_rho = std::cos(rho);
+            // The cap's axis as cosines: cos tau_star, sin tau_star and its azimuth's
+            // unit vector (any when the axis is the normal: the cap is then a tilt band).
+            const double cos_tau_star = std::cos(tau_star);
+            const double sin_tau_star = std::sin(tau_star);
+            const double axis_lateral = std::hypot(n_star.x, n_star.y);
+            const double cos_phi_star = axis_lateral > 0.0 ? n_star.x / axis_lateral : 1.0;
+            const double sin_phi_star = axis_lateral > 0.0 ? n_star.y / axis_lateral : 0.0;
             const auto lo = std::lower_bound(tilts.tilt.begin(), tilts.tilt.end(), tau_star - rho);
             const auto hi = rho >= std::numbers::pi
                                 ? tilts.tilt.end()
@@ -254,49 +267,74 @@ std::vector<AzimuthGlintSet> azimuthGlintSets(const PaintStack& stack, std::span
             const auto last_index = static_cast<std::size_t>(hi - tilts.tilt.begin());
             for (std::size_t q = first_index; q < last_index; ++q) {
                 const std::uint32_t f = tilts.order[q];
-                const PlacedFlake& flake = flakes[f];
-                // The tile's normals have z >= 0 (FlakeOrientation); a flake is two-sided.
-                const Vec3 n = flake.normal.z >= 0.0
-                                   ? flake.normal
-                                   : Vec3{-flake.normal.x, -flake.normal.y, -flake.normal.z};
-                const double tau = tilts.tilt[q];
-                double delta = std::numbers::pi;  // half-width of the interval of psi
+                const TiltIndex::Entry& flake = tilts.entries[q];
+                const Vec3& n = flake.normal_up;
+                // cos and sin of its tilt from the normal itself (no trigonometry per flake).
+                const double sin_tau = std::sqrt(n.x * n.x + n.y * n.y);
+                const double cos_tau = n.z;
+                double cos_delta =
+                    -1.0;  // of the half-width delta of the interval of psi (pi: every azimuth)
                 if (rho < std::numbers::pi) {
-                    const double denominator = std::sin(tau) * std::sin(tau_star);
-                    const double numerator = cos_rho - std::cos(tau) * std::cos(tau_star);
+                    const double denominator = sin_tau * sin_tau_star;
+                    const double numerator = cos_rho - cos_tau * cos_tau_star;
                     if (denominator < 1e-12) {
                         if (numerator > 0.0) continue;  // the angle is |tau - tau_star| for every psi
                     } else {
                         const double c = numerator / denominator;
                         if (c > 1.0) continue;
-                        if (c > -1.0) delta = std::acos(c);
+                        if (c > -1.0) cos_delta = c;
                     }
                 }
+                const bool whole_circle = !(cos_delta > -1.0);
+                const double delta = whole_circle ? std::numbers::pi : std::acos(cos_delta);
                 const double phi_n = std::atan2(n.y, n.x);
-                const double psi_lo = delta >= std::numbers::pi ? 0.0 : phi_n - phi_star - delta;
-                const double width = delta >= std::numbers::pi ? kTwoPi : 2.0 * delta;
-                // Proposal at the interval's middle (the view there: the beam turned by psi).
-                const double psi_mid = psi_lo + 0.5 * width;
-                const Vec3 vt = turn(v, std::cos(psi_mid), std::sin(psi_mid));
+                const double psi_lo = whole_circle ? 0.0 : phi_n - phi_star - delta;
+                const double width = whole_circle ? kTwoPi : 2.0 * delta;
+                // Proposal at the interval's middle (the view there: the beam turned by
+                // psi_mid = phi_n - phi_star, or pi for the whole circle), and the scan of
+                // kAzimuthScanBuild azimuths psi_mid +- (k + 1/2) step, step = width / 8 =
+                // delta / 4: their cosines by the half-angle formulas from cos delta.
+                double c_mid = -1.0;
+                double s_mid = 0.0;
+                double c_half = kCosPiOver8;  // of step / 2
+                double s_half = kSinPiOver8;
+                if (!whole_circle) {
+                    const double c_n = n.x / sin_tau;
+                    const double s_n = n.y / sin_tau;
+                    c_mid = c_n * cos_phi_star + s_n * sin_phi_star;
+                    s_mid = s_n * cos_phi_star - c_n * sin_phi_star;
+                    const double c2 = std::sqrt(0.5 * (1.0 + cos_delta));  // delta / 2
+                    const double s2 = std::sqrt(0.5 * (1.0 - cos_delta));
+                    const double c4 = std::sqrt(0.5 * (1.0 + c2));  // delta / 4
+                    const double s4 = s2 / (2.0 * c4);
+                    c_half = std::sqrt(0.5 * (1.0 + c4));  // delta / 8
+                    s_half = s4 / (2.0 * c_half);
+                }
+                const double c_step = c_half * c_half - s_half * s_half;
+                const double s_step = 2.0 * s_half * c_half;
+                const Vec3 vt = turn(v, c_mid, s_mid);
                 const double vn = dot(vt, n);
                 const Vec3 r{vt.x - 2.0 * vn * n.x, vt.y - 2.0 * vn * n.y, vt.z - 2.0 * vn * n.z};
-                const double depth = -flake.centre.z;
+                const double depth = flake.depth_um;
                 const double R = tiles[l].kinds[static_cast<std::size_t>(flake.kind)].R(std::abs(vn));
                 const double od = beam_depth.at(depth) + (r.z > 0.0 ? exit_depth[k].at(depth) : 1e3);
                 int glinting = 0;
-                const double step = width / kAzimuthScanBuild;
-                const double c_step = std::cos(step);
-                const double s_step = std::sin(step);
-                double c_m = std::cos(psi_lo + 0.5 * step);
-                double s_m = std::sin(psi_lo + 0.5 * step);
-                for (int m = 0; m < kAzimuthScanBuild; ++m) {
-                    if (glintsAt(v, flake.normal, n_layer, stack.ambient_n, bin, c_m, s_m)) ++glinting;
-                    const double c_next = c_m * c_step - s_m * s_step;
-                    s_m = s_m * c_step + c_m * s_step;
-                    c_m = c_next;
+                double c_up = c_mid * c_half - s_mid * s_half;  // psi_mid + step / 2
+                double s_up = s_mid * c_half + c_mid * s_half;
+                double c_down = c_mid * c_half + s_mid * s_half;  // psi_mid - step / 2
+                double s_down = s_mid * c_half - c_mid * s_half;
+                for (int m = 0; m < kAzimuthScanBuild / 2; ++m) {
+                    if (glintsAt(v, n, n_layer, stack.ambient_n, bin, c_up, s_up)) ++glinting;
+                    if (glintsAt(v, n, n_layer, stack.ambient_n, bin, c_down, s_down)) ++glinting;
+                    const double c_up_next = c_up * c_step - s_up * s_step;
+                    s_up = s_up * c_step + c_up * s_step;
+                    c_up = c_up_next;
+                    const double c_down_next = c_down * c_step + s_down * s_step;
+                    s_down = s_down * c_step - c_down * s_step;
+                    c_down = c_down_next;
                 }
                 const double share = (glinting + 0.5) / (kAzimuthScanBuild + 0.5);
-                const double weight = tile->flakeAreaUm2(f) * std::abs(vn) / (std::abs(v.z) * L * L) * width /
+                const double weight = flake.area_um2 * std::abs(vn) / (std::abs(v.z) * L * L) * width /
                                       kTwoPi * share * (std::max(R, 0.0) * std::exp(-od) + 1e-9);
                 if (!(weight > 0.0)) continue;
                 set.flakes.push_back({static_cast<int>(l), f, psi_lo, width, depth});
@@ -304,24 +342,33 @@ std::vector<AzimuthGlintSet> azimuthGlintSets(const PaintStack& stack, std::span
             }
         }
     }
+    // Each set by depth (then layer and flake: a total order), sorted on
+    // copied keys rather than through an index into the set.
+    struct DepthKey {
+        double depth;
+        int layer;
+        std::uint32_t flake;
+        std::size_t at;
+    };
+    std::vector<DepthKey> keys;
     for (auto& set : sets) {
-        std::vector<std::size_t> order(set.flakes.size());
-        for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-        std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-            const auto& fa = set.flakes[a];
-            const auto& fb = set.flakes[b];
-            if (fa.depth != fb.depth) return fa.depth < fb.depth;
-            if (fa.layer != fb.layer) return fa.layer < fb.layer;
-            return fa.flake < fb.flake;
+        keys.clear();
+        keys.reserve(set.flakes.size());
+        for (std::size_t i = 0; i < set.flakes.size(); ++i)
+            keys.push_back({set.flakes[i].depth, set.flakes[i].layer, set.flakes[i].flake, i});
+        std::sort(keys.begin(), keys.end(), [](const DepthKey& a, const DepthKey& b) {
+            if (a.depth != b.depth) return a.depth < b.depth;
+            if (a.layer != b.layer) return a.layer < b.layer;
+            return a.flake < b.flake;
         });
         std::vector<AzimuthGlint> flakes;
         std::vector<double> cumulative;
-        flakes.reserve(order.size());
-        cumulative.reserve(order.size());
+        flakes.reserve(keys.size());
+        cumulative.reserve(keys.size());
         double total = 0.0;
-        for (std::size_t i : order) {
-            flakes.push_back(set.flakes[i]);
-            total += set.cumulative[i];
+        for (const DepthKey& key : keys) {
+            flakes.push_back(set.flakes[key.at]);
+            total += set.cumulative[key.at];
             cumulative.push_back(total);
         }
         set.flakes = std::move(flakes);

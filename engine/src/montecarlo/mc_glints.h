@@ -76,6 +76,15 @@ void scoreGlints(const PaintStack& stack, std::span<const LayerFlakes> tiles,
 struct TiltIndex {
     std::vector<std::uint32_t> order;  // flake indices by ascending tilt
     std::vector<double> tilt;          // their tilts (radians), ascending
+    // What azimuthGlintSets reads of each flake, in the same order: read
+    // through `order`, the tile's flakes were a cache miss per flake listed.
+    struct Entry {
+        Vec3 normal_up;  // the normal turned to z >= 0 (a flake is two-sided)
+        double depth_um = 0.0;
+        double area_um2 = 0.0;
+        int kind = 0;
+    };
+    std::vector<Entry> entries;
     // A lateral grid of the same flakes (reflectedBeams' candidates): cells x
     // cells squares of side cell_um over the tile, cell c = row * cells + column
     // holding cell_flakes[cell_start[c] .. cell_start[c + 1]) (by the centre's
