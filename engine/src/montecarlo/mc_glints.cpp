@@ -80,6 +80,16 @@ bool glintsAt(const Vec3& v0, const Vec3& n, double n_layer, double ambient_n, c
 
 }  // namespace
 
+CosSin eighthOfAngle(double cos_delta) {
+    const double c = std::clamp(cos_delta, -1.0, 1.0);
+    const double c2 = std::sqrt(0.5 * (1.0 + c));  // delta / 2, in [0, pi / 2]
+    const double s2 = std::sqrt(0.5 * (1.0 - c));
+    const double c4 = std::sqrt(0.5 * (1.0 + c2));  // delta / 4: sin x = sin 2x / (2 cos x)
+    const double s4 = s2 / (2.0 * c4);
+    const double c8 = std::sqrt(0.5 * (1.0 + c4));  // delta / 8
+    return {c8, s4 / (2.0 * c8)};
+}
+
 std::vector<GlintSet> glintSets(const PaintStack& stack, std::span<const LayerFlakes> tiles, const Vec3& v_in,
                                 std::span<const HistogramBin> bins) {
     std::vector<GlintSet> sets(bins.size());
@@ -303,12 +313,9 @@ std::vector<AzimuthGlintSet> azimuthGlintSets(const PaintStack& stack, std::span
                     const double s_n = n.y / sin_tau;
                     c_mid = c_n * cos_phi_star + s_n * sin_phi_star;
                     s_mid = s_n * cos_phi_star - c_n * sin_phi_star;
-                    const double c2 = std::sqrt(0.5 * (1.0 + cos_delta));  // delta / 2
-                    const double s2 = std::sqrt(0.5 * (1.0 - cos_delta));
-                    const double c4 = std::sqrt(0.5 * (1.0 + c2));  // delta / 4
-                    const double s4 = s2 / (2.0 * c4);
-                    c_half = std::sqrt(0.5 * (1.0 + c4));  // delta / 8
-                    s_half = s4 / (2.0 * c_half);
+                    const CosSin eighth = eighthOfAngle(cos_delta);
+                    c_half = eighth.c;
+                    s_half = eighth.s;
                 }
                 const double c_step = c_half * c_half - s_half * s_half;
                 const double s_step = 2.0 * s_half * c_half;

@@ -73,6 +73,15 @@ void scoreGlints(const PaintStack& stack, std::span<const LayerFlakes> tiles,
 //    stratum of the cumulative weight) spread over depths.
 // No view enters: the tile-to-tile spread of G is that of the tile itself,
 // not of 32 sampled azimuths (at 45as110 a view held ~1 glinting flake).
+// cos and sin of delta / 8 from cos delta (delta in [0, pi]) by the
+// half-angle formulas, square roots only: azimuthGlintSets' scan of a
+// flake's azimuth interval takes its steps from them.
+struct CosSin {
+    double c = 1.0;
+    double s = 0.0;
+};
+CosSin eighthOfAngle(double cos_delta);
+
 struct TiltIndex {
     std::vector<std::uint32_t> order;  // flake indices by ascending tilt
     std::vector<double> tilt;          // their tilts (radians), ascending
