@@ -135,7 +135,10 @@ bool insidePolygon(const Vec3& q, const Vec3& normal, double r, double rotation,
     const double rho2 = dot(q, q);
     if (rho2 > r * r) return false;
     if (sides == 0) return true;
-    const double apothem = r * std::cos(std::numbers::pi / sides);
+    // cos(pi / n) once for the default shape: this runs on every candidate flake of a ray.
+    static const double kDefaultApothemFactor = std::cos(std::numbers::pi / kFlakePolygonSides);
+    const double apothem =
+        r * (sides == kFlakePolygonSides ? kDefaultApothemFactor : std::cos(std::numbers::pi / sides));
     if (rho2 <= apothem * apothem) return true;
     Vec3 b1;
     Vec3 b2;
