@@ -282,8 +282,8 @@ std::vector<AzimuthGlintSet> azimuthGlintSets(const PaintStack& stack, std::span
                 // cos and sin of its tilt from the normal itself (no trigonometry per flake).
                 const double sin_tau = std::sqrt(n.x * n.x + n.y * n.y);
                 const double cos_tau = n.z;
-                double cos_delta =
-                    -1.0;  // of the half-width delta of the interval of psi (pi: every azimuth)
+                // cos of the half-width delta of the interval of psi (-1: every azimuth).
+                double cos_delta = -1.0;
                 if (rho < std::numbers::pi) {
                     const double denominator = sin_tau * sin_tau_star;
                     const double numerator = cos_rho - cos_tau * cos_tau_star;

@@ -73,15 +73,6 @@ void scoreGlints(const PaintStack& stack, std::span<const LayerFlakes> tiles,
 //    stratum of the cumulative weight) spread over depths.
 // No view enters: the tile-to-tile spread of G is that of the tile itself,
 // not of 32 sampled azimuths (at 45as110 a view held ~1 glinting flake).
-// cos and sin of delta / 8 from cos delta (delta in [0, pi]) by the
-// half-angle formulas, square roots only: azimuthGlintSets' scan of a
-// flake's azimuth interval takes its steps from them.
-struct CosSin {
-    double c = 1.0;
-    double s = 0.0;
-};
-CosSin eighthOfAngle(double cos_delta);
-
 struct TiltIndex {
     std::vector<std::uint32_t> order;  // flake indices by ascending tilt
     std::vector<double> tilt;          // their tilts (radians), ascending
@@ -127,6 +118,15 @@ struct AzimuthGlintSet {
 // for the unturned beam v_in (refracted into the top slice) and every bin (unturned).
 std::vector<AzimuthGlintSet> azimuthGlintSets(const PaintStack& stack, std::span<const LayerFlakes> tiles,
                                               const Vec3& v_in, std::span<const HistogramBin> bins);
+
+// cos and sin of delta / 8 from cos delta (delta in [0, pi]) by the
+// half-angle formulas, square roots only: azimuthGlintSets' scan of a
+// flake's azimuth interval takes its steps from them.
+struct CosSin {
+    double c = 1.0;
+    double s = 0.0;
+};
+CosSin eighthOfAngle(double cos_delta);
 
 // Uniforms of one sample: the pick (stratified by the caller), the azimuth
 // within the interval and the point on the polygon (pointOnFlake's three);
