@@ -48,8 +48,8 @@ BottomOperator::BottomOperator(const Recipe& recipe, std::size_t first_layer, do
     m_albedo.assign(count, 0.0);
     double f0_max = 0.0;
     // The orders are independent: a block of them at a time in parallel (the
-    // bands are built between jobs, on an idle machine), read in order so
-    // that the series ends where it did order by order.
+    // bands are built before their jobs, BandsInTurn), read in order so that
+    // the series ends where it did order by order.
     constexpr int kOrderBlock = 4;
     std::vector<Eigen::MatrixXd> block(kOrderBlock);
     for (int m = 0; m < kOrders && !m_series_converged; ++m) {

@@ -8,12 +8,14 @@
 #include "paintlab/engine/error.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <future>
+#include <string>
 
 namespace paintlab::mc {
 
@@ -433,6 +435,22 @@ JobResult McEngine::run(const Band& band, std::uint64_t band_key, std::uint64_t 
     }
     current.incidence.account = runner.account();
     return current;
+}
+
+BandsInTurn::BandsInTurn(const McEngine& engine, std::vector<double> wavelengths_nm)
+    : m_engine(engine), m_wavelengths_nm(std::move(wavelengths_nm)),
+      m_group(static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency()))) {}
+
+const McEngine::Band& BandsInTurn::band(std::size_t b) {
+    if (m_built.empty() || b < m_first || b >= m_first + m_built.size()) {
+        if (b >= m_wavelengths_nm.size()) throw Error("Monte Carlo: no band " + std::to_string(b));
+        m_first = b;
+        const std::size_t count = std::min(m_group, m_wavelengths_nm.size() - b);
+        m_built.assign(count, {});
+        tbb::parallel_for(std::size_t{0}, count,
+                          [&](std::size_t k) { m_built[k] = m_engine.band(m_wavelengths_nm[b + k]); });
+    }
+    return m_built[b - m_first];
 }
 
 }  // namespace paintlab::mc

@@ -92,4 +92,23 @@ private:
     double m_tile_side_um = 1.0;
 };
 
+// A run's bands in the order its jobs ask for them, built as many at a time
+// as there are cores, in parallel, when the first of each group is asked
+// for: much of a band's build (its stack, a flake-free bottom's operator)
+// runs on one core, and built one by one between the jobs it left the
+// other core idle. At most one group is held.
+class BandsInTurn {
+public:
+    BandsInTurn(const McEngine& engine, std::vector<double> wavelengths_nm);
+    // Band b; b = 0, 1, 2, ... in turn.
+    const McEngine::Band& band(std::size_t b);
+
+private:
+    const McEngine& m_engine;
+    std::vector<double> m_wavelengths_nm;
+    std::size_t m_group;
+    std::vector<McEngine::Band> m_built;  // bands m_first .. m_first + size - 1
+    std::size_t m_first = 0;
+};
+
 }  // namespace paintlab::mc

@@ -262,13 +262,13 @@ std::vector<AzimuthGlintSet> azimuthGlintSets(const PaintStack& stack, std::span
             const double tau_star = std::acos(std::clamp(n_star.z, -1.0, 1.0));
             const double phi_star = std::atan2(n_star.y, n_star.x);
             const double cos_rho = std::cos(rho);
-            // The cap's axis as cosines: cos tau_star, sin tau_star and its azimuth's
-            // unit vector (any when the axis is the normal: the cap is then a tilt band).
-            const double cos_tau_star = std::cos(tau_star);
-            const double sin_tau_star = std::sin(tau_star);
-            const double axis_lateral = std::hypot(n_star.x, n_star.y);
-            const double cos_phi_star = axis_lateral > 0.0 ? n_star.x / axis_lateral : 1.0;
-            const double sin_phi_star = axis_lateral > 0.0 ? n_star.y / axis_lateral : 0.0;
+            // The cap's axis as cosines, read off the unit axis as a flake's are off
+            // its normal below: cos and sin of tau_star and its azimuth's unit vector
+            // (any when the axis is the normal: the cap is then a tilt band).
+            const double cos_tau_star = std::clamp(n_star.z, -1.0, 1.0);
+            const double sin_tau_star = std::sqrt(n_star.x * n_star.x + n_star.y * n_star.y);
+            const double cos_phi_star = sin_tau_star > 0.0 ? n_star.x / sin_tau_star : 1.0;
+            const double sin_phi_star = sin_tau_star > 0.0 ? n_star.y / sin_tau_star : 0.0;
             const auto lo = std::lower_bound(tilts.tilt.begin(), tilts.tilt.end(), tau_star - rho);
             const auto hi = rho >= std::numbers::pi
                                 ? tilts.tilt.end()

@@ -129,9 +129,10 @@ McTable tabulateMonteCarlo(const Recipe& recipe, const FastModelSettings& grid_s
     std::vector<std::vector<LayeredBrdf::BandTable>> batch_tables(batches);
     bool every_batch = true;
     std::size_t jobs_done = 0;
+    BandsInTurn bands(engine, {wavelengths.begin(), wavelengths.end()});
     for (std::size_t b = 0; b < grid_bands.size(); ++b) {
         const LayeredBrdf::BandTable& g = grid_bands[b];
-        const McEngine::Band band = engine.band(wavelengths[b]);
+        const McEngine::Band& band = bands.band(b);
         JobSpec job;
         cellEdges(g.mu, job.cell_lower_mu, job.cell_upper_mu);
         job.orders = static_cast<int>(g.f.size());

@@ -4,10 +4,7 @@
 #include "run_deadline.h"
 
 #include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
-#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <variant>
@@ -41,19 +38,9 @@ McResult runMonteCarlo(const Recipe& recipe, std::span<const double> wavelengths
     result.bands.resize(wavelengths_nm.size());
     const std::size_t jobs = wavelengths_nm.size() * requests.size();
     std::size_t jobs_done = 0;
-    // The bands' stacks (and a flake-free bottom's operator) are built a few
-    // at a time in parallel: much of a band's build runs on one core, so
-    // built one by one between the jobs they left the other core idle.
-    const auto group = static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency()));
-    std::vector<McEngine::Band> built;
+    BandsInTurn bands(engine, {wavelengths_nm.begin(), wavelengths_nm.end()});
     for (std::size_t b = 0; b < wavelengths_nm.size(); ++b) {
-        if (b % group == 0) {
-            const std::size_t count = std::min(group, wavelengths_nm.size() - b);
-            built.assign(count, {});
-            tbb::parallel_for(std::size_t{0}, count,
-                              [&](std::size_t k) { built[k] = engine.band(wavelengths_nm[b + k]); });
-        }
-        const McEngine::Band& band = built[b % group];
+        const McEngine::Band& band = bands.band(b);
         for (std::size_t i = 0; i < requests.size(); ++i) {
             const JobSpec job{requests[i].wi, requests[i].wo, {}, {}, 0};
             std::function<bool(double)> job_progress;
